@@ -1,0 +1,46 @@
+"""The exception tree of vlln.
+
+Every error a user can cause derives from :class:`VllnError` and says what is wrong and how to
+fix it, so command-line entry points can print the message instead of a traceback::
+
+    VllnError
+    ├── ConfigError                 a setting or argument has an invalid value
+    │   ├── UnknownCategoryError    an object category the catalogue does not have
+    │   └── HouseParametersError    house-generator parameters that cannot be satisfied
+    ├── DataFormatError             a file does not follow the expected format
+    ├── RendererUnavailableError    no headless OpenGL (EGL) context could be created
+    └── NavigationError             a point or goal is off the navigable area or unreachable
+"""
+
+from __future__ import annotations
+
+
+class VllnError(Exception):
+    """Base class of all errors raised on purpose by vlln."""
+
+
+class ConfigError(VllnError, ValueError):
+    """A setting or argument has an invalid value."""
+
+
+class UnknownCategoryError(ConfigError, KeyError):
+    """An object category that the catalogue does not know."""
+
+    def __str__(self) -> str:  # KeyError would otherwise quote the message
+        return str(self.args[0]) if self.args else ""
+
+
+class HouseParametersError(ConfigError):
+    """House-generator parameters that no house can satisfy."""
+
+
+class DataFormatError(VllnError, ValueError):
+    """A file or record does not follow the expected format."""
+
+
+class RendererUnavailableError(VllnError, RuntimeError):
+    """No headless OpenGL context could be created."""
+
+
+class NavigationError(VllnError, ValueError):
+    """A point or goal set is off the navigable area or cannot be reached."""

@@ -1,0 +1,1 @@
+"""The house model, its import/export, the object catalogue and the procedural generator."""
