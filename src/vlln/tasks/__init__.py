@@ -1,0 +1,1 @@
+"""Tasks (IIGN, IGN, ObjectNav): episodes, the environment, and metrics over finished records."""

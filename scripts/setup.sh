@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# Installs everything vlln needs on a fresh Debian/Ubuntu machine with Python 3.11+:
+# the system EGL/Mesa libraries for headless rendering (only when missing), a virtual
+# environment in .venv, and the package with its development tools.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+PYTHON="${PYTHON:-python3}"
+if ! "$PYTHON" -c 'import sys; sys.exit(sys.version_info < (3, 11))' 2>/dev/null; then
+  echo "error: vlln needs Python 3.11 or newer; set PYTHON=/path/to/python3.11" >&2
+  exit 1
+fi
+
+have_egl() {
+  ldconfig -p 2>/dev/null | grep -q 'libEGL.so.1' &&
+    { ldconfig -p 2>/dev/null | grep -q 'libEGL_mesa.so.0' ||
+      ls /usr/lib/*/dri/swrast_dri.so /usr/lib/*/dri/llvmpipe_dri.so >/dev/null 2>&1; }
+}
+
+if ! have_egl; then
+  echo "Installing the system packages for headless rendering: libegl1 libgl1-mesa-dri"
+  SUDO=""
+  if [ "$(id -u)" -ne 0 ]; then
+    if command -v sudo >/dev/null; then SUDO="sudo"; else
+      echo "error: libegl1 and libgl1-mesa-dri are missing and this user cannot install them;" \
+        "ask an administrator to run: apt-get install libegl1 libgl1-mesa-dri" >&2
+      exit 1
+    fi
+  fi
+  $SUDO apt-get update -q
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q libegl1 libgl1-mesa-dri
+fi
+
+if [ ! -x .venv/bin/python ]; then
+  "$PYTHON" -m venv .venv
+fi
+.venv/bin/python -m pip install -q --upgrade pip
+.venv/bin/python -m pip install -q -e '.[dev]'
+echo "vlln is installed in .venv (activate with: source .venv/bin/activate)"

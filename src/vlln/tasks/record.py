@@ -1,0 +1,98 @@
+"""The record of one finished episode: everything the metrics need, nothing kept only in memory.
+
+The evaluation runner writes one :class:`EpisodeRecord` per line (JSON); ``vlln score``
+recomputes every metric from these lines alone, so a record stores raw inputs (the geodesic
+distance to the goal's view points after every step, what the agent stopped in front of, when
+the target was first seen) rather than verdicts.
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, field
+from enum import StrEnum
+from typing import Any
+
+from vlln.errors import DataFormatError
+
+
+class EndReason(StrEnum):
+    """Why an episode ended."""
+
+    STOP = "stop"  # the agent chose STOP
+    STEP_CAP = "step_cap"  # 500 counted steps (STOP/FORWARD/TURN)
+    LOOK_CAP = "look_cap"  # too many LOOK actions
+    TALK_CAP = "talk_cap"  # too many TALK actions
+    ERROR = "error"  # the agent raised or kept returning garbage
+
+
+@dataclass(frozen=True)
+class DialogTurn:
+    """One question and its answer; ``step`` is the counted step at which it was asked."""
+
+    step: int
+    question: str
+    answer: str
+    question_type: str  # attribute | route | disambiguation | other | refused
+    answered: bool  # False once the dialog budget is spent
+
+
+@dataclass(frozen=True)
+class EpisodeRecord:
+    """One finished episode of one agent on one task with one dialog budget."""
+
+    episode_id: str
+    scene_id: str
+    task: str  # iign | ign | objectnav
+    agent: str
+    budget: int  # questions the oracle answers
+    object_category: str
+    target_ids: list[int]  # goal instances (one for IIGN/IGN, all of the category for ObjectNav)
+    end_reason: str  # an EndReason value
+    steps: int  # counted steps
+    geodesic_start: float  # d0: start to the nearest goal view point, metres
+    geodesic_trace: list[float]  # after every counted step, metres (inf: unreachable)
+    path_length: float  # L: sum of straight-line displacements
+    stop_instance_id: int | None  # object most centred in view when the agent stopped
+    stop_instance_category: str | None
+    target_seen_step: int | None  # first step the target was observed (see metrics)
+    positions: list[list[float]] = field(default_factory=list)  # [x, z, yaw] per step
+    actions: list[str] = field(default_factory=list)
+    dialog: list[DialogTurn] = field(default_factory=list)
+    failed_actions: int = 0  # unparseable or invalid agent outputs
+    error: str | None = None
+
+    @property
+    def stopped(self) -> bool:
+        return self.end_reason == EndReason.STOP
+
+    @property
+    def geodesic_final(self) -> float:
+        return self.geodesic_trace[-1] if self.geodesic_trace else self.geodesic_start
+
+    def to_json(self) -> dict[str, Any]:
+        data = asdict(self)
+        data["geodesic_trace"] = [_finite_or_none(d) for d in self.geodesic_trace]
+        data["geodesic_start"] = _finite_or_none(self.geodesic_start)
+        return data
+
+    @staticmethod
+    def from_json(data: dict[str, Any]) -> EpisodeRecord:
+        try:
+            values = dict(data)
+            values["dialog"] = [DialogTurn(**turn) for turn in values.get("dialog", [])]
+            values["geodesic_trace"] = [_none_to_inf(d) for d in values["geodesic_trace"]]
+            values["geodesic_start"] = _none_to_inf(values["geodesic_start"])
+            return EpisodeRecord(**values)
+        except (KeyError, TypeError) as error:
+            raise DataFormatError(
+                f"episode record {data.get('episode_id', '?')!r} is malformed: {error}"
+            ) from None
+
+
+def _finite_or_none(value: float) -> float | None:
+    """JSON has no infinity; an unreachable distance is written as null."""
+    return None if value == float("inf") else round(value, 4)
+
+
+def _none_to_inf(value: float | None) -> float:
+    return float("inf") if value is None else float(value)

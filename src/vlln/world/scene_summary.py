@@ -1,0 +1,438 @@
+"""Export and import of the released scene-summary format.
+
+A scene summary is a directory ``<out>/<scene>/`` with two JSON files that the reference
+oracle and instruction tools read:
+
+* ``object_dict.json``: ``{instance_id: {category, position, min_points, max_points, scope,
+  room, region_id, unique_description, nearby_objects, caption}}`` with instances in id order.
+  ``room`` is the region *label* of the instance's room (``"cooking region"``), because the
+  reference code looks rooms up by ``scope + "/" + room`` and speaks ``room`` through the label
+  table; ``region_id`` (an extra key, ignored by the reference) names the exact region so a
+  house with two bedrooms round-trips. Without it (released data) the room is the region of
+  that label containing, or else nearest to, the instance's floor-plan centre.
+  ``unique_description`` holds ``"fine grained category"`` and the :class:`Attributes`;
+  ``nearby_objects`` maps the other instance's id to the relation word (a list of words when
+  a pair has several). ``position`` is the box centre; it is written for the reference tools
+  and only checked on import, where the box is ``min_points``/``max_points``.
+* ``region_dict.json``: ``{scope: [{label, id, poly, enlarge_poly}]}`` with rooms in id
+  order. Polygons are ``[x, -z]`` (this module is the only place that frame appears) and
+  ``enlarge_poly`` is ``poly`` grown outward by :data:`ENLARGE_MARGIN`, which the reference
+  falls back to for points in doorways and on walls.
+
+Files are byte-identical for equal houses: fixed key order, numbers rounded to
+:data:`DECIMALS` decimals (so a round trip is exact only to 0.1 mm), two-space indent with each
+point on one line, UTF-8, a trailing newline, and written atomically. The format has no doors,
+floor heights, yaw, support ids or geometry; an imported :class:`House` has none of them (floors
+at 0, yaw 0).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import re
+import tempfile
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from vlln.errors import DataFormatError
+from vlln.world.model import (
+    Attributes,
+    Box3,
+    House,
+    ObjectInstance,
+    Point2,
+    Point3,
+    Relation,
+    Room,
+)
+
+OBJECT_DICT_FILE = "object_dict.json"
+REGION_DICT_FILE = "region_dict.json"
+DECIMALS = 4  # 0.1 mm
+ENLARGE_MARGIN = 0.3  # m; about a wall's thickness plus a doorway's depth
+UNKNOWN_ROOM_ID = -1  # room_id of an instance whose room the file does not say
+
+# Our room types and the region labels of the released data (misspellings are the data's).
+ROOM_TYPE_TO_LABEL: dict[str, str] = {
+    "living room": "living region",
+    "bedroom": "resting region",
+    "kitchen": "cooking region",
+    "dining room": "dinning region",
+    "bathroom": "bathing region",
+    "toilet": "toliet region",
+    "study": "study region",
+    "corridor": "corridor region",
+    "storage room": "storage region",
+    "gym": "sports region",
+    "stairs": "stair region",
+    "open area": "open area region",
+    "other": "other region",
+}
+LABEL_TO_ROOM_TYPE: dict[str, str] = {label: kind for kind, label in ROOM_TYPE_TO_LABEL.items()}
+
+# How the reference oracle says each region label aloud.
+SPOKEN_ROOM_NAMES: dict[str, str] = {
+    "living region": "living room",
+    "stair region": "stairs",
+    "bathing region": "bathroom",
+    "storage region": "storage room",
+    "study region": "study room",
+    "cooking region": "kitchen",
+    "sports region": "sports room",
+    "corridor region": "corridor",
+    "toliet region": "toilet",
+    "dinning region": "dining room",
+    "resting region": "resting room",
+    "open area region": "open area",
+    "other region": "area",
+}
+
+_DESCRIPTION_KEYS = ("color", "texture", "material", "shape", "placement", "size")
+_FINE_CATEGORY_KEY = "fine grained category"
+
+
+def export_scene_summary(house: House, out_dir: str | Path) -> Path:
+    """Write ``house`` to ``<out_dir>/<house.name>/`` and return that directory."""
+    name = house.name
+    if not name or name in (".", "..") or "/" in name or "\\" in name:
+        raise DataFormatError(
+            f"house name {name!r} cannot be a scene directory name; use a non-empty name "
+            "without path separators"
+        )
+    scene_dir = Path(out_dir) / name
+    scene_dir.mkdir(parents=True, exist_ok=True)
+    _write_atomically(scene_dir / OBJECT_DICT_FILE, _to_json(_object_dict(house)))
+    _write_atomically(scene_dir / REGION_DICT_FILE, _to_json(_region_dict(house)))
+    return scene_dir
+
+
+def import_scene_summary(scene_dir: str | Path) -> House:
+    """Read a scene-summary directory back into a :class:`House` without geometry."""
+    scene_dir = Path(scene_dir)
+    region_path = scene_dir / REGION_DICT_FILE
+    object_path = scene_dir / OBJECT_DICT_FILE
+    scope, rooms = _parse_regions(region_path, _load_json(region_path))
+    instances, nearby = _parse_objects(object_path, _load_json(object_path), scope, rooms)
+    return House(
+        name=scope,
+        rooms=rooms,
+        doors=[],
+        instances=instances,
+        relations=_relations_of(instances, nearby),
+    )
+
+
+def grown_polygon(polygon: tuple[Point2, ...], margin: float) -> list[Point2]:
+    """``polygon`` with every edge moved ``margin`` outward (mitred corners), either winding."""
+    p = np.asarray(polygon, dtype=np.float64)
+    edges = np.roll(p, -1, axis=0) - p
+    lengths = np.linalg.norm(edges, axis=1, keepdims=True)
+    direction = np.divide(edges, lengths, out=np.zeros_like(edges), where=lengths > 0)
+    twice_area = float(np.sum(p[:, 0] * np.roll(p[:, 1], -1) - np.roll(p[:, 0], -1) * p[:, 1]))
+    outward = 1.0 if twice_area >= 0 else -1.0
+    after = outward * np.stack([direction[:, 1], -direction[:, 0]], axis=1)
+    before = np.roll(after, 1, axis=0)
+    denominator = 1.0 + np.sum(before * after, axis=1, keepdims=True)
+    # A hairpin corner (denominator 0) has no finite mitre; it moves along one normal instead.
+    mitre = np.divide(before + after, denominator, out=after.copy(), where=denominator > 1e-9)
+    grown = p + margin * mitre
+    return [(float(x), float(z)) for x, z in grown]
+
+
+# --- export -----------------------------------------------------------------------------
+
+
+def _num(value: float) -> float:
+    if not math.isfinite(value):
+        raise DataFormatError(f"cannot write the non-finite number {value!r} to a scene summary")
+    return round(float(value), DECIMALS) + 0.0  # + 0.0 turns -0.0 into 0.0
+
+
+def _plan_points(polygon: tuple[Point2, ...] | list[Point2]) -> list[list[float]]:
+    return [[_num(x), _num(-z)] for x, z in polygon]
+
+
+def _room_label(room: Room) -> str:
+    if room.type not in ROOM_TYPE_TO_LABEL:
+        raise DataFormatError(
+            f"room {room.id} has type {room.type!r}, which the scene-summary format cannot "
+            f"express; valid types: {sorted(ROOM_TYPE_TO_LABEL)}"
+        )
+    return ROOM_TYPE_TO_LABEL[room.type]
+
+
+def _object_dict(house: House) -> dict[str, Any]:
+    labels = {room.id: _room_label(room) for room in house.rooms}
+    nearby: dict[int, dict[str, list[str]]] = {}
+    for rel in sorted(house.relations, key=lambda r: (r.subject, r.object)):
+        nearby.setdefault(rel.subject, {}).setdefault(str(rel.object), []).append(rel.word)
+    out: dict[str, Any] = {}
+    for inst in sorted(house.instances, key=lambda i: i.id):
+        if inst.room_id != UNKNOWN_ROOM_ID and inst.room_id not in labels:
+            raise DataFormatError(
+                f"instance {inst.id} of house {house.name!r} is in room {inst.room_id}, which "
+                f"the house does not have; rooms: {sorted(labels)}"
+            )
+        lo = [_num(v) for v in inst.box.min]
+        hi = [_num(v) for v in inst.box.max]
+        attrs = inst.attributes
+        out[str(inst.id)] = {
+            "category": inst.category,
+            # From the rounded box, so that a re-export of the imported house is identical.
+            "position": [_num((a + b) / 2.0) for a, b in zip(lo, hi, strict=True)],
+            "min_points": lo,
+            "max_points": hi,
+            "scope": house.name,
+            "room": labels.get(inst.room_id, ""),
+            "region_id": inst.room_id,
+            "unique_description": {
+                _FINE_CATEGORY_KEY: inst.fine_category,
+                **{key: getattr(attrs, key) for key in _DESCRIPTION_KEYS},
+            },
+            "nearby_objects": {
+                other: words[0] if len(words) == 1 else words
+                for other, words in nearby.get(inst.id, {}).items()
+            },
+            "caption": inst.caption,
+        }
+    return out
+
+
+def _region_dict(house: House) -> dict[str, Any]:
+    regions = [
+        {
+            "label": _room_label(room),
+            "id": room.id,
+            "poly": _plan_points(room.polygon),
+            "enlarge_poly": _plan_points(grown_polygon(room.polygon, ENLARGE_MARGIN)),
+        }
+        for room in sorted(house.rooms, key=lambda r: r.id)
+    ]
+    return {house.name: regions}
+
+
+# A list of numbers that json.dumps spread over lines (raw newlines never occur in strings).
+_SPREAD_NUMBERS = re.compile(r"\[\n *(-?[0-9][-+.0-9eE]*(?:,\n *-?[0-9][-+.0-9eE]*)*)\n *\]")
+
+
+def _to_json(data: dict[str, Any]) -> str:
+    """Two-space indented JSON with each list of numbers (a point) on one line."""
+    text = json.dumps(data, indent=2, ensure_ascii=False, allow_nan=False)
+    return _SPREAD_NUMBERS.sub(_one_line, text) + "\n"
+
+
+def _one_line(match: re.Match[str]) -> str:
+    return "[" + ", ".join(number.strip() for number in match[1].split(",")) + "]"
+
+
+def _write_atomically(path: Path, text: str) -> None:
+    """Write via a temporary file and a rename, so readers never see a half-written file."""
+    fd, temp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as handle:
+            handle.write(text)
+        os.replace(temp, path)
+    except BaseException:
+        Path(temp).unlink(missing_ok=True)
+        raise
+
+
+# --- import -----------------------------------------------------------------------------
+
+
+def _load_json(path: Path) -> Any:
+    if not path.is_file():
+        raise DataFormatError(
+            f"{path} does not exist; a scene-summary directory holds {OBJECT_DICT_FILE} and "
+            f"{REGION_DICT_FILE}"
+        )
+    try:
+        return json.loads(path.read_text(encoding="utf-8"))
+    except (UnicodeDecodeError, json.JSONDecodeError) as err:
+        raise DataFormatError(f"{path} is not UTF-8 JSON: {err}") from None
+
+
+def _bad(path: Path, where: str, field: str, expected: str, got: Any) -> DataFormatError:
+    shown = repr(got) if len(repr(got)) <= 80 else repr(got)[:77] + "..."
+    return DataFormatError(f"{path}: {where}: field {field!r}: expected {expected}, got {shown}")
+
+
+def _is_number(value: Any) -> bool:
+    return isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value)
+
+
+def _int_id(value: Any) -> int | None:
+    """An id given as an int or a decimal string, else None."""
+    if isinstance(value, int) and not isinstance(value, bool):
+        return value
+    if isinstance(value, str) and re.fullmatch(r"-?[0-9]+", value.strip()):
+        return int(value)
+    return None
+
+
+def _point3(path: Path, where: str, entry: dict[str, Any], field: str) -> Point3:
+    value = entry.get(field)
+    if not (isinstance(value, list) and len(value) == 3 and all(map(_is_number, value))):
+        raise _bad(path, where, field, "a list of 3 finite numbers", value)
+    return (float(value[0]), float(value[1]), float(value[2]))
+
+
+def _text(path: Path, where: str, entry: dict[str, Any], field: str) -> str:
+    """A string field where missing or null means unknown (``""``)."""
+    value = entry.get(field)
+    if value is None:
+        return ""
+    if not isinstance(value, str):
+        raise _bad(path, where, field, "a string", value)
+    return value
+
+
+def _parse_regions(path: Path, data: Any) -> tuple[str, list[Room]]:
+    if not (isinstance(data, dict) and len(data) == 1):
+        raise _bad(path, "top level", "scope", "an object with exactly one scene scope", data)
+    scope, regions = next(iter(data.items()))
+    if not isinstance(regions, list):
+        raise _bad(path, f"scope {scope!r}", "regions", "a list of regions", regions)
+    rooms: dict[int, Room] = {}
+    for index, region in enumerate(regions):
+        if not isinstance(region, dict):
+            raise _bad(path, f"region {index}", "region", "an object", region)
+        room_id = _int_id(region.get("id"))
+        if room_id is None or room_id < 0:
+            raise _bad(path, f"region {index}", "id", "an integer >= 0", region.get("id"))
+        where = f"region {index} (id {room_id})"
+        if room_id in rooms:
+            raise _bad(path, where, "id", "an id no other region has", room_id)
+        label = region.get("label")
+        if label not in LABEL_TO_ROOM_TYPE:
+            raise _bad(path, where, "label", f"one of {sorted(LABEL_TO_ROOM_TYPE)}", label)
+        poly = region.get("poly")
+        if not (
+            isinstance(poly, list)
+            and len(poly) >= 3
+            and all(isinstance(p, list) and len(p) == 2 and all(map(_is_number, p)) for p in poly)
+        ):
+            raise _bad(path, where, "poly", "a list of at least 3 [x, -z] number pairs", poly)
+        polygon = tuple((float(x) + 0.0, -float(minus_z) + 0.0) for x, minus_z in poly)
+        rooms[room_id] = Room(id=room_id, type=LABEL_TO_ROOM_TYPE[label], polygon=polygon)
+    return scope, [rooms[key] for key in sorted(rooms)]
+
+
+def _parse_objects(
+    path: Path, data: Any, scope: str, rooms: list[Room]
+) -> tuple[list[ObjectInstance], dict[int, list[tuple[int, str]]]]:
+    """The instances, and per subject id its ``(object id, word)`` pairs in file order."""
+    if not isinstance(data, dict):
+        raise _bad(path, "top level", "instances", "an object keyed by instance id", data)
+    instances: dict[int, ObjectInstance] = {}
+    nearby: dict[int, list[tuple[int, str]]] = {}
+    for key, entry in data.items():
+        where = f"instance {key!r}"
+        instance_id = _int_id(key)
+        if instance_id is None or instance_id < 1:
+            raise _bad(path, where, "instance id", "an integer >= 1", key)
+        if instance_id in instances:
+            raise _bad(path, where, "instance id", "an id no other instance has", key)
+        if not isinstance(entry, dict):
+            raise _bad(path, where, "instance", "an object", entry)
+        category = entry.get("category")
+        if not (isinstance(category, str) and category):
+            raise _bad(path, where, "category", "a non-empty string", category)
+        _point3(path, where, entry, "position")
+        a = _point3(path, where, entry, "min_points")
+        b = _point3(path, where, entry, "max_points")
+        box = Box3(
+            (min(a[0], b[0]), min(a[1], b[1]), min(a[2], b[2])),
+            (max(a[0], b[0]), max(a[1], b[1]), max(a[2], b[2])),
+        )
+        if entry.get("scope", scope) != scope:
+            expected = f"the scope of {REGION_DICT_FILE}, {scope!r}"
+            raise _bad(path, where, "scope", expected, entry.get("scope"))
+        description = entry.get("unique_description")
+        if not isinstance(description, dict):
+            description = {}  # the released data has some instances without a description
+        dwhere = f"{where}: unique_description"
+        attributes = Attributes(
+            **{k: _text(path, dwhere, description, k) for k in _DESCRIPTION_KEYS}
+        )
+        instances[instance_id] = ObjectInstance(
+            id=instance_id,
+            category=category,
+            fine_category=_text(path, dwhere, description, _FINE_CATEGORY_KEY),
+            attributes=attributes,
+            caption=_text(path, where, entry, "caption"),
+            box=box,
+            room_id=_room_of(path, where, entry, rooms, box),
+        )
+        nearby[instance_id] = _nearby_of(path, where, entry)
+    return [instances[key] for key in sorted(instances)], nearby
+
+
+def _room_of(path: Path, where: str, entry: dict[str, Any], rooms: list[Room], box: Box3) -> int:
+    label = _text(path, where, entry, "room")
+    if label == "":
+        return UNKNOWN_ROOM_ID
+    if label not in LABEL_TO_ROOM_TYPE:
+        raise _bad(path, where, "room", f"'' or one of {sorted(LABEL_TO_ROOM_TYPE)}", label)
+    kind = LABEL_TO_ROOM_TYPE[label]
+    candidates = [room for room in rooms if room.type == kind]
+    if "region_id" in entry:
+        region_id = _int_id(entry["region_id"])
+        if region_id is None or region_id not in {room.id for room in candidates}:
+            expected = f"the id of a {label!r} region, one of {[r.id for r in candidates]}"
+            raise _bad(path, where, "region_id", expected, entry["region_id"])
+        return region_id
+    if not candidates:
+        return UNKNOWN_ROOM_ID
+    centre = (box.center[0], box.center[2])
+    return min(candidates, key=lambda room: (_distance_outside(centre, room.polygon), room.id)).id
+
+
+def _distance_outside(point: Point2, polygon: tuple[Point2, ...]) -> float:
+    """0 inside ``polygon`` (even-odd rule), else the distance from ``point`` to its boundary."""
+    p = np.asarray(polygon, dtype=np.float64) - np.asarray(point, dtype=np.float64)
+    q = np.roll(p, -1, axis=0)
+    with np.errstate(divide="ignore", invalid="ignore"):  # horizontal edges never cross
+        x_at_0 = p[:, 0] - p[:, 1] * (q[:, 0] - p[:, 0]) / (q[:, 1] - p[:, 1])
+    if np.count_nonzero(((p[:, 1] > 0) != (q[:, 1] > 0)) & (x_at_0 > 0)) % 2 == 1:
+        return 0.0
+    edge = q - p
+    t = np.clip(-np.sum(p * edge, axis=1) / np.maximum(np.sum(edge * edge, axis=1), 1e-18), 0, 1)
+    return float(np.min(np.linalg.norm(p + t[:, None] * edge, axis=1)))
+
+
+def _nearby_of(path: Path, where: str, entry: dict[str, Any]) -> list[tuple[int, str]]:
+    value = entry.get("nearby_objects")
+    if value is None:
+        return []
+    if not isinstance(value, dict):
+        raise _bad(path, where, "nearby_objects", "an object {instance id: relation}", value)
+    pairs: list[tuple[int, str]] = []
+    for key, words in value.items():
+        other = _int_id(key)
+        field = f"nearby_objects[{key!r}]"
+        if other is None:
+            raise _bad(path, where, field, "an integer instance id as key", key)
+        word_list = [words] if isinstance(words, str) else words
+        if not (isinstance(word_list, list) and all(isinstance(w, str) for w in word_list)):
+            raise _bad(path, where, field, "a relation word or a list of them", words)
+        pairs.extend((other, word) for word in word_list if word)
+    return pairs
+
+
+def _relations_of(
+    instances: list[ObjectInstance], nearby: dict[int, list[tuple[int, str]]]
+) -> list[Relation]:
+    """Relations in (subject, object) order; those naming an instance not in the file drop."""
+    boxes = {inst.id: inst.box for inst in instances}
+    relations = [
+        Relation(subject, word, other, boxes[subject].distance_to(boxes[other]))
+        for subject, pairs in nearby.items()
+        for other, word in pairs
+        if other in boxes and other != subject
+    ]
+    return sorted(relations, key=lambda r: (r.subject, r.object))
