@@ -110,9 +110,7 @@ class MeshBuilder:
         self._colors.append(np.tile(np.asarray(color, np.float32), (n, 1)))
         self._materials.append(np.full(n, material, np.int32))
 
-    def quad(
-        self, corner: Vec3, edge_u: Vec3, edge_v: Vec3, color: Vec3, material: int
-    ) -> None:
+    def quad(self, corner: Vec3, edge_u: Vec3, edge_v: Vec3, color: Vec3, material: int) -> None:
         """A parallelogram ``corner + a*edge_u + b*edge_v``; it faces ``edge_u x edge_v``."""
         p0 = np.asarray(corner, np.float64)
         u = np.asarray(edge_u, np.float64)
@@ -223,9 +221,9 @@ class MeshBuilder:
         upper_half_only: bool = False,
     ) -> None:
         """A UV sphere (an ellipsoid when ``scale`` differs per axis)."""
-        rings = max(3, segments // 2)
-        first_ring = rings // 2 if upper_half_only else 0
-        theta = np.linspace(0.0, math.pi, rings + 1)[::-1]  # from the south pole up
+        rings = max(4, 2 * (segments // 4))  # even, so a hemisphere ends exactly at y = 0
+        last_ring = rings // 2 if upper_half_only else rings
+        theta = np.linspace(0.0, math.pi, rings + 1)[::-1]  # from the north pole (+y) down
         phi = np.linspace(0.0, 2.0 * math.pi, segments + 1)
         sx, sy, sz = scale
         positions: list[NDArray[np.float64]] = []
@@ -237,11 +235,15 @@ class MeshBuilder:
             pos = unit * radius * np.array([sx, sy, sz])
             return pos, _unit(unit / np.array([sx, sy, sz]))
 
-        for r in range(first_ring, rings):
+        for r in range(last_ring):
             for s in range(segments):
                 quad = [(r, s), (r, s + 1), (r + 1, s + 1), (r + 1, s)]
                 pts = [point(theta[a], phi[b]) for a, b in quad]
-                for k in (0, 1, 2, 0, 2, 3):
+                # At a pole two corners of the quad coincide: keep only the real triangle.
+                corners = (
+                    (0, 2, 3) if r == 0 else (0, 1, 2) if r == rings - 1 else (0, 1, 2, 0, 2, 3)
+                )
+                for k in corners:
                     positions.append(pts[k][0])
                     normals.append(pts[k][1])
                     a, b = quad[k]
