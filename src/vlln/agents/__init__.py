@@ -1,0 +1,1 @@
+"""Agents: one module per agent, all behind the small :class:`vlln.agents.protocol.Agent`."""

@@ -1,0 +1,1 @@
+"""The oracle: answers a navigator's questions from privileged knowledge of the house."""

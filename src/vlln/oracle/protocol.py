@@ -1,0 +1,52 @@
+"""The oracle's small interface: start an episode with privileged context, answer questions."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from enum import StrEnum
+from typing import Protocol
+
+from vlln.sim.agent import AgentState
+from vlln.sim.renderer import Frame
+from vlln.sim.simulator import Simulator
+from vlln.world.model import ObjectInstance
+
+
+class QuestionType(StrEnum):
+    ATTRIBUTE = "attribute"
+    ROUTE = "route"
+    DISAMBIGUATION = "disambiguation"
+    OTHER = "other"
+
+
+@dataclass(frozen=True)
+class EpisodeContext:
+    """What the oracle knows for one episode: the house (through the simulator), the target
+    and its goal view points."""
+
+    simulator: Simulator
+    target: ObjectInstance
+    view_points: tuple[tuple[float, float], ...]
+
+
+@dataclass(frozen=True)
+class Question:
+    """A question with the asker's state and current view (for "is this the one?")."""
+
+    text: str
+    state: AgentState
+    frame: Frame
+
+
+@dataclass(frozen=True)
+class Reply:
+    answer: str
+    question_type: QuestionType
+
+
+class Oracle(Protocol):
+    """Answers questions about one episode at a time."""
+
+    def start(self, context: EpisodeContext) -> None: ...
+
+    def answer(self, question: Question) -> Reply: ...

@@ -1,0 +1,129 @@
+"""The simulator: one house, one agent, one camera.
+
+It ties the pieces together: the renderer draws the house from the agent's camera, the
+navigable grid keeps the agent on the floor, and geodesic fields answer "how far is it" in
+O(1) once built. Fields are cached per goal set because a task asks the same question about
+the same goals at every step.
+"""
+
+from __future__ import annotations
+
+from collections import OrderedDict
+from dataclasses import dataclass, field
+
+from vlln.errors import ConfigError
+from vlln.sim.agent import Action, AgentState, MotionConfig, step
+from vlln.sim.camera import CameraSpec
+from vlln.sim.geodesic import GeodesicField
+from vlln.sim.navgrid import NavGrid
+from vlln.sim.renderer import Frame, Renderer
+from vlln.world.model import House
+
+Point2 = tuple[float, float]
+
+
+@dataclass(frozen=True)
+class NavigationConfig:
+    """How the navigable grid is derived from the geometry (reference-facts §1)."""
+
+    cell_size: float = 0.05
+    agent_radius: float = 0.18
+    agent_height: float = 1.5
+    step_height: float = 0.15
+
+
+@dataclass(frozen=True)
+class SimulatorConfig:
+    camera: CameraSpec = field(default_factory=CameraSpec)
+    motion: MotionConfig = field(default_factory=MotionConfig)
+    navigation: NavigationConfig = field(default_factory=NavigationConfig)
+    field_cache_size: int = 8  # geodesic fields kept per simulator
+
+
+@dataclass(frozen=True)
+class Observation:
+    """What one step produced: the camera frame, the agent's state and whether it collided."""
+
+    frame: Frame
+    state: AgentState
+    collided: bool
+
+
+class Simulator:
+    """Moves an agent through a house and renders what its camera sees."""
+
+    def __init__(self, house: House, config: SimulatorConfig | None = None) -> None:
+        if house.geometry is None:
+            raise ConfigError(
+                f"house {house.name!r} has no geometry to simulate; generate it with "
+                "vlln.world.generator.generate_house or import one with geometry"
+            )
+        self.house = house
+        self.config = config or SimulatorConfig()
+        nav = self.config.navigation
+        floor_y = min((room.floor_y for room in house.rooms), default=0.0)
+        self.grid = NavGrid.from_mesh(
+            house.geometry.mesh,
+            floor_y=floor_y,
+            cell_size=nav.cell_size,
+            agent_radius=nav.agent_radius,
+            agent_height=nav.agent_height,
+            step_height=nav.step_height,
+        )
+        self.renderer = Renderer(house.geometry.mesh, self.config.camera)
+        self._fields: OrderedDict[tuple[Point2, ...], GeodesicField] = OrderedDict()
+        self._state = AgentState(position=(0.0, floor_y, 0.0), yaw=0.0, tilt=0.0)
+
+    @property
+    def state(self) -> AgentState:
+        return self._state
+
+    def reset(self, state: AgentState) -> Observation:
+        """Put the agent at ``state`` (which must be navigable) and render its view."""
+        x, _, z = state.position
+        if not self.grid.is_navigable(x, z):
+            sx, sz = self.grid.snap_point(x, z)
+            raise ConfigError(
+                f"start position ({x:.3f}, {z:.3f}) is not navigable in {self.house.name}; "
+                f"the nearest navigable point is ({sx:.3f}, {sz:.3f})"
+            )
+        self._state = state
+        return Observation(self.render(), state, collided=False)
+
+    def step(self, action: Action) -> Observation:
+        """Apply one action, then render the new view."""
+        result = step(self._state, action, self.grid, self.config.motion)
+        self._state = result.state
+        return Observation(self.render(), result.state, result.collided)
+
+    def move(self, action: Action) -> bool:
+        """Apply one action without rendering; returns whether it collided."""
+        result = step(self._state, action, self.grid, self.config.motion)
+        self._state = result.state
+        return result.collided
+
+    def render(self, state: AgentState | None = None) -> Frame:
+        s = self._state if state is None else state
+        return self.renderer.render(s.position, s.yaw, s.tilt)
+
+    def geodesic_field(self, goals: list[Point2] | tuple[Point2, ...]) -> GeodesicField:
+        """The distance field to a goal set, built once and then cached."""
+        key = tuple((float(x), float(z)) for x, z in goals)
+        cached = self._fields.get(key)
+        if cached is not None:
+            self._fields.move_to_end(key)
+            return cached
+        built = GeodesicField(self.grid, list(key))
+        self._fields[key] = built
+        if len(self._fields) > self.config.field_cache_size:
+            self._fields.popitem(last=False)
+        return built
+
+    def close(self) -> None:
+        self.renderer.close()
+
+    def __enter__(self) -> Simulator:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()

@@ -1,0 +1,346 @@
+"""The navigation environment, one class for the three tasks.
+
+Datasheet
+---------
+* **Tasks**: IIGN (instruction "Search for the <category>.", dialog with an oracle), IGN (a full
+  description that singles out the instance, no dialog), ObjectNav (any instance of the
+  category is a goal, no dialog).
+* **Actions**: :class:`vlln.sim.agent.Action` (STOP, MOVE_FORWARD 0.25 m, TURN_LEFT/RIGHT 30°,
+  LOOK_UP/DOWN 30°) or :class:`vlln.tasks.spec.Talk` (a question). Anything else is a failed
+  action: recorded, the agent does not move, and it counts as a step.
+* **Observations** (a dict): ``rgb`` (H, W, 3) uint8; ``depth`` (H, W) float32 metres;
+  ``gps`` float32 (x, z) in metres from the start in the start's frame (the start heading looks
+  along -z); ``compass`` yaw relative to the start heading (radians, left positive); ``tilt``
+  (radians, up positive); ``instruction``; ``oracle_answer`` (the answer to a TALK on the step
+  right after it, else None); ``questions_left``. Privileged agents also get ``instance_ids``
+  (H, W) int32 and ``expert_action`` (the shortest-path follower's next action), and their
+  :class:`EpisodeInfo` carries ``detector``: a ground-truth detector's lookup from instance
+  id to category and attributes (what a perfect object detector with attribute recognition
+  would report), as the reference's data collection uses.
+* **Termination**: STOP ends the episode (``terminated``). ``truncated`` at 500 counted steps
+  (STOP, FORWARD, TURN and failed actions count; LOOK and TALK do not) or when the LOOK, TALK
+  or failed-action caps are reached.
+* **Dialog**: the first ``dialog_budget`` questions are answered; later ones get
+  :data:`vlln.tasks.spec.REFUSAL_MESSAGE`. Questions are only answered on IIGN.
+* **Reward**: the decrease of geodesic distance to the nearest goal view point, plus 2.5 on
+  success; the benchmark scores records, not rewards.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from vlln.errors import ConfigError
+from vlln.oracle.protocol import EpisodeContext, Oracle, Question
+from vlln.sim.agent import Action, AgentState, MotionConfig
+from vlln.sim.camera import CameraSpec
+from vlln.sim.follower import GreedyFollower
+from vlln.sim.simulator import Simulator
+from vlln.tasks.episode import Episode
+from vlln.tasks.record import DialogTurn, EndReason, EpisodeRecord
+from vlln.tasks.scenes import SceneCache
+from vlln.tasks.spec import REFUSAL_MESSAGE, AgentOutput, Talk, TaskConfig, TaskType
+from vlln.tasks.taxonomy import target_observed
+from vlln.world.frame import quaternion_to_yaw, wrap_angle
+from vlln.world.model import Attributes, Box3, ObjectInstance
+
+Observation = dict[str, Any]
+SUCCESS_REWARD = 2.5
+
+
+@dataclass(frozen=True)
+class EpisodeInfo:
+    """What an agent is told when an episode starts."""
+
+    episode_id: str
+    task: TaskType
+    instruction: str
+    object_category: str
+    camera: CameraSpec
+    motion: MotionConfig
+    dialog_budget: int
+    max_steps: int
+    detector: dict[int, DetectedObject] | None = None  # privileged agents only
+
+
+@dataclass(frozen=True)
+class DetectedObject:
+    """What the ground-truth detector reports for one instance id."""
+
+    category: str
+    attributes: Attributes
+
+
+class NavigationEnv:
+    """Plays episodes of one task; Gymnasium's ``reset``/``step`` conventions."""
+
+    def __init__(
+        self,
+        episodes: list[Episode],
+        config: TaskConfig,
+        scenes: SceneCache | None = None,
+        oracle: Oracle | None = None,
+        privileged: bool = False,
+    ) -> None:
+        if config.dialog_enabled and oracle is None:
+            raise ConfigError("IIGN with a dialog budget needs an oracle; pass oracle=")
+        self.episodes = episodes
+        self.config = config
+        self.scenes = scenes or SceneCache()
+        self.oracle = oracle
+        self.privileged = privileged
+        self._episode: Episode | None = None
+
+    # ----------------------------------------------------------------- episode start
+    def reset(
+        self, *, seed: int | None = None, options: dict[str, Any] | None = None
+    ) -> tuple[Observation, dict[str, Any]]:
+        """Start an episode: ``options={"episode_index": i}`` (default: drawn with ``seed``)."""
+        options = options or {}
+        if "episode_index" in options:
+            index = int(options["episode_index"])
+        else:
+            index = int(np.random.default_rng(seed).integers(len(self.episodes)))
+        if not 0 <= index < len(self.episodes):
+            raise ConfigError(f"episode_index {index} is outside 0..{len(self.episodes) - 1}")
+        episode = self.episodes[index]
+        self._episode = episode
+        self.sim: Simulator = self.scenes.get(episode.scene_id)
+        house = self.sim.house
+        self.targets = self._goal_instances(episode)
+        self.goal_points = [
+            (vp.position[0], vp.position[2]) for goal in episode.goals for vp in goal.view_points
+        ]
+        self.field = self.sim.geodesic_field(self.goal_points)
+        self.follower = GreedyFollower(
+            self.sim.grid, self.field, self.config.success_radius, self.sim.config.motion
+        )
+        start = AgentState(
+            tuple(episode.start_position),  # type: ignore[arg-type]
+            quaternion_to_yaw(episode.start_rotation),
+            0.0,
+        )
+        self._start = start
+        self._steps = self._looks = self._talks = self._failed = 0
+        self._questions_answered = 0
+        self._path_length = 0.0
+        self._trace: list[float] = []
+        self._positions: list[list[float]] = [[start.position[0], start.position[2], start.yaw]]
+        self._actions: list[str] = []
+        self._dialog: list[DialogTurn] = []
+        self._seen_step: int | None = None
+        self._end: EndReason | None = None
+        self._answer: str | None = None
+        self._distance = self.field.distance(start.position[0], start.position[2])
+        self._d0 = self._distance
+        if self.oracle is not None and self.config.dialog_enabled:
+            self.oracle.start(EpisodeContext(self.sim, self.targets[0], tuple(self.goal_points)))
+        observation = self.sim.reset(start)
+        self._frame = observation.frame
+        self._note_target_seen()
+        return self._observe(), {"episode_id": episode.episode_id, "house": house.name}
+
+    def episode_info(self) -> EpisodeInfo:
+        episode = self._require_episode()
+        return EpisodeInfo(
+            episode.episode_id,
+            self.config.task,
+            episode.instruction.instruction_text,
+            episode.object_category,
+            self.sim.config.camera,
+            self.sim.config.motion,
+            self.config.dialog_budget if self.config.dialog_enabled else 0,
+            self.config.max_steps,
+            self._detector() if self.privileged else None,
+        )
+
+    def _detector(self) -> dict[int, DetectedObject]:
+        return {
+            inst.id: DetectedObject(inst.category, inst.attributes)
+            for inst in self.sim.house.instances
+        }
+
+    # ----------------------------------------------------------------- stepping
+    def step(self, action: AgentOutput) -> tuple[Observation, float, bool, bool, dict[str, Any]]:
+        episode = self._require_episode()
+        if self._end is not None:
+            raise ConfigError(f"episode {episode.episode_id} has ended; call reset() first")
+        self._answer = None
+        collided = False
+        before = self._distance
+        if isinstance(action, Talk):
+            self._talk(action.text)
+        elif isinstance(action, Action):
+            collided = self._act(action)
+        else:
+            self._failed += 1
+            self._steps += 1
+            self._actions.append(f"INVALID:{str(action)[:80]}")
+            self._trace.append(self._distance)
+        self._check_caps()
+        reward = before - self._distance
+        if self._end == EndReason.STOP and self._distance < self.config.success_radius:
+            reward += SUCCESS_REWARD
+        terminated = self._end == EndReason.STOP
+        truncated = self._end is not None and not terminated
+        info = {"collided": collided, "steps": self._steps, "distance": self._distance}
+        return self._observe(), reward, terminated, truncated, info
+
+    def _act(self, action: Action) -> bool:
+        self._actions.append(action.name)
+        if action == Action.STOP:
+            self._steps += 1
+            self._trace.append(self._distance)
+            self._end = EndReason.STOP
+            return False
+        before = self.sim.state.position
+        observation = self.sim.step(action)
+        self._frame = observation.frame
+        after = observation.state.position
+        if action in (Action.LOOK_UP, Action.LOOK_DOWN):
+            self._looks += 1
+        else:
+            self._steps += 1
+            self._path_length += math.hypot(after[0] - before[0], after[2] - before[2])
+            self._distance = self.field.distance(after[0], after[2])
+            self._trace.append(self._distance)
+            self._positions.append([after[0], after[2], observation.state.yaw])
+        self._note_target_seen()
+        return observation.collided
+
+    def _talk(self, text: str) -> None:
+        self._talks += 1
+        self._actions.append("TALK")
+        budget = self.config.dialog_budget if self.config.dialog_enabled else 0
+        if self._questions_answered >= budget or self.oracle is None:
+            reply_text, kind, answered = REFUSAL_MESSAGE, "refused", False
+        else:
+            reply = self.oracle.answer(Question(text, self.sim.state, self._frame))
+            reply_text, kind, answered = reply.answer, reply.question_type.value, True
+            self._questions_answered += 1
+        self._answer = reply_text
+        self._dialog.append(DialogTurn(self._steps, text, reply_text, kind, answered))
+
+    def _check_caps(self) -> None:
+        if self._end is not None:
+            return
+        cfg = self.config
+        if self._failed >= cfg.max_failed_actions:
+            self._end = EndReason.ERROR
+        elif self._steps >= cfg.max_steps:
+            self._end = EndReason.STEP_CAP
+        elif self._looks >= cfg.max_look_actions:
+            self._end = EndReason.LOOK_CAP
+        elif self._talks >= cfg.max_talk_actions:
+            self._end = EndReason.TALK_CAP
+
+    # ----------------------------------------------------------------- what the agent sees
+    def _observe(self) -> Observation:
+        state = self.sim.state
+        start = self._start
+        dx = state.position[0] - start.position[0]
+        dz = state.position[2] - start.position[2]
+        c, s = math.cos(start.yaw), math.sin(start.yaw)
+        budget = self.config.dialog_budget if self.config.dialog_enabled else 0
+        obs: Observation = {
+            "rgb": self._frame.rgb,
+            "depth": self._frame.depth,
+            "gps": np.array([c * dx - s * dz, s * dx + c * dz], np.float32),
+            "compass": wrap_angle(state.yaw - start.yaw),
+            "tilt": state.tilt,
+            "instruction": self._require_episode().instruction.instruction_text,
+            "oracle_answer": self._answer,
+            "questions_left": max(0, budget - self._questions_answered),
+        }
+        if self.privileged:
+            obs["instance_ids"] = self._frame.instance_ids
+            obs["expert_action"] = self.follower.next_action(state)
+        return obs
+
+    def _note_target_seen(self) -> None:
+        if self._seen_step is not None:
+            return
+        ids = self._frame.instance_ids
+        spec = self.sim.config.camera
+        eye = spec.eye(self.sim.state.position)
+        for target in self.targets:
+            pixels = int(np.count_nonzero(ids == target.id))
+            if pixels and target_observed(
+                pixels, _box_distance(target.box, eye), spec.width, spec.height
+            ):
+                self._seen_step = self._steps
+                return
+
+    # ----------------------------------------------------------------- the record
+    def record(self, agent_name: str, error: str | None = None) -> EpisodeRecord:
+        """The finished episode as a record; an unfinished one is recorded as an error."""
+        episode = self._require_episode()
+        end = self._end or EndReason.ERROR
+        stop_id, stop_category = self._stop_instance() if end == EndReason.STOP else (None, None)
+        return EpisodeRecord(
+            episode_id=episode.episode_id,
+            scene_id=episode.scene_id,
+            task=self.config.task.value,
+            agent=agent_name,
+            budget=self.config.dialog_budget if self.config.dialog_enabled else 0,
+            object_category=episode.object_category,
+            target_ids=[t.id for t in self.targets],
+            end_reason=end.value,
+            steps=self._steps,
+            geodesic_start=self._d0,
+            geodesic_trace=list(self._trace),
+            path_length=self._path_length,
+            stop_instance_id=stop_id,
+            stop_instance_category=stop_category,
+            target_seen_step=self._seen_step,
+            positions=[[round(v, 4) for v in p] for p in self._positions],
+            actions=list(self._actions),
+            dialog=list(self._dialog),
+            failed_actions=self._failed,
+            error=error,
+        )
+
+    def _stop_instance(self) -> tuple[int | None, str | None]:
+        """The object with the most pixels in the central half of the last level view."""
+        state = self.sim.state
+        level = AgentState(state.position, state.yaw, 0.0)
+        ids = self._frame.instance_ids if state.tilt == 0.0 else self.sim.render(level).instance_ids
+        h, w = ids.shape
+        centre = ids[h // 4 : 3 * h // 4, w // 4 : 3 * w // 4]
+        objects = centre[centre > 0]
+        if objects.size == 0:
+            return None, None
+        counts = np.bincount(objects)
+        instance_id = int(np.argmax(counts))
+        return instance_id, self.sim.house.instance(instance_id).category
+
+    def _goal_instances(self, episode: Episode) -> list[ObjectInstance]:
+        house = self.sim.house
+        if self.config.task == TaskType.OBJECTNAV:
+            found = house.instances_of(episode.object_category)
+        else:
+            found = [house.instance(int(i)) for i in episode.instruction.instance_id]
+        if not found:
+            raise ConfigError(
+                f"episode {episode.episode_id} names no goal instance of "
+                f"{episode.object_category!r} in {episode.scene_id}"
+            )
+        return found
+
+    def _require_episode(self) -> Episode:
+        if self._episode is None:
+            raise ConfigError("no episode is running; call reset() first")
+        return self._episode
+
+    def close(self) -> None:
+        self.scenes.close()
+
+
+def _box_distance(box: Box3, point: Any) -> float:
+    """Straight-line distance from a point to the nearest point of a box."""
+    gaps = [max(box.min[i] - point[i], 0.0, point[i] - box.max[i]) for i in range(3)]
+    return math.sqrt(sum(g * g for g in gaps))
