@@ -77,8 +77,8 @@ class Category:
     ``shapes`` maps each shape word to the fine-grained category it makes (a "round" table is a
     "round table", an "office" chair an "office chair"). ``rooms`` maps room types to how many
     instances a room of that type gets on average; a category absent from a room type never
-    appears there. ``wall_height`` is the mounting height (centre) for wall-mounted
-    categories.
+    appears there. ``wall_height`` is the height of a wall-mounted model's origin, the bottom
+    centre of its back, above the floor.
     """
 
     name: str

@@ -61,17 +61,27 @@ def default_catalogue() -> Catalogue:
     """Every built-in category."""
     from vlln.world.catalogue import (
         bathroom,
+        bedroom,
         decor,
         electronics,
         kitchen,
+        misc,
         seating,
         storage,
         tables,
         tableware,
-        bedroom,
-        misc,
     )
 
-    modules = (seating, tables, storage, bedroom, bathroom, kitchen, electronics, decor,
-               tableware, misc)
+    modules = (
+        seating,
+        tables,
+        storage,
+        bedroom,
+        bathroom,
+        kitchen,
+        electronics,
+        decor,
+        tableware,
+        misc,
+    )
     return Catalogue([c for module in modules for c in module.CATEGORIES])
