@@ -1,0 +1,6 @@
+"""The procedural house generator: seeded houses whose ground truth is known exactly."""
+
+from vlln.world.generator.house import generate_house
+from vlln.world.generator.params import HouseParameters, ParameterInfo, describe_parameters
+
+__all__ = ["HouseParameters", "ParameterInfo", "describe_parameters", "generate_house"]
