@@ -112,22 +112,10 @@ class MeshBuilder:
 
     def quad(self, corner: Vec3, edge_u: Vec3, edge_v: Vec3, color: Vec3, material: int) -> None:
         """A parallelogram ``corner + a*edge_u + b*edge_v``; it faces ``edge_u x edge_v``."""
-        p0 = np.asarray(corner, np.float64)
-        u = np.asarray(edge_u, np.float64)
-        v = np.asarray(edge_v, np.float64)
-        normal = np.cross(u, v)
-        length = np.linalg.norm(normal)
-        if length == 0.0:
-            return
-        normal /= length
-        lu, lv = float(np.linalg.norm(u)), float(np.linalg.norm(v))
-        corners = [p0, p0 + u, p0 + u + v, p0 + v]
-        tex = [(0.0, 0.0), (lu, 0.0), (lu, lv), (0.0, lv)]
-        order = [0, 1, 2, 0, 2, 3]
-        self.add_triangles(
-            np.array([corners[i] for i in order]),
-            np.tile(normal, (6, 1)),
-            np.array([tex[i] for i in order]),
+        self._quads(
+            np.array([corner], np.float64),
+            np.array([edge_u], np.float64),
+            np.array([edge_v], np.float64),
             color,
             material,
         )
@@ -142,11 +130,10 @@ class MeshBuilder:
         faces: str = "+x-x+y-y+z-z",
     ) -> None:
         """An axis-aligned box (then rotated by ``yaw`` about its centre); ``faces`` picks sides."""
-        hx, hy, hz = (s / 2.0 for s in size)
         c, s = math.cos(yaw), math.sin(yaw)
-        ex = np.array([c, 0.0, -s]) * 2 * hx
-        ey = np.array([0.0, 1.0, 0.0]) * 2 * hy
-        ez = np.array([s, 0.0, c]) * 2 * hz
+        ex = np.array([c, 0.0, -s]) * size[0]
+        ey = np.array([0.0, size[1], 0.0])
+        ez = np.array([s, 0.0, c]) * size[2]
         origin = np.asarray(center, np.float64) - (ex + ey + ez) / 2.0
         sides = {
             "+x": (origin + ex, ey, ez),
@@ -156,9 +143,38 @@ class MeshBuilder:
             "+z": (origin + ez, ex, ey),
             "-z": (origin, ey, ex),
         }
-        for name, (corner, u, v) in sides.items():
-            if name in faces:
-                self.quad(tuple(corner), tuple(u), tuple(v), color, material)
+        chosen = [side for name, side in sides.items() if name in faces]
+        if chosen:
+            corners, us, vs = (np.array(part) for part in zip(*chosen, strict=True))
+            self._quads(corners, us, vs, color, material)
+
+    def _quads(
+        self,
+        corners: NDArray[np.float64],
+        us: NDArray[np.float64],
+        vs: NDArray[np.float64],
+        color: Vec3,
+        material: int,
+    ) -> None:
+        """Several parallelograms at once (one row each); degenerate ones are skipped."""
+        normals = np.cross(us, vs)
+        lengths = np.linalg.norm(normals, axis=1)
+        keep = lengths > 0.0
+        if not keep.all():
+            corners, us, vs, normals, lengths = (
+                a[keep] for a in (corners, us, vs, normals, lengths)
+            )
+        normals /= lengths[:, None]
+        lu = np.linalg.norm(us, axis=1)
+        lv = np.linalg.norm(vs, axis=1)
+        zero = np.zeros_like(lu)
+        p0, p1, p2, p3 = corners, corners + us, corners + us + vs, corners + vs
+        t0, t1, t2, t3 = (
+            np.stack(pair, axis=1) for pair in ((zero, zero), (lu, zero), (lu, lv), (zero, lv))
+        )
+        positions = np.stack([p0, p1, p2, p0, p2, p3], axis=1).reshape(-1, 3)
+        uvs = np.stack([t0, t1, t2, t0, t2, t3], axis=1).reshape(-1, 2)
+        self.add_triangles(positions, np.repeat(normals, 6, axis=0), uvs, color, material)
 
     def cylinder(
         self,
@@ -176,39 +192,38 @@ class MeshBuilder:
         top = radius if radius_top is None else radius_top
         angles = np.linspace(0.0, 2.0 * math.pi, segments + 1)
         ca, sa = np.cos(angles), np.sin(angles)
+        zeros = np.zeros(segments)
         slope = (radius - top) / height if height > 0 else 0.0
-        positions: list[NDArray[np.float64]] = []
-        normals: list[NDArray[np.float64]] = []
-        uvs: list[tuple[float, float]] = []
-        circumference = 2.0 * math.pi * max(radius, top)
-        for i in range(segments):
-            b0 = np.array([radius * ca[i], 0.0, radius * sa[i]])
-            b1 = np.array([radius * ca[i + 1], 0.0, radius * sa[i + 1]])
-            t0 = np.array([top * ca[i], height, top * sa[i]])
-            t1 = np.array([top * ca[i + 1], height, top * sa[i + 1]])
-            n0 = _unit(np.array([ca[i], slope, sa[i]]))
-            n1 = _unit(np.array([ca[i + 1], slope, sa[i + 1]]))
-            u0 = circumference * i / segments
-            u1 = circumference * (i + 1) / segments
-            # Counter-clockwise seen from outside.
-            positions += [b0, t1, b1, b0, t0, t1]
-            normals += [n0, n1, n1, n0, n0, n1]
-            uvs += [(u0, 0.0), (u1, height), (u1, 0.0), (u0, 0.0), (u0, height), (u1, height)]
-            if caps:
-                for y, r, up in ((height, top, 1.0), (0.0, radius, -1.0)):
-                    if r <= 0:
-                        continue
-                    centre = np.array([0.0, y, 0.0])
-                    p0 = np.array([r * ca[i], y, r * sa[i]])
-                    p1 = np.array([r * ca[i + 1], y, r * sa[i + 1]])
-                    tri = [centre, p1, p0] if up > 0 else [centre, p0, p1]
-                    positions += tri
-                    normals += [np.array([0.0, up, 0.0])] * 3
-                    uvs += [(float(p[0]), float(p[2])) for p in tri]
-        pos = np.array(positions)
-        nor = np.array(normals)
-        pos, nor = _orient_axis(pos, nor, axis)
-        self.add_triangles(pos + np.asarray(base_center), nor, np.array(uvs), color, material)
+
+        def ring(r: float, y: float, k: slice) -> NDArray[np.float64]:
+            return np.stack([r * ca[k], zeros + y, r * sa[k]], axis=1)
+
+        first, second = slice(0, segments), slice(1, segments + 1)
+        b0, b1 = ring(radius, 0.0, first), ring(radius, 0.0, second)
+        t0, t1 = ring(top, height, first), ring(top, height, second)
+        scale = 1.0 / math.sqrt(1.0 + slope * slope)
+        n0 = np.stack([ca[first], zeros + slope, sa[first]], axis=1) * scale
+        n1 = np.stack([ca[second], zeros + slope, sa[second]], axis=1) * scale
+        u0 = 2.0 * math.pi * max(radius, top) * np.arange(segments) / segments
+        u1 = u0 + 2.0 * math.pi * max(radius, top) / segments
+        low, high = zeros, zeros + height
+        # Counter-clockwise seen from outside.
+        positions = [np.stack([b0, t1, b1, b0, t0, t1], axis=1).reshape(-1, 3)]
+        normals = [np.stack([n0, n1, n1, n0, n0, n1], axis=1).reshape(-1, 3)]
+        uv_pairs = [(u0, low), (u1, high), (u1, low), (u0, low), (u0, high), (u1, high)]
+        uvs = [np.stack([np.stack(p, axis=1) for p in uv_pairs], axis=1).reshape(-1, 2)]
+        if caps:
+            for r, y, up, rim_a, rim_b in ((top, height, 1.0, t1, t0), (radius, 0.0, -1.0, b0, b1)):
+                if r <= 0:
+                    continue
+                centre = np.zeros((segments, 3))
+                centre[:, 1] = y
+                tri = np.stack([centre, rim_a, rim_b], axis=1).reshape(-1, 3)
+                positions.append(tri)
+                normals.append(np.tile((0.0, up, 0.0), (len(tri), 1)))
+                uvs.append(tri[:, [0, 2]])
+        pos, nor = _orient_axis(np.concatenate(positions), np.concatenate(normals), axis)
+        self.add_triangles(pos + np.asarray(base_center), nor, np.concatenate(uvs), color, material)
 
     def sphere(
         self,
@@ -225,31 +240,38 @@ class MeshBuilder:
         last_ring = rings // 2 if upper_half_only else rings
         theta = np.linspace(0.0, math.pi, rings + 1)[::-1]  # from the north pole (+y) down
         phi = np.linspace(0.0, 2.0 * math.pi, segments + 1)
-        sx, sy, sz = scale
-        positions: list[NDArray[np.float64]] = []
-        normals: list[NDArray[np.float64]] = []
-        uvs: list[tuple[float, float]] = []
-
-        def point(t: float, p: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-            unit = np.array([math.sin(t) * math.cos(p), -math.cos(t), math.sin(t) * math.sin(p)])
-            pos = unit * radius * np.array([sx, sy, sz])
-            return pos, _unit(unit / np.array([sx, sy, sz]))
-
-        for r in range(last_ring):
-            for s in range(segments):
-                quad = [(r, s), (r, s + 1), (r + 1, s + 1), (r + 1, s)]
-                pts = [point(theta[a], phi[b]) for a, b in quad]
-                # At a pole two corners of the quad coincide: keep only the real triangle.
-                corners = (
-                    (0, 2, 3) if r == 0 else (0, 1, 2) if r == rings - 1 else (0, 1, 2, 0, 2, 3)
-                )
-                for k in corners:
-                    positions.append(pts[k][0])
-                    normals.append(pts[k][1])
-                    a, b = quad[k]
-                    uvs.append((radius * phi[b], radius * (math.pi - theta[a])))
-        pos = np.array(positions) + np.asarray(center)
-        self.add_triangles(pos, np.array(normals), np.array(uvs), color, material)
+        t, p = np.meshgrid(theta, phi, indexing="ij")
+        unit = np.stack([np.sin(t) * np.cos(p), -np.cos(t), np.sin(t) * np.sin(p)], axis=-1)
+        stretch = np.asarray(scale, np.float64)
+        points = unit * radius * stretch
+        bent = unit / stretch
+        normals = bent / np.linalg.norm(bent, axis=-1, keepdims=True)
+        tex = np.stack([radius * p, radius * (math.pi - t)], axis=-1)
+        r, s = np.meshgrid(np.arange(last_ring), np.arange(segments), indexing="ij")
+        r, s = r.ravel(), s.ravel()
+        corners = [(r, s), (r, s + 1), (r + 1, s + 1), (r + 1, s)]
+        # At a pole two corners of a quad coincide: keep only the real triangle there.
+        first = r != 0  # the north-pole row loses its (0, 1, 2) triangle
+        second = r != rings - 1  # the south-pole row loses its (0, 2, 3) triangle
+        rows, cols = [], []
+        for keep, triangle in ((first, (0, 1, 2)), (second, (0, 2, 3))):
+            for k in triangle:
+                rows.append(corners[k][0][keep])
+                cols.append(corners[k][1][keep])
+        # Interleave so each triangle's three corners are consecutive.
+        order_r = np.concatenate(
+            [np.stack(rows[:3], axis=1).ravel(), np.stack(rows[3:], axis=1).ravel()]
+        )
+        order_c = np.concatenate(
+            [np.stack(cols[:3], axis=1).ravel(), np.stack(cols[3:], axis=1).ravel()]
+        )
+        self.add_triangles(
+            points[order_r, order_c] + np.asarray(center),
+            normals[order_r, order_c],
+            tex[order_r, order_c],
+            color,
+            material,
+        )
 
     def build(self) -> Mesh:
         if not self._positions:
