@@ -35,6 +35,136 @@ def _demo(args: argparse.Namespace) -> int:
     return 0
 
 
+def _eval(args: argparse.Namespace) -> int:
+    from vlln.eval.config import EvalConfig, default_budgets, parse_budgets
+    from vlln.eval.runner import run_evaluation
+    from vlln.eval.sharding import Shard
+
+    if args.budgets is not None:
+        budgets = parse_budgets(args.budgets)
+    elif args.budget is not None:
+        budgets = (args.budget,)
+    else:
+        budgets = default_budgets(args.task)
+    episode_file = None if args.episode_file is None else str(Path(args.episode_file).resolve())
+    config = EvalConfig(
+        agent=args.agent,
+        task=args.task,
+        split=None if episode_file else args.split,
+        episode_file=episode_file,
+        episodes=args.episodes,
+        budgets=budgets,
+        seed=args.seed,
+        houses=args.houses,
+        shard=Shard.parse(args.shard),
+        max_steps=args.max_steps,
+    )
+    cache_dir = None if args.cache_dir is None else Path(args.cache_dir)
+    outcome = run_evaluation(
+        config,
+        Path(args.out),
+        cache_dir=cache_dir,
+        stop_after=args.stop_after,
+        progress=not args.quiet,
+    )
+    state = "complete" if outcome.complete else "incomplete: rerun the same command to go on"
+    print(
+        f"{len(outcome.records)} of {outcome.planned} episodes in {args.out} ({state}); "
+        f"played {outcome.played} in {outcome.seconds:.1f} s",
+        file=sys.stderr,
+    )
+    if outcome.summary is not None:
+        print((Path(args.out) / "summary.md").read_text(encoding="utf-8"), end="")
+    return 0
+
+
+def _score(args: argparse.Namespace) -> int:
+    import json
+
+    from vlln.eval.results import load_run_records
+    from vlln.eval.summary import summarize_run, summary_json, summary_markdown
+
+    records = load_run_records(Path(path) for path in args.dirs)
+    groups = summarize_run(records, args.success_radius, args.os_radius)
+    if args.json:
+        print(json.dumps(summary_json(groups), indent=2, allow_nan=False))
+    else:
+        print(summary_markdown(groups, "Scores of " + ", ".join(args.dirs)), end="")
+    return 0
+
+
+def _report(args: argparse.Namespace) -> int:
+    from vlln.eval.report import write_report
+
+    dirs = [Path(path) for path in args.dirs]
+    out = Path(args.out) if args.out else (dirs[0] / "report" if len(dirs) == 1 else Path("report"))
+    files = write_report(
+        dirs,
+        out,
+        samples_per_run=args.samples,
+        success_radius=args.success_radius,
+        os_radius=args.os_radius,
+    )
+    print(f"wrote {len(files)} files to {out}: {out / 'report.md'} and {out / 'report.html'}")
+    return 0
+
+
+def _bench_eval(args: argparse.Namespace) -> int:
+    from vlln.bench.eval import run_eval_benchmark
+
+    cache_dir = None if args.cache_dir is None else Path(args.cache_dir)
+    run_eval_benchmark(episodes=args.episodes, as_json=args.json, cache_dir=cache_dir)
+    return 0
+
+
+def _add_eval_commands(commands: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
+    """`vlln eval`, `vlln score` and `vlln report`."""
+    from vlln.tasks.metrics import ORACLE_SUCCESS_RADIUS, SUCCESS_RADIUS
+
+    run = commands.add_parser("eval", help="play an agent over episodes into a run directory")
+    run.add_argument("--agent", required=True, help="agent name (random, expert, frontier, ...)")
+    run.add_argument("--task", required=True, help="iign, ign or objectnav")
+    source = run.add_mutually_exclusive_group()
+    source.add_argument("--split", default="test", help="built-in split (default test)")
+    source.add_argument("--episode-file", help="released-format episode file (.json.gz)")
+    run.add_argument("--episodes", type=int, help="first N episodes (default: all)")
+    budget = run.add_mutually_exclusive_group()
+    budget.add_argument("--budget", type=int, help="dialog budget (default 5 on IIGN, else 0)")
+    budget.add_argument("--budgets", help="several budgets, e.g. 0-5 or 0,5 (SR per budget, MSP)")
+    run.add_argument("--out", required=True, help="run directory (resumed when it exists)")
+    run.add_argument("--shard", default="0/1", help="i/n: every episode whose index mod n is i")
+    run.add_argument("--seed", type=int, default=0, help="base seed of agents and oracle")
+    run.add_argument("--houses", type=int, help="houses of the split (default: 61/15/14)")
+    run.add_argument("--max-steps", type=int, default=500, help="counted-step cap (default 500)")
+    run.add_argument("--cache-dir", help="where built splits are kept (default ~/.cache/vlln)")
+    run.add_argument("--stop-after", type=int, help="play at most N episodes now, then stop")
+    run.add_argument("--quiet", action="store_true", help="no progress bar")
+    run.set_defaults(handler=_eval)
+
+    score = commands.add_parser("score", help="recompute every metric from run directories")
+    score.add_argument("dirs", nargs="+", help="run directories (e.g. the shards of one run)")
+    score.add_argument("--json", action="store_true", help="print the summary as JSON")
+    report = commands.add_parser("report", help="report.md and report.html of run directories")
+    report.add_argument("dirs", nargs="+", help="run directories, compared side by side")
+    report.add_argument("--out", help="report directory (default DIR/report for one run)")
+    report.add_argument("--samples", type=int, default=4, help="episode maps per run (default 4)")
+    for command in (score, report):
+        command.add_argument(
+            "--os-radius",
+            type=float,
+            default=ORACLE_SUCCESS_RADIUS,
+            help=f"oracle-success radius in m (default {ORACLE_SUCCESS_RADIUS}, the reference's)",
+        )
+        command.add_argument(
+            "--success-radius",
+            type=float,
+            default=SUCCESS_RADIUS,
+            help=f"success radius in m (default {SUCCESS_RADIUS})",
+        )
+    score.set_defaults(handler=_score)
+    report.set_defaults(handler=_report)
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="vlln", description=__doc__)
     commands = parser.add_subparsers(dest="command", required=True)
@@ -56,10 +186,16 @@ def build_parser() -> argparse.ArgumentParser:
     sim.add_argument("--frames", type=int, default=300, help="frames per timing (default 300)")
     sim.add_argument("--json", action="store_true", help="print one JSON object per line")
     sim.set_defaults(handler=_bench_sim)
+    bench_eval = bench.add_parser("eval", help="episodes per hour of the evaluation runner")
+    bench_eval.add_argument("--episodes", type=int, default=6, help="episodes (default 6)")
+    bench_eval.add_argument("--json", action="store_true", help="print one JSON object per line")
+    bench_eval.add_argument("--cache-dir", help="where built splits are kept")
+    bench_eval.set_defaults(handler=_bench_eval)
 
     demo = commands.add_parser("demo", help="the main job on the built-in houses")
     demo.add_argument("--out", default="out/demo", help="output directory (default out/demo)")
     demo.set_defaults(handler=_demo)
+    _add_eval_commands(commands)
     return parser
 
 

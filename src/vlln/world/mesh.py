@@ -247,8 +247,10 @@ class MeshBuilder:
         bent = unit / stretch
         normals = bent / np.linalg.norm(bent, axis=-1, keepdims=True)
         tex = np.stack([radius * p, radius * (math.pi - t)], axis=-1)
-        r, s = np.meshgrid(np.arange(last_ring), np.arange(segments), indexing="ij")
-        r, s = r.ravel(), s.ravel()
+        ring_grid, segment_grid = np.meshgrid(
+            np.arange(last_ring), np.arange(segments), indexing="ij"
+        )
+        r, s = ring_grid.ravel(), segment_grid.ravel()
         corners = [(r, s), (r, s + 1), (r + 1, s + 1), (r + 1, s)]
         # At a pole two corners of a quad coincide: keep only the real triangle there.
         first = r != 0  # the north-pole row loses its (0, 1, 2) triangle
