@@ -123,3 +123,28 @@ def _check_number(name: str, value: object, low: float, high: float) -> None:
         raise HouseParametersError(
             f"{name}={value:g} is outside the valid range [{low:g}, {high:g}]; choose a value in it"
         )
+
+
+def parameters_from_overrides(overrides: list[str]) -> HouseParameters:
+    """Parameters from ``NAME=VALUE`` strings (the command line's ``--param``), validated."""
+    values: dict[str, int | float] = {}
+    known = {f.name: f for f in fields(HouseParameters)}
+    for item in overrides:
+        name, sep, text = item.partition("=")
+        name = name.strip()
+        if not sep or name not in known:
+            raise HouseParametersError(
+                f"cannot use house parameter {item!r}; write NAME=VALUE with NAME one of: "
+                f"{', '.join(known)}"
+            )
+        kind = int if isinstance(getattr(HouseParameters(), name), int) else float
+        try:
+            values[name] = kind(text)
+        except ValueError:
+            expected = "a whole number" if kind is int else "a number"
+            raise HouseParametersError(
+                f"house parameter {name}={text!r} must be {expected}"
+            ) from None
+    params = HouseParameters(**values)  # type: ignore[arg-type]
+    params.validate()
+    return params

@@ -1,0 +1,1 @@
+"""`vlln bench ...`: speed and memory figures, printed as JSON lines or a table."""

@@ -1,0 +1,69 @@
+"""`vlln bench eval`: how many episodes per hour the evaluation runner plays on this machine.
+
+The workload is the benchmark's headline setting: the frontier agent on IIGN with a dialog
+budget of 5 (the rule oracle answering), over a fixed set of test episodes (the first
+``episodes`` of the test split's first house). The split is built or read from the cache and
+the house's simulator built before the clock starts, so the figures are the steady state of a
+long run, where both are amortised over dozens of episodes per house; ``scene_load_s`` gives
+that one-off cost separately.
+"""
+
+from __future__ import annotations
+
+import tempfile
+import time
+from pathlib import Path
+
+from vlln.bench.figures import Figure, emit
+from vlln.eval.config import EvalConfig
+from vlln.eval.runner import load_episodes, run_evaluation
+from vlln.tasks.metrics import success
+from vlln.tasks.scenes import SceneCache
+
+BENCH_AGENT = "frontier"
+BENCH_BUDGET = 5
+
+
+def run_eval_benchmark(
+    episodes: int = 6, as_json: bool = False, cache_dir: Path | None = None
+) -> list[Figure]:
+    """Play the fixed workload once and print its figures."""
+    config = EvalConfig(
+        agent=BENCH_AGENT,
+        task="iign",
+        split="test",
+        houses=1,
+        episodes=episodes,
+        budgets=(BENCH_BUDGET,),
+    )
+    figures: list[Figure] = []
+
+    def note(metric: str, value: float, unit: str) -> None:
+        figure = Figure(metric, value, unit)
+        figures.append(figure)
+        emit(figure, as_json)
+
+    scene_ids = {episode.scene_id for episode in load_episodes(config, cache_dir, progress=False)}
+    scenes = SceneCache()
+    try:
+        started = time.perf_counter()
+        for scene_id in sorted(scene_ids):
+            scenes.get(scene_id)
+        note("scene_load_s", time.perf_counter() - started, "s")
+        with tempfile.TemporaryDirectory(prefix="vlln-bench-eval-") as out:
+            outcome = run_evaluation(
+                config, Path(out), cache_dir=cache_dir, progress=False, scenes=scenes
+            )
+    finally:
+        scenes.close()
+    n = len(outcome.records)
+    steps = sum(r.steps for r in outcome.records)
+    actions = sum(len(r.actions) for r in outcome.records)
+    note("episodes", n, "count")
+    note("episodes_per_hour", 3600.0 * n / outcome.seconds, "episodes/h")
+    note("seconds_per_episode", outcome.seconds / n, "s")
+    note("mean_steps_per_episode", steps / n, "steps")
+    note("actions_per_second", actions / outcome.seconds, "actions/s")
+    note("success_rate", 100.0 * sum(map(success, outcome.records)) / n, "%")
+    note("mean_questions_per_episode", sum(len(r.dialog) for r in outcome.records) / n, "count")
+    return figures

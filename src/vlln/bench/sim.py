@@ -1,0 +1,203 @@
+"""`vlln bench sim`: how fast the simulator renders, steps and answers distance queries.
+
+``raw_raster_fps`` draws the same triangles with the same shaders and reads back the same
+three images in a bare moderngl loop with precomputed uniforms: the physical limit of this
+machine's rasteriser, against which ``render_fps`` and ``step_fps`` show the simulator's own
+overhead.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import subprocess
+import sys
+import time
+
+import moderngl
+import numpy as np
+
+from vlln.bench.figures import Figure, emit, median_seconds
+from vlln.sim.agent import Action, AgentState
+from vlln.sim.camera import CameraSpec
+from vlln.sim.geodesic import GeodesicField
+from vlln.sim.gl_context import create_headless_context
+from vlln.sim.shaders import (
+    FRAGMENT_SHADER,
+    VERTEX_ATTRIBUTES,
+    VERTEX_FORMAT,
+    VERTEX_SHADER,
+    interleave_vertices,
+    pose_uniforms,
+    upload_static_uniforms,
+)
+from vlln.sim.simulator import Simulator
+from vlln.sim.viewpoints import view_points
+from vlln.world.generator import generate_house
+from vlln.world.mesh import Mesh
+
+# Forward-biased random walk: how an exploring agent moves.
+WALK = (Action.MOVE_FORWARD, Action.MOVE_FORWARD, Action.TURN_LEFT, Action.TURN_RIGHT)
+
+
+def run_sim_benchmark(seed: int = 0, frames: int = 300, as_json: bool = False) -> list[Figure]:
+    """Measure and print every simulator figure for house ``seed``."""
+    figures: list[Figure] = []
+
+    def record(metric: str, value: float, unit: str) -> None:
+        figure = Figure(metric, value, unit)
+        figures.append(figure)
+        emit(figure, as_json)
+
+    build_s = median_seconds(lambda: generate_house(seed), repeats=3)
+    record("house_build_s", build_s, "s")
+    house = generate_house(seed)
+    record("house_triangles", house.geometry.mesh.n_triangles if house.geometry else 0, "count")
+    rng = np.random.default_rng(seed)
+    with Simulator(house) as sim:
+        poses = _walk(sim, rng, frames)
+        record("render_fps", _render_fps(sim, poses), "frames/s")
+        record("raw_raster_fps", _raw_raster_fps(sim, poses), "frames/s")
+        goals = _goal_sets(sim, rng, count=5)
+        field_s = median_seconds(lambda: GeodesicField(sim.grid, goals[0]), repeats=5)
+        record("field_build_ms", field_s * 1e3, "ms")
+        record("geodesic_query_us", _query_us(sim, GeodesicField(sim.grid, goals[1]), rng), "us")
+        record("step_fps", _step_fps(sim, poses[0], goals[2], rng, frames), "steps/s")
+    record("sim_rss_mb", _rss_of_fresh_simulator(seed), "MiB")
+    return figures
+
+
+def _walk(sim: Simulator, rng: np.random.Generator, count: int) -> list[AgentState]:
+    """Poses along a random walk through the house, the views an agent would really see."""
+    x, z = sim.grid.sample_navigable_point(rng)
+    sim.reset(AgentState((x, sim.grid.floor_y, z), float(rng.uniform(-math.pi, math.pi)), 0.0))
+    poses = []
+    for _ in range(count):
+        sim.move(WALK[int(rng.integers(len(WALK)))])
+        poses.append(sim.state)
+    return poses
+
+
+def _render_fps(sim: Simulator, poses: list[AgentState]) -> float:
+    sim.render(poses[0])  # warm-up: shader compilation and first allocation
+    start = time.perf_counter()
+    for pose in poses:
+        sim.render(pose)
+    return len(poses) / (time.perf_counter() - start)
+
+
+def _raw_raster_fps(sim: Simulator, poses: list[AgentState]) -> float:
+    mesh: Mesh = sim.house.geometry.mesh  # type: ignore[union-attr]
+    spec: CameraSpec = sim.config.camera
+    ctx = create_headless_context()
+    try:
+        ctx.enable(moderngl.DEPTH_TEST | moderngl.CULL_FACE)
+        ctx.front_face = "cw"
+        program = ctx.program(vertex_shader=VERTEX_SHADER, fragment_shader=FRAGMENT_SHADER)
+        upload_static_uniforms(program, spec)
+        vbo = ctx.buffer(interleave_vertices(mesh))
+        vao = ctx.vertex_array(program, [(vbo, VERTEX_FORMAT, *VERTEX_ATTRIBUTES)])
+        size = (spec.width, spec.height)
+        targets = [
+            ctx.renderbuffer(size, 4, dtype="f1"),
+            ctx.renderbuffer(size, 1, dtype="f4"),
+            ctx.renderbuffer(size, 1, dtype="i4"),
+        ]
+        fbo = ctx.framebuffer(targets, ctx.depth_renderbuffer(size))
+        rgb = np.empty((spec.height, spec.width, 3), np.uint8)
+        depth = np.empty((spec.height, spec.width), np.float32)
+        ids = np.empty((spec.height, spec.width), np.int32)
+        uniforms = [
+            [
+                (program[name], value)
+                for name, value in pose_uniforms(spec, p.position, p.yaw, p.tilt).items()
+            ]
+            for p in poses
+        ]
+        n_vertices = len(mesh.positions)
+
+        def draw(pose_uniforms_list: list) -> None:  # type: ignore[type-arg]
+            for uniform, value in pose_uniforms_list:
+                uniform.write(value)
+            fbo.use()
+            fbo.clear(0.0, 0.0, 0.0, 0.0, depth=1.0)
+            vao.render(moderngl.TRIANGLES, vertices=n_vertices)
+            fbo.read_into(rgb, components=3, attachment=0)
+            fbo.read_into(depth, components=1, attachment=1, dtype="f4")
+            fbo.read_into(ids, components=1, attachment=2, dtype="i4")
+
+        draw(uniforms[0])
+        start = time.perf_counter()
+        for pose in uniforms:
+            draw(pose)
+        return len(uniforms) / (time.perf_counter() - start)
+    finally:
+        ctx.release()
+
+
+def _goal_sets(
+    sim: Simulator, rng: np.random.Generator, count: int
+) -> list[list[tuple[float, float]]]:
+    """View points of randomly chosen objects: the goal sets a task builds fields for."""
+    sets = []
+    for index in rng.permutation(len(sim.house.instances)):
+        points = view_points(sim.grid, sim.house.instances[int(index)].box)
+        if points:
+            sets.append(points)
+        if len(sets) == count:
+            break
+    return sets
+
+
+def _query_us(sim: Simulator, field: GeodesicField, rng: np.random.Generator) -> float:
+    points = [sim.grid.sample_navigable_point(rng) for _ in range(2000)]
+    xs = [p[0] for p in points] * 50
+    zs = [p[1] for p in points] * 50
+    distance = field.distance
+    start = time.perf_counter()
+    for x, z in zip(xs, zs, strict=True):
+        distance(x, z)
+    return (time.perf_counter() - start) / len(xs) * 1e6
+
+
+def _step_fps(
+    sim: Simulator,
+    start_pose: AgentState,
+    goals: list[tuple[float, float]],
+    rng: np.random.Generator,
+    count: int,
+) -> float:
+    """Action + collision + render + a geodesic query, as a task does every step."""
+    field = sim.geodesic_field(goals)
+    sim.reset(start_pose)
+    actions = [WALK[int(i)] for i in rng.integers(len(WALK), size=count)]
+    start = time.perf_counter()
+    for action in actions:
+        observation = sim.step(action)
+        x, _, z = observation.state.position
+        field.distance(x, z)
+    return count / (time.perf_counter() - start)
+
+
+_RSS_PROBE = """
+import gc, json, sys
+from vlln.sim.simulator import Simulator
+from vlln.world.generator import generate_house
+sim = Simulator(generate_house(int(sys.argv[1])))
+sim.render()
+gc.collect()
+for line in open("/proc/self/status"):
+    if line.startswith("VmRSS:"):
+        print(json.dumps(int(line.split()[1]) / 1024))
+"""
+
+
+def _rss_of_fresh_simulator(seed: int) -> float:
+    """Resident memory of a process holding one live simulator (interpreter included)."""
+    result = subprocess.run(
+        [sys.executable, "-c", _RSS_PROBE, str(seed)],
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+    return float(json.loads(result.stdout.strip().splitlines()[-1]))

@@ -1,0 +1,1 @@
+"""Pictures of worlds and frames: top-down maps, colourised depth and instance-id images."""

@@ -1,0 +1,74 @@
+"""`vlln world show`: a top-down map and egocentric RGB, depth and instance-id views of a house."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from vlln.sim.agent import AgentState
+from vlln.sim.simulator import Simulator
+from vlln.viz.frames import depth_image, instance_image, save_png
+from vlln.viz.topdown import save_house_map
+from vlln.world.generator import HouseParameters, generate_house
+from vlln.world.model import Room
+
+TURNS = 12  # candidate headings per viewpoint, 30 degrees apart
+
+
+@dataclass(frozen=True)
+class View:
+    room: Room
+    state: AgentState
+
+
+def polygon_area(room: Room) -> float:
+    pts = np.asarray(room.polygon)
+    x, z = pts[:, 0], pts[:, 1]
+    return float(abs(np.dot(x, np.roll(z, 1)) - np.dot(z, np.roll(x, 1))) / 2.0)
+
+
+def pick_views(sim: Simulator, n_views: int) -> list[View]:
+    """One view in each of the largest rooms, facing the heading that sees the most objects."""
+    rooms = sorted(sim.house.rooms, key=polygon_area, reverse=True)[:n_views]
+    views = []
+    for room in rooms:
+        cx, cz = np.mean(np.asarray(room.polygon), axis=0)
+        x, z = sim.grid.snap_point(float(cx), float(cz))
+        best_yaw, best_count = 0.0, -1
+        for k in range(TURNS):
+            yaw = -math.pi + 2.0 * math.pi * k / TURNS
+            ids = sim.render(AgentState((x, room.floor_y, z), yaw, 0.0)).instance_ids
+            count = len(np.unique(ids[ids > 0]))
+            if count > best_count:
+                best_yaw, best_count = yaw, count
+        views.append(View(room, AgentState((x, room.floor_y, z), best_yaw, 0.0)))
+    return views
+
+
+def show_world(
+    seed: int, out: Path, n_views: int = 4, params: HouseParameters | None = None
+) -> list[Path]:
+    """Generate house ``seed`` and write its map and views under ``out``; returns the files."""
+    house = generate_house(seed, params)
+    written = [out / "map.png"]
+    with Simulator(house) as sim:
+        save_house_map(house, written[0], sim.grid)
+        max_depth = sim.config.camera.max_depth
+        for index, view in enumerate(pick_views(sim, n_views)):
+            for tilt_name, tilt in (("level", 0.0), ("down", -math.pi / 6)):
+                state = AgentState(view.state.position, view.state.yaw, tilt)
+                frame = sim.render(state)
+                stem = f"view{index}_{view.room.type.replace(' ', '_')}_{tilt_name}"
+                images = {
+                    "rgb": frame.rgb,
+                    "depth": depth_image(frame.depth, max_depth),
+                    "ids": instance_image(frame.instance_ids),
+                }
+                for kind, image in images.items():
+                    path = out / f"{stem}_{kind}.png"
+                    save_png(image, path)
+                    written.append(path)
+    return written

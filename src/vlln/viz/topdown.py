@@ -1,0 +1,130 @@
+"""Top-down maps of a house: rooms labelled, doors, object footprints and, optionally, the
+navigable area and paths. The evaluation report draws trajectories on the same map."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from matplotlib.axes import Axes  # noqa: E402
+from matplotlib.figure import Figure  # noqa: E402
+from matplotlib.patches import Polygon, Rectangle  # noqa: E402
+
+from vlln.sim.navgrid import NavGrid  # noqa: E402
+from vlln.world.model import House  # noqa: E402
+
+ROOM_COLORS = {
+    "living room": "#f6e7c8",
+    "bedroom": "#dfe8f7",
+    "kitchen": "#e3f3dc",
+    "dining room": "#f7e0d8",
+    "bathroom": "#d8f1f3",
+    "toilet": "#e6e0f5",
+    "study": "#f3efd6",
+    "corridor": "#ececec",
+    "storage room": "#e8e2da",
+    "gym": "#f5dcea",
+}
+
+
+def draw_house(
+    ax: Axes,
+    house: House,
+    grid: NavGrid | None = None,
+    label_objects: bool = True,
+    highlight: Sequence[int] = (),
+) -> None:
+    """Draw the floor plan on ``ax``: x to the right, -z up (north), as seen from above."""
+    for room in house.rooms:
+        xs = [p[0] for p in room.polygon]
+        zs = [-p[1] for p in room.polygon]
+        ax.add_patch(
+            Polygon(
+                np.c_[xs, zs],
+                closed=True,
+                facecolor=ROOM_COLORS.get(room.type, "#eeeeee"),
+                edgecolor="#444444",
+                linewidth=1.5,
+            )
+        )
+        ax.text(
+            float(np.mean(xs)),
+            float(np.mean(zs)),
+            f"{room.type}\n#{room.id}",
+            ha="center",
+            va="center",
+            fontsize=8,
+            color="#555555",
+            alpha=0.8,
+        )
+    if grid is not None:
+        x0, z0 = grid.origin
+        h, w = grid.shape
+        extent = (x0, x0 + w * grid.cell_size, -(z0 + h * grid.cell_size), -z0)
+        overlay = np.where(grid.navigable, 0.0, np.nan)
+        ax.imshow(
+            overlay,
+            extent=extent,
+            origin="upper",
+            cmap="Greens",
+            vmin=-1.0,
+            vmax=1.0,
+            alpha=0.25,
+            interpolation="nearest",
+        )
+    for door in house.doors:
+        ax.plot(door.center[0], -door.center[1], marker="s", color="#8b5a2b", markersize=5)
+    chosen = set(highlight)
+    for inst in house.instances:
+        (x0, _, z0), (x1, _, z1) = inst.box.min, inst.box.max
+        is_chosen = inst.id in chosen
+        ax.add_patch(
+            Rectangle(
+                (x0, -z1),
+                x1 - x0,
+                z1 - z0,
+                facecolor="#d62728" if is_chosen else "#1f77b4",
+                alpha=0.7 if is_chosen else 0.35,
+                edgecolor="#222222",
+                linewidth=0.4,
+            )
+        )
+        if label_objects:
+            ax.text(
+                (x0 + x1) / 2,
+                -(z0 + z1) / 2,
+                inst.category,
+                ha="center",
+                va="center",
+                fontsize=4.5,
+                color="#000000",
+            )
+    ax.set_aspect("equal")
+    ax.autoscale_view()
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("-z (m)")
+
+
+def house_figure(house: House, grid: NavGrid | None = None, title: str | None = None) -> Figure:
+    xs = [p[0] for r in house.rooms for p in r.polygon]
+    zs = [p[1] for r in house.rooms for p in r.polygon]
+    span_x = max(xs) - min(xs) if xs else 10.0
+    span_z = max(zs) - min(zs) if zs else 10.0
+    scale = 12.0 / max(span_x, span_z, 1.0)
+    fig, ax = plt.subplots(figsize=(max(4.0, span_x * scale), max(4.0, span_z * scale) + 0.6))
+    draw_house(ax, house, grid)
+    ax.set_title(title or f"{house.name}: {len(house.rooms)} rooms, {len(house.instances)} objects")
+    fig.tight_layout()
+    return fig
+
+
+def save_house_map(house: House, path: Path, grid: NavGrid | None = None) -> None:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig = house_figure(house, grid)
+    fig.savefig(path, dpi=150)
+    plt.close(fig)
