@@ -28,8 +28,6 @@ from __future__ import annotations
 import gzip
 import json
 import math
-import os
-import tempfile
 import zlib
 from collections.abc import Iterable
 from dataclasses import dataclass, field
@@ -37,6 +35,7 @@ from pathlib import Path
 from typing import Any
 
 from vlln.errors import DataFormatError
+from vlln.files import write_bytes_atomic
 from vlln.world.model import Point3
 
 Quaternion = tuple[float, float, float, float]  # [x, y, z, w]
@@ -157,15 +156,7 @@ def write_episodes(path: str | Path, episodes: Iterable[Episode]) -> None:
         raise DataFormatError(f"cannot write episodes to {path}: {err}") from None
     _parse_file(json.loads(text), f"episodes for {path}")
     blob = gzip.compress(text.encode("utf-8"), compresslevel=9, mtime=0)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, temp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "wb") as handle:
-            handle.write(blob)
-        os.replace(temp, path)
-    except BaseException:
-        Path(temp).unlink(missing_ok=True)
-        raise
+    write_bytes_atomic(path, blob)
 
 
 # --- validation -------------------------------------------------------------------------

@@ -24,8 +24,6 @@ from __future__ import annotations
 
 import json
 import math
-import os
-import tempfile
 from collections import Counter
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
@@ -38,6 +36,7 @@ from tqdm import tqdm
 
 from vlln import __version__
 from vlln.errors import ConfigError
+from vlln.files import write_text_atomic
 from vlln.sim.navgrid import Point2
 from vlln.sim.simulator import Simulator
 from vlln.sim.viewpoints import view_points
@@ -366,7 +365,7 @@ def build_split(
         "totals": {"houses": len(per_house), **totals.counts_json()},
         "houses": [stats.to_json() for stats in per_house],
     }
-    _write_text_atomic(stats_path(out, split), json.dumps(document, indent=2) + "\n")
+    write_text_atomic(stats_path(out, split), json.dumps(document, indent=2) + "\n")
     return out
 
 
@@ -411,15 +410,3 @@ def _recorded_settings(path: Path) -> Any:
         return json.loads(path.read_text(encoding="utf-8")).get("build")
     except (OSError, ValueError, AttributeError):
         return None
-
-
-def _write_text_atomic(path: Path, text: str) -> None:
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, temp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as handle:
-            handle.write(text)
-        os.replace(temp, path)
-    except BaseException:
-        Path(temp).unlink(missing_ok=True)
-        raise

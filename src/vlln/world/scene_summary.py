@@ -30,15 +30,14 @@ from __future__ import annotations
 
 import json
 import math
-import os
 import re
-import tempfile
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from vlln.errors import DataFormatError
+from vlln.files import write_text_atomic
 from vlln.world.model import (
     Attributes,
     Box3,
@@ -105,8 +104,8 @@ def export_scene_summary(house: House, out_dir: str | Path) -> Path:
         )
     scene_dir = Path(out_dir) / name
     scene_dir.mkdir(parents=True, exist_ok=True)
-    _write_atomically(scene_dir / OBJECT_DICT_FILE, _to_json(_object_dict(house)))
-    _write_atomically(scene_dir / REGION_DICT_FILE, _to_json(_region_dict(house)))
+    write_text_atomic(scene_dir / OBJECT_DICT_FILE, _to_json(_object_dict(house)))
+    write_text_atomic(scene_dir / REGION_DICT_FILE, _to_json(_region_dict(house)))
     return scene_dir
 
 
@@ -227,18 +226,6 @@ def _to_json(data: dict[str, Any]) -> str:
 
 def _one_line(match: re.Match[str]) -> str:
     return "[" + ", ".join(number.strip() for number in match[1].split(",")) + "]"
-
-
-def _write_atomically(path: Path, text: str) -> None:
-    """Write via a temporary file and a rename, so readers never see a half-written file."""
-    fd, temp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as handle:
-            handle.write(text)
-        os.replace(temp, path)
-    except BaseException:
-        Path(temp).unlink(missing_ok=True)
-        raise
 
 
 # --- import -----------------------------------------------------------------------------
