@@ -15,8 +15,10 @@ Handler = Callable[[argparse.Namespace], int]
 
 def _world_show(args: argparse.Namespace) -> int:
     from vlln.viz.show import show_world
+    from vlln.world.generator import parameters_from_overrides
 
-    files = show_world(args.seed, Path(args.out), n_views=args.views)
+    params = parameters_from_overrides(args.param)
+    files = show_world(args.seed, Path(args.out), n_views=args.views, params=params)
     print(f"wrote {len(files)} images to {args.out} (map: {files[0]})")
     return 0
 
@@ -176,6 +178,13 @@ def build_parser() -> argparse.ArgumentParser:
     show.add_argument("--seed", type=int, default=0, help="house seed (default 0)")
     show.add_argument("--out", required=True, help="output directory")
     show.add_argument("--views", type=int, default=4, help="number of rooms to view (default 4)")
+    show.add_argument(
+        "--param",
+        action="append",
+        default=[],
+        metavar="NAME=VALUE",
+        help="a house-generator parameter, e.g. --param max_rooms=6 (repeatable)",
+    )
     show.set_defaults(handler=_world_show)
 
     bench = commands.add_parser("bench", help="speed and memory benchmarks").add_subparsers(

@@ -1,0 +1,250 @@
+"""The evaluation runner: plays an agent over a fixed list of episodes, one line per episode.
+
+Order: the episodes of the source (a built-in split or an episode file) are grouped by scene,
+keeping first appearance, so one simulator serves a whole house; the first ``--episodes`` of
+that list are kept, ``--shard i/n`` takes every n-th of them, and each episode is played at
+every dialog budget before the next one (the geodesic field of its goals is reused).
+
+Determinism: for every (episode, budget) the agent and the oracle are made afresh with seeds
+derived from (``--seed``, scene, episode, budget) by a hash, so an episode line depends on
+nothing that ran before it: one process, many shards, or a resumed run give identical lines.
+
+Simulators: the plan never returns to a scene it has left, so the previous house's simulator
+is closed before the next one is built. That keeps one headless GL context alive at a time,
+which the renderer needs: it draws with whichever context was made current last.
+
+Robustness: an exception inside the agent's ``reset`` or ``act`` ends that episode, recorded
+with end reason ``error`` and the exception text, and the run goes on; outputs that are not
+actions are failed actions, which the environment records and caps. Finished episodes are on
+disk before the next one starts (see :mod:`vlln.eval.results`), and a restart skips them.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import sys
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+from tqdm import tqdm
+
+from vlln.agents.protocol import Agent
+from vlln.agents.registry import make_agent
+from vlln.errors import ConfigError
+from vlln.eval.config import EvalConfig
+from vlln.eval.results import RecordKey, RunDirectory, record_key
+from vlln.eval.summary import GroupSummary, summarize_run, summary_json, summary_markdown
+from vlln.oracle.protocol import Oracle
+from vlln.oracle.rule_oracle import RuleOracle
+from vlln.tasks.env import NavigationEnv
+from vlln.tasks.episode import Episode, read_episodes
+from vlln.tasks.generation import load_or_build_split
+from vlln.tasks.metrics import success
+from vlln.tasks.record import EpisodeRecord
+from vlln.tasks.scenes import SceneCache
+from vlln.tasks.spec import TaskConfig, TaskType
+
+AgentFactory = Callable[[str, int], Agent]
+OracleFactory = Callable[[int], Oracle]
+
+
+@dataclass(frozen=True)
+class WorkItem:
+    """One episode to play at one dialog budget."""
+
+    episode: Episode
+    budget: int
+
+    def key(self, config: EvalConfig) -> RecordKey:
+        """The key its record will have (see :func:`vlln.eval.results.record_key`)."""
+        return (
+            config.agent,
+            config.task,
+            self.budget,
+            self.episode.scene_id,
+            self.episode.episode_id,
+        )
+
+
+@dataclass(frozen=True)
+class RunOutcome:
+    """What a call of :func:`run_evaluation` did and what the directory now holds."""
+
+    directory: Path
+    planned: int  # (episode, budget) pairs of this run (this shard)
+    played: int  # played by this call
+    seconds: float  # wall time of this call's episodes
+    records: list[EpisodeRecord]  # every record in the directory
+    summary: list[GroupSummary] | None  # None while no episode has finished
+
+    @property
+    def complete(self) -> bool:
+        return len(self.records) == self.planned
+
+
+def order_by_scene(episodes: Sequence[Episode]) -> list[Episode]:
+    """Episodes grouped by scene (scenes in order of first appearance), stable within one."""
+    by_scene: dict[str, list[Episode]] = {}
+    for episode in episodes:
+        by_scene.setdefault(episode.scene_id, []).append(episode)
+    return [episode for group in by_scene.values() for episode in group]
+
+
+def plan_work(episodes: Sequence[Episode], config: EvalConfig) -> list[WorkItem]:
+    """The (episode, budget) pairs this run plays, in playing order (module doc)."""
+    ordered = order_by_scene(episodes)
+    if config.episodes is not None:
+        if config.episodes > len(ordered):
+            raise ConfigError(
+                f"asked for {config.episodes} episodes but the source has only {len(ordered)}; "
+                "pass fewer --episodes or more --houses"
+            )
+        ordered = ordered[: config.episodes]
+    return [
+        WorkItem(episode, budget)
+        for episode in config.shard.take(ordered)
+        for budget in config.budgets
+    ]
+
+
+def derive_seed(seed: int, role: str, scene_id: str, episode_id: str, budget: int) -> int:
+    """A 63-bit seed for ``role`` (agent, oracle) in one episode at one budget."""
+    text = f"{seed}|{role}|{scene_id}|{episode_id}|{budget}"
+    return int.from_bytes(hashlib.sha256(text.encode("utf-8")).digest()[:8], "big") >> 1
+
+
+def default_cache_dir() -> Path:
+    """Where built splits are kept: ``$XDG_CACHE_HOME/vlln/episodes`` (~/.cache by default)."""
+    base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
+    return Path(base) / "vlln" / "episodes"
+
+
+def load_episodes(
+    config: EvalConfig, cache_dir: Path | None = None, progress: bool = True
+) -> list[Episode]:
+    """The run's episode source: an episode file, or a built-in split (built once, cached)."""
+    if config.episode_file is not None:
+        return read_episodes(config.episode_file)
+    if config.split is None or config.houses is None:
+        raise ConfigError("the run names no episode source; give a split or an episode file")
+    return load_or_build_split(
+        config.split,
+        config.task,
+        config.houses,
+        cache_dir or default_cache_dir(),
+        progress=progress,
+    )
+
+
+def play_episode(
+    env: NavigationEnv, agent: Agent, agent_name: str, episode_index: int = 0
+) -> EpisodeRecord:
+    """Play one episode to its end; an exception in the agent ends it as an error."""
+    observation, _ = env.reset(options={"episode_index": episode_index})
+    try:
+        agent.reset(env.episode_info())
+    except Exception as error:
+        return env.record(agent_name, error=_describe(error, "reset"))
+    while True:
+        try:
+            action = agent.act(observation)
+        except Exception as error:
+            return env.record(agent_name, error=_describe(error, "act"))
+        observation, _, terminated, truncated, _ = env.step(action)
+        if terminated or truncated:
+            return env.record(agent_name)
+
+
+def _describe(error: Exception, where: str) -> str:
+    return f"{type(error).__name__} in agent.{where}(): {error}"[:2000]
+
+
+def run_evaluation(
+    config: EvalConfig,
+    out: Path,
+    *,
+    cache_dir: Path | None = None,
+    stop_after: int | None = None,
+    progress: bool = True,
+    agent_factory: AgentFactory = make_agent,
+    oracle_factory: OracleFactory = RuleOracle,
+    scenes: SceneCache | None = None,
+) -> RunOutcome:
+    """Play ``config`` into the run directory ``out``, resuming what is already there.
+
+    ``stop_after`` plays at most that many episodes in this call (a later call continues);
+    ``scenes`` shares simulators between calls (it is then not closed here).
+    """
+    if stop_after is not None and stop_after < 0:
+        raise ConfigError(f"stop_after must be >= 0, got {stop_after}")
+    agent_factory(config.agent, config.seed)  # an unknown agent fails before any work
+    items = plan_work(load_episodes(config, cache_dir, progress), config)
+    run_dir = RunDirectory(out)
+    run_dir.prepare(config)
+    task = TaskType.parse(config.task)
+    own_scenes = scenes is None
+    cache = scenes if scenes is not None else SceneCache()
+    played = 0
+    started = time.perf_counter()
+    try:
+        with run_dir.writing() as writer:
+            done = {record_key(record) for record in writer.records}
+            remaining = [item for item in items if item.key(config) not in done]
+            todo = remaining if stop_after is None else remaining[:stop_after]
+            bar = tqdm(
+                total=len(items),
+                initial=len(items) - len(remaining),
+                desc=f"{config.agent} {config.task}",
+                unit="ep",
+                file=sys.stderr,
+                disable=not progress,
+                dynamic_ncols=True,
+            )
+            with bar:
+                scene: str | None = None
+                for item in todo:
+                    if scene is not None and item.episode.scene_id != scene:
+                        cache.close()  # one GL context alive at a time (see module doc)
+                    scene = item.episode.scene_id
+                    writer.append(
+                        _play_item(item, config, task, cache, agent_factory, oracle_factory)
+                    )
+                    played += 1
+                    bar.update(1)
+                    bar.set_postfix(sr=f"{_success_rate(writer.records):.1f}%")
+            records = list(writer.records)
+    finally:
+        if own_scenes:
+            cache.close()
+    seconds = time.perf_counter() - started
+    summary = summarize_run(records) if records else None
+    if summary is not None:
+        run_dir.write_summary(summary_json(summary), summary_markdown(summary))
+    return RunOutcome(out, len(items), played, seconds, records, summary)
+
+
+def _play_item(
+    item: WorkItem,
+    config: EvalConfig,
+    task: TaskType,
+    scenes: SceneCache,
+    agent_factory: AgentFactory,
+    oracle_factory: OracleFactory,
+) -> EpisodeRecord:
+    episode = item.episode
+
+    def seed_for(role: str) -> int:
+        return derive_seed(config.seed, role, episode.scene_id, episode.episode_id, item.budget)
+
+    agent = agent_factory(config.agent, seed_for("agent"))
+    task_config = TaskConfig(task=task, max_steps=config.max_steps, dialog_budget=item.budget)
+    oracle = oracle_factory(seed_for("oracle")) if task_config.dialog_enabled else None
+    env = NavigationEnv([episode], task_config, scenes, oracle, privileged=agent.privileged)
+    return play_episode(env, agent, config.agent)
+
+
+def _success_rate(records: Sequence[EpisodeRecord]) -> float:
+    return 100.0 * sum(success(record) for record in records) / max(1, len(records))

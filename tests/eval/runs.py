@@ -1,0 +1,103 @@
+"""Shared pieces of the evaluation tests: a tiny built split, a scene cache, misbehaving agents.
+
+The split is the first house of the test split, built once per test session; runs play a few
+of its episodes with a low step cap so that every test stays fast.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any
+
+from vlln.agents.protocol import Agent
+from vlln.agents.registry import make_agent
+from vlln.eval.config import EvalConfig
+from vlln.eval.runner import RunOutcome, run_evaluation
+from vlln.sim.agent import Action
+from vlln.tasks.env import EpisodeInfo, Observation
+from vlln.tasks.scenes import SceneCache
+from vlln.tasks.spec import AgentOutput
+
+
+class RaisingAgent:
+    """Raises inside act() on its third call."""
+
+    name = "raising"
+    privileged = False
+
+    def __init__(self, seed: int) -> None:
+        self.calls = 0
+
+    def reset(self, episode: EpisodeInfo) -> None:
+        self.calls = 0
+
+    def act(self, observation: Observation) -> AgentOutput:
+        self.calls += 1
+        if self.calls == 3:
+            raise RuntimeError("depth sensor unplugged")
+        return Action.TURN_LEFT
+
+
+class GarbageAgent:
+    """Returns things that are not actions."""
+
+    name = "garbage"
+    privileged = False
+
+    def __init__(self, seed: int) -> None:
+        self.calls = 0
+
+    def reset(self, episode: EpisodeInfo) -> None:
+        self.calls = 0
+
+    def act(self, observation: Observation) -> AgentOutput:
+        self.calls += 1
+        garbage: list[Any] = ["<move>fly", None, 3.5, {"action": "STOP"}]
+        return garbage[self.calls % len(garbage)]
+
+
+def agent_factory(name: str, seed: int) -> Agent:
+    """The registry's agents plus the two misbehaving ones above."""
+    if name == "raising":
+        return RaisingAgent(seed)
+    if name == "garbage":
+        return GarbageAgent(seed)
+    return make_agent(name, seed)
+
+
+def evaluate(
+    out: Path,
+    cache_dir: Path,
+    scenes: SceneCache,
+    stop_after: int | None = None,
+    **overrides: Any,
+) -> RunOutcome:
+    """Run a small evaluation: 4 episodes of the first test house, 40 counted steps at most."""
+    values: dict[str, Any] = {
+        "agent": "random",
+        "task": "iign",
+        "houses": 1,
+        "episodes": 4,
+        "budgets": (0, 1),
+        "max_steps": 40,
+    }
+    values.update(overrides)
+    return run_evaluation(
+        EvalConfig(**values),
+        out,
+        cache_dir=cache_dir,
+        stop_after=stop_after,
+        progress=False,
+        agent_factory=agent_factory,
+        scenes=scenes,
+    )
+
+
+def lines(run_dir: Path) -> list[str]:
+    return (run_dir / "episodes.jsonl").read_text(encoding="utf-8").splitlines()
+
+
+def summary(run_dir: Path) -> dict[str, Any]:
+    data: dict[str, Any] = json.loads((run_dir / "summary.json").read_text(encoding="utf-8"))
+    return data

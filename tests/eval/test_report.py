@@ -1,0 +1,81 @@
+"""`vlln report`: Markdown and HTML with the metric table, charts and episode maps."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import pytest
+from PIL import Image
+
+from tests.eval.runs import evaluate
+from tests.tasks.test_metrics import make_record
+from vlln.cli import main
+from vlln.eval.episode_map import question_positions
+from vlln.eval.report import pick_samples
+from vlln.tasks.record import DialogTurn, EndReason
+from vlln.tasks.scenes import SceneCache
+
+
+@pytest.fixture(scope="module")
+def runs(
+    tmp_path_factory: pytest.TempPathFactory, split_cache: Path, scenes: SceneCache
+) -> list[Path]:
+    """Two runs to compare: the expert and the random agent, both at budgets 0 and 1."""
+    root = tmp_path_factory.mktemp("report_runs")
+    for agent in ("expert", "random"):
+        evaluate(root / agent, split_cache, scenes, agent=agent, episodes=3, max_steps=150)
+    return [root / "expert", root / "random"]
+
+
+def test_report_compares_runs_with_table_charts_and_maps(
+    runs: list[Path], tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    out = tmp_path / "report"
+    args = ["report", *map(str, runs), "--out", str(out), "--samples", "2"]
+    assert main(args) == 0
+    markdown = (out / "report.md").read_text()
+    page = (out / "report.html").read_text()
+    assert "| name | n | SR | SPL | OS | NE |" in markdown
+    for row in ("expert: expert IIGN budget 0", "random: random IIGN budget 1"):
+        assert row in markdown and row in page
+    assert "OS radius 3.00 m" in markdown and "within 3.00 m" in page
+    images = re.findall(r"!\[[^]]*\]\(([^)]+)\)", markdown)
+    assert "sr_by_budget.png" in images and "failure_taxonomy.png" in images
+    maps = [name for name in images if name.startswith("map_")]
+    assert len(maps) == 4  # two per run
+    for name in images:
+        assert f'src="{name}"' in page
+        with Image.open(out / name) as picture:
+            assert picture.format == "PNG" and min(picture.size) > 200
+            assert len(picture.getcolors(1 << 20) or []) > 20  # drawn, not blank
+
+
+def test_one_run_report_defaults_next_to_the_run(runs: list[Path]) -> None:
+    assert main(["report", str(runs[0]), "--samples", "1"]) == 0
+    assert (runs[0] / "report" / "report.html").exists()
+
+
+def test_samples_mix_successes_and_distinct_failures() -> None:
+    success = make_record(episode_id="s1")
+    stop_failure = make_record(episode_id="f1", geodesic_trace=[2.0, 0.5])
+    wrong = make_record(
+        episode_id="f2", geodesic_trace=[5.0], stop_instance_id=3, stop_instance_category="sofa"
+    )
+    wrong_again = make_record(
+        episode_id="f3", geodesic_trace=[5.0], stop_instance_id=3, stop_instance_category="sofa"
+    )
+    chosen = pick_samples([wrong_again, success, stop_failure, wrong], 3)
+    assert [r.episode_id for r in chosen] == ["s1", "f1", "f2"]
+    assert pick_samples([success], 4) == [success]
+    assert pick_samples([], 4) == []
+
+
+def test_question_positions_follow_the_movement_actions() -> None:
+    record = make_record(
+        positions=[[0.0, 0.0, 0.0], [0.0, -0.25, 0.0], [0.0, -0.25, 0.5]],
+        actions=["TALK", "MOVE_FORWARD", "LOOK_DOWN", "TALK", "TURN_LEFT", "STOP"],
+        dialog=[DialogTurn(0, "q", "a", "route", True), DialogTurn(1, "q", "a", "route", True)],
+        end_reason=EndReason.STOP.value,
+    )
+    assert question_positions(record) == [(0.0, 0.0), (0.0, -0.25)]
