@@ -1,0 +1,183 @@
+"""What the rule oracle knows during an episode, arranged so that every answer is a look-up.
+
+A :class:`HouseIndex` is built once per house (rooms as polygons, instances by id, the
+relation graph by instance, landmark objects per room); an :class:`EpisodeKnowledge` adds the
+target, the geodesic field to its view points and the shortest-path follower. Both are built
+when an episode starts, so answering a question does no search beyond one path query.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from vlln.sim.follower import GreedyFollower
+from vlln.sim.geodesic import GeodesicField
+from vlln.world.model import House, ObjectInstance, Relation, Room
+
+# Landmarks for route descriptions: big enough to notice from across a room, not so high up
+# that a walker would not look at them (reference: at most 2 m above the floor), and not
+# lights, which hang everywhere and name no place.
+LANDMARK_MIN_SIZE = 0.5  # m, largest side of the box
+LANDMARK_MAX_HEIGHT = 2.0  # m, bottom of the box above the room's floor
+_NOT_LANDMARK_WORDS = ("light", "ceiling", "wall", "floor", "column")
+
+# How rooms are spoken; a type without an entry is spoken as it is written.
+_SPOKEN_ROOM = {"other": "open area", "stairs": "staircase"}
+
+
+def room_name(room: Room) -> str:
+    """How a person names the room's type: "kitchen", "living room"."""
+    return _SPOKEN_ROOM.get(room.type, room.type)
+
+
+def object_phrase(instance: ObjectInstance) -> str:
+    """The category with one attribute, the colour when known: "the white sofa"."""
+    attributes = instance.attributes
+    adjective = attributes.color or material_adjective(attributes.material)
+    return f"the {adjective} {instance.category}" if adjective else f"the {instance.category}"
+
+
+def material_adjective(material: str) -> str:
+    """The adjective for a material ("wooden"); empty for paint and leaves."""
+    return _MATERIAL_ADJECTIVE.get(material, material)
+
+
+_MATERIAL_ADJECTIVE = {
+    "plain": "",
+    "foliage": "",
+    "wood": "wooden",
+    "tile": "tiled",
+    "carpet": "carpeted",
+}
+
+
+def choose(rng: np.random.Generator, variants: tuple[str, ...]) -> str:
+    """One of several wordings; the episode's generator keeps the choice reproducible."""
+    return variants[int(rng.integers(len(variants)))]
+
+
+@dataclass(frozen=True)
+class HouseIndex:
+    """Look-ups over one house: which room a point is in, instances, relations, landmarks."""
+
+    house: House
+    instances: dict[int, ObjectInstance]
+    relations: dict[int, list[Relation]]  # by subject id, nearest first
+    relations_to: dict[int, list[Relation]]  # by object id, nearest first
+    category_pattern: re.Pattern[str]  # finds category names (or their plurals) in text
+    landmarks: dict[int, list[ObjectInstance]]  # by room id
+    _room_ids: NDArray[np.int64]
+    _edges: list[tuple[NDArray[np.float64], NDArray[np.float64]]]  # per room: start, end
+
+    @staticmethod
+    def build(house: House) -> HouseIndex:
+        relations: dict[int, list[Relation]] = {}
+        relations_to: dict[int, list[Relation]] = {}
+        for relation in sorted(house.relations, key=lambda r: (r.distance, r.subject, r.object)):
+            relations.setdefault(relation.subject, []).append(relation)
+            relations_to.setdefault(relation.object, []).append(relation)
+        floors = {room.id: room.floor_y for room in house.rooms}
+        landmarks: dict[int, list[ObjectInstance]] = {}
+        for inst in house.instances:
+            if _is_landmark(inst, floors.get(inst.room_id, 0.0)):
+                landmarks.setdefault(inst.room_id, []).append(inst)
+        edges = []
+        for room in house.rooms:
+            start = np.asarray(room.polygon, np.float64)
+            edges.append((start, np.roll(start, -1, axis=0)))
+        return HouseIndex(
+            house,
+            {inst.id: inst for inst in house.instances},
+            relations,
+            relations_to,
+            _category_pattern({inst.category for inst in house.instances}),
+            landmarks,
+            np.array([room.id for room in house.rooms], np.int64),
+            edges,
+        )
+
+    def rooms_at(self, points: NDArray[np.float64]) -> NDArray[np.int64]:
+        """Room id of each floor-plan point ``(n, 2)``; -1 where no room contains it."""
+        result = np.full(len(points), -1, np.int64)
+        x = points[:, 0:1]
+        z = points[:, 1:2]
+        for room_id, (start, end) in zip(self._room_ids, self._edges, strict=True):
+            crosses = (start[:, 1] > z) != (end[:, 1] > z)
+            dz = np.where(crosses, end[:, 1] - start[:, 1], 1.0)
+            x_cross = start[:, 0] + (z - start[:, 1]) * (end[:, 0] - start[:, 0]) / dz
+            inside = np.count_nonzero(crosses & (x < x_cross), axis=1) % 2 == 1
+            result[inside & (result < 0)] = room_id
+        return result
+
+    def room_at(self, x: float, z: float) -> Room | None:
+        """The room containing the point or, for a point in a wall or doorway, the nearest."""
+        room_id = int(self.rooms_at(np.array([[x, z]]))[0])
+        if room_id >= 0:
+            return self.house.room(room_id)
+        best: tuple[float, Room] | None = None
+        for room, (start, end) in zip(self.house.rooms, self._edges, strict=True):
+            gap = _distance_to_edges(x, z, start, end)
+            if best is None or gap < best[0]:
+                best = (gap, room)
+        return None if best is None else best[1]
+
+    def same_type_rooms(self, room: Room) -> int:
+        return sum(1 for other in self.house.rooms if other.type == room.type)
+
+
+def _category_pattern(categories: set[str]) -> re.Pattern[str]:
+    names = "|".join(re.escape(c) for c in sorted(categories, key=len, reverse=True))
+    return re.compile(rf"\b({names})s?\b" if names else r"(?!)")
+
+
+def _is_landmark(inst: ObjectInstance, floor_y: float) -> bool:
+    if any(word in inst.category for word in _NOT_LANDMARK_WORDS):
+        return False
+    return max(inst.box.size) >= LANDMARK_MIN_SIZE and (
+        inst.box.min[1] - floor_y <= LANDMARK_MAX_HEIGHT
+    )
+
+
+def _distance_to_edges(
+    x: float, z: float, start: NDArray[np.float64], end: NDArray[np.float64]
+) -> float:
+    edge = end - start
+    offset = np.array([x, z]) - start
+    length2 = np.maximum(np.sum(edge * edge, axis=1), 1e-18)
+    t = np.clip(np.sum(offset * edge, axis=1) / length2, 0.0, 1.0)
+    return float(np.min(np.linalg.norm(offset - t[:, None] * edge, axis=1)))
+
+
+@dataclass
+class EpisodeKnowledge:
+    """Everything one episode's answers read: the house, the target and the way to it."""
+
+    index: HouseIndex
+    target: ObjectInstance
+    field: GeodesicField
+    follower: GreedyFollower
+    rng: np.random.Generator
+
+    @property
+    def target_room(self) -> Room | None:
+        try:
+            return self.index.house.room(self.target.room_id)
+        except KeyError:
+            centre = self.target.box.center
+            return self.index.room_at(centre[0], centre[2])
+
+    def plan_distance(self, x: float, z: float) -> float:
+        """Floor-plan distance from a point to the target's box (0 inside its footprint)."""
+        box = self.target.box
+        dx = max(box.min[0] - x, 0.0, x - box.max[0])
+        dz = max(box.min[2] - z, 0.0, z - box.max[2])
+        return math.hypot(dx, dz)
+
+    def geodesic(self, x: float, z: float) -> float:
+        """Walking distance to the nearest view point; ``inf`` when it cannot be reached."""
+        return self.field.distance(x, z)

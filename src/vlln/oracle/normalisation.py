@@ -1,0 +1,207 @@
+"""Normalising a navigator's question so that simple patterns can read it.
+
+Questions are typed by people and models alike: mixed case, contractions, chat spellings and
+typos. :func:`normalise` turns them into lower-case words separated by single spaces, expands
+contractions ("what's" -> "what is"), maps chat and British spellings ("u" -> "you",
+"colour" -> "color"), drops punctuation, and corrects words that are not known English to a
+pattern keyword within a small edit distance ("colr" -> "color", "rigth" -> "right").
+"""
+
+from __future__ import annotations
+
+import re
+from functools import cache
+
+_CONTRACTIONS: dict[str, str] = {
+    "what's": "what is",
+    "where's": "where is",
+    "which's": "which is",
+    "how's": "how is",
+    "it's": "it is",
+    "that's": "that is",
+    "there's": "there is",
+    "here's": "here is",
+    "who's": "who is",
+    "i'm": "i am",
+    "im": "i am",
+    "i've": "i have",
+    "ive": "i have",
+    "i'll": "i will",
+    "you're": "you are",
+    "isn't": "is not",
+    "isnt": "is not",
+    "aren't": "are not",
+    "don't": "do not",
+    "dont": "do not",
+    "doesn't": "does not",
+    "doesnt": "does not",
+    "didn't": "did not",
+    "can't": "cannot",
+    "cant": "cannot",
+    "shouldn't": "should not",
+    "let's": "let us",
+    "whats": "what is",
+    "infront": "in front",
+    "wheres": "where is",
+    "thats": "that is",
+}
+
+_CHAT_SPELLINGS: dict[str, str] = {
+    "u": "you",
+    "ur": "your",
+    "r": "are",
+    "wat": "what",
+    "ths": "this",
+    "tht": "that",
+    "wht": "what",
+    "wut": "what",
+    "whr": "where",
+    "wher": "where",
+    "wer": "where",
+    "wich": "which",
+    "whch": "which",
+    "shud": "should",
+    "shld": "should",
+    "sould": "should",
+    "hw": "how",
+    "pls": "please",
+    "plz": "please",
+    "thx": "thanks",
+    "colour": "color",
+    "colours": "colors",
+    "coloured": "colored",
+    "grey": "gray",
+    "favourite": "favorite",
+    "metre": "meter",
+    "metres": "meters",
+    "nxt": "next",
+    "fwd": "forward",
+    "lft": "left",
+    "rt": "right",
+    "rm": "room",
+    "tgt": "target",
+    "obj": "object",
+    "neighbour": "neighbor",
+    "neighbours": "neighbors",
+    "neighbouring": "neighboring",
+    "centre": "center",
+    "thru": "through",
+    "towards": "toward",
+}
+
+
+def _words(text: str) -> list[str]:
+    return text.split()
+
+
+# Words the patterns key on: misspellings are corrected toward these.
+_KEYWORDS: frozenset[str] = frozenset(
+    _words(
+        """
+    color colors colored material materials made texture textured shape shaped size sized
+    big bigger large larger small smaller tall height wide width long dimensions look looks
+    like appearance describe description details features characteristics distinctive special
+    kind type sort style room rooms kitchen bedroom bathroom toilet living dining study
+    corridor storage hallway located location where which what should would could direction
+    directions way route path reach arrive there left right turn turning straight forward
+    ahead behind around backward backwards front facing face heading next near nearby next
+    beside close closer closest far distance away meters steps target object goal thing item
+    correct right same found find looking visible view sight see seeing guide lead navigate
+    continue keep going stop upstairs downstairs through toward please answer wooden metal
+    metallic plastic fabric leather glass ceramic marble adjacent neighbor surrounded under
+    underneath above below sitting standing placed lying hanging mounted against corner wall
+    floor table shelf counter progress track almost nearly getting relative compared pointing
+    point orientation angle degrees moving move walk exactly information tell more another
+    """
+    )
+)
+
+# Common words that are never "corrected" even though they are one edit from a keyword.
+_KNOWN_WORDS: frozenset[str] = _KEYWORDS | frozenset(
+    _words(
+        """
+    a an the is are was were be been being am do does did done have has had having it its
+    this that these those i me my mine you your we us our they them their he she his her
+    to of in on at by for with from up down now here then than so and or not no yes can
+    cannot could would will shall may might must go goes going went gone get got gets let
+    us how why when who whom whose much many some any all one two three four five six
+    seven eight nine ten still yet also too very really just only other else each every
+    want need know think see saw seen looked find finding give tell told say said mean
+    meant wait stay take come came try again ok okay hi hello hey thanks thank sorry
+    good great fine well bad best better need help sure last first second third side sides
+    book books look lamp lamps lamp cup cups bed beds chair chairs sofa sofas desk desks
+    rug rugs tv plant plants vase vases bowl bowls plate plates towel towels mirror mirrors
+    picture pictures clock clocks pillow pillows stool stools bench benches couch couches
+    bottle bottles basket baskets cabinet cabinets dresser lamp light lights window windows
+    door doors sink sinks oven fridge piano guitar laptop speaker speakers curtain curtains
+    bin trash wardrobe nightstand armchair ottoman radiator fireplace candle candles
+    red blue green black white gray brown beige orange yellow purple pink silver gold cream
+    teal navy dark light wood tile carpet foliage plain fan fans hat rat cat car bar bag
+    bags box boxes lot lots bit set sit sat lie lay hang put gets got hit hot hole
+    whole part area space house home place places spot thing things one ones
+    left lest lift loft lend led let lot late later ate eat mat map cap tap
+    """
+    )
+)
+
+_TOKEN = re.compile(r"[a-z0-9]+(?:'[a-z]+)?")
+
+
+def normalise(text: str) -> str:
+    """Lower-case words separated by single spaces, with spelling and typos fixed."""
+    lowered = text.lower().replace("\u2019", "'").replace("`", "'")
+    words: list[str] = []
+    for token in _TOKEN.findall(lowered):
+        token = _CONTRACTIONS.get(token, token)
+        if " " in token:
+            words.extend(token.split())
+            continue
+        token = token.replace("'", "")
+        token = _CHAT_SPELLINGS.get(token, token)
+        words.append(_corrected(token))
+    return " ".join(words)
+
+
+@cache
+def _corrected(word: str) -> str:
+    """The keyword a typo most likely meant, or the word itself.
+
+    Only unknown words of three letters or more are corrected, to a keyword one edit away
+    (two for words of seven letters or more) that starts with the same letter (or the same
+    two, swapped); ties keep the word unchanged, so a correction is never a guess.
+    """
+    if len(word) < 3 or word in _KNOWN_WORDS or word.isdigit():
+        return word
+    limit = 2 if len(word) >= 7 else 1
+    best: list[str] = []
+    best_distance = limit + 1
+    for keyword in _KEYWORDS:
+        if abs(len(keyword) - len(word)) > limit or len(keyword) < 4:
+            continue
+        if keyword[0] != word[0] and keyword[:2] != word[1::-1]:
+            continue
+        distance = _edit_distance(word, keyword, limit)
+        if distance > limit:
+            continue
+        if distance < best_distance:
+            best, best_distance = [keyword], distance
+        elif distance == best_distance:
+            best.append(keyword)
+    return best[0] if len(best) == 1 else word
+
+
+def _edit_distance(a: str, b: str, limit: int) -> int:
+    """Optimal-string-alignment distance (a swap of neighbours is one edit), capped."""
+    previous2: list[int] = []
+    previous = list(range(len(b) + 1))
+    for i in range(1, len(a) + 1):
+        current = [i] + [0] * len(b)
+        for j in range(1, len(b) + 1):
+            cost = 0 if a[i - 1] == b[j - 1] else 1
+            current[j] = min(previous[j] + 1, current[j - 1] + 1, previous[j - 1] + cost)
+            if i > 1 and j > 1 and a[i - 1] == b[j - 2] and a[i - 2] == b[j - 1]:
+                current[j] = min(current[j], previous2[j - 2] + 1)
+        if min(current) > limit:
+            return limit + 1
+        previous2, previous = previous, current
+    return previous[-1]

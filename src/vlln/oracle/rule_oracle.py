@@ -1,0 +1,90 @@
+"""The default oracle: offline, deterministic, grounded in the house and the agent's state.
+
+It classifies each question with :func:`vlln.oracle.classify.analyse_question` and answers
+with the logic of its type (paper supplementary, reference-facts §4), without a language
+model, a network or model weights. Everything an answer needs (the geodesic field to the
+target's view points, the shortest-path follower, per-house look-ups) is built in
+:meth:`RuleOracle.start`, so answers are look-ups.
+
+Wording varies between paraphrases drawn from a generator seeded by the oracle's seed, the
+house and the target, so the same seed and episode give the same words, byte for byte. The
+dialog budget is not the oracle's business: the environment refuses questions past it.
+"""
+
+from __future__ import annotations
+
+import zlib
+
+import numpy as np
+
+from vlln.errors import ConfigError
+from vlln.oracle.answers import answer_attribute, answer_other
+from vlln.oracle.classify import RouteKind, analyse_question
+from vlln.oracle.disambiguation import answer_disambiguation
+from vlln.oracle.knowledge import EpisodeKnowledge, HouseIndex
+from vlln.oracle.protocol import EpisodeContext, Question, QuestionType, Reply
+from vlln.oracle.route import answer_orientation, answer_path, answer_step
+from vlln.sim.follower import GreedyFollower
+
+
+class RuleOracle:
+    """Answers Attribute, Route, Disambiguation and Other questions by rules.
+
+    ``seed`` picks the paraphrases; ``goal_radius`` is where the follower says "you are
+    there" (the benchmark's 0.25 m success radius).
+    """
+
+    def __init__(self, seed: int = 0, goal_radius: float = 0.25) -> None:
+        if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+            raise ConfigError(f"seed must be a whole number >= 0, got {seed!r}")
+        if not goal_radius > 0.0:
+            raise ConfigError(f"goal_radius must be positive metres, got {goal_radius!r}")
+        self.seed = seed
+        self.goal_radius = float(goal_radius)
+        self._index: HouseIndex | None = None
+        self._knowledge: EpisodeKnowledge | None = None
+
+    def start(self, context: EpisodeContext) -> None:
+        """Prepare an episode: look-ups for its house, the field and follower to its goals."""
+        if not context.view_points:
+            raise ConfigError(
+                f"the episode's target {context.target.id} ({context.target.category}) has no "
+                "view points; the oracle needs at least one to give route answers"
+            )
+        simulator = context.simulator
+        house = simulator.house
+        if self._index is None or self._index.house is not house:
+            self._index = HouseIndex.build(house)
+        field = simulator.geodesic_field(context.view_points)
+        follower = GreedyFollower(simulator.grid, field, self.goal_radius, simulator.config.motion)
+        entropy = [self.seed, zlib.crc32(house.name.encode("utf-8")), context.target.id]
+        self._knowledge = EpisodeKnowledge(
+            index=self._index,
+            target=context.target,
+            field=field,
+            follower=follower,
+            rng=np.random.default_rng(np.random.SeedSequence(entropy)),
+        )
+
+    def answer(self, question: Question) -> Reply:
+        """The answer to one question, with the type it was classified as."""
+        knowledge = self._knowledge
+        if knowledge is None:
+            raise ConfigError("the oracle has no episode; call start(context) before answer()")
+        analysis = analyse_question(question.text)
+        state = question.state
+        kind = analysis.question_type
+        if kind == QuestionType.ATTRIBUTE:
+            text = answer_attribute(knowledge, analysis, state)
+        elif kind == QuestionType.DISAMBIGUATION:
+            text = answer_disambiguation(knowledge, state, question.frame)
+        elif kind == QuestionType.ROUTE:
+            if analysis.route_kind == RouteKind.ORIENTATION:
+                text = answer_orientation(knowledge, state)
+            elif analysis.route_kind == RouteKind.STEP:
+                text = answer_step(knowledge, analysis, state)
+            else:
+                text = answer_path(knowledge, state)
+        else:
+            text = answer_other(knowledge, analysis, state, question.frame)
+        return Reply(text, kind)
