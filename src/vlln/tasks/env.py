@@ -50,6 +50,9 @@ from vlln.world.model import Attributes, Box3, ObjectInstance
 
 Observation = dict[str, Any]
 SUCCESS_REWARD = 2.5
+# The object an agent stopped at is one it sees (this many pixels) within this floor distance.
+STOP_OBJECT_MIN_PIXELS = 50
+STOP_OBJECT_RANGE = 1.5
 
 
 @dataclass(frozen=True)
@@ -305,18 +308,33 @@ class NavigationEnv:
         )
 
     def _stop_instance(self) -> tuple[int | None, str | None]:
-        """The object with the most pixels in the central half of the last level view."""
+        """What the agent stopped at: among the objects it sees in a level view within
+        :data:`STOP_OBJECT_RANGE`, a goal if there is one, else an instance of the target
+        category, else the nearest; ties go to the object with more pixels."""
         state = self.sim.state
         level = AgentState(state.position, state.yaw, 0.0)
         ids = self._frame.instance_ids if state.tilt == 0.0 else self.sim.render(level).instance_ids
-        h, w = ids.shape
-        centre = ids[h // 4 : 3 * h // 4, w // 4 : 3 * w // 4]
-        objects = centre[centre > 0]
-        if objects.size == 0:
+        visible, pixels = np.unique(ids[ids > 0], return_counts=True)
+        house = self.sim.house
+        goals = {t.id for t in self.targets}
+        category = self._require_episode().object_category
+        x, _, z = state.position
+        best: tuple[int, float, int, int] | None = None
+        for instance_id, count in zip(visible.tolist(), pixels.tolist(), strict=True):
+            if count < STOP_OBJECT_MIN_PIXELS:
+                continue
+            inst = house.instance(instance_id)
+            distance = _floor_distance(inst.box, x, z)
+            if distance > STOP_OBJECT_RANGE:
+                continue
+            rank = 0 if instance_id in goals else 1 if inst.category == category else 2
+            key = (rank, round(distance, 1), -count, instance_id)
+            if best is None or key < best:
+                best = key
+        if best is None:
             return None, None
-        counts = np.bincount(objects)
-        instance_id = int(np.argmax(counts))
-        return instance_id, self.sim.house.instance(instance_id).category
+        instance_id = best[3]
+        return instance_id, house.instance(instance_id).category
 
     def _goal_instances(self, episode: Episode) -> list[ObjectInstance]:
         house = self.sim.house
@@ -338,6 +356,13 @@ class NavigationEnv:
 
     def close(self) -> None:
         self.scenes.close()
+
+
+def _floor_distance(box: Box3, x: float, z: float) -> float:
+    """Floor-plan distance from a point to the footprint of a box (0 inside it)."""
+    dx = max(box.min[0] - x, 0.0, x - box.max[0])
+    dz = max(box.min[2] - z, 0.0, z - box.max[2])
+    return math.hypot(dx, dz)
 
 
 def _box_distance(box: Box3, point: Any) -> float:

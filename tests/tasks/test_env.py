@@ -1,0 +1,183 @@
+"""The environment: the datasheet's promises on a real generated house."""
+
+import math
+
+import numpy as np
+import pytest
+
+from vlln.errors import ConfigError
+from vlln.oracle.rule_oracle import RuleOracle
+from vlln.sim.agent import Action
+from vlln.sim.viewpoints import view_points
+from vlln.tasks.env import NavigationEnv
+from vlln.tasks.episode import Episode, Goal, Instruction, ViewPoint
+from vlln.tasks.record import EndReason
+from vlln.tasks.scenes import SceneCache, procedural_scene_id
+from vlln.tasks.spec import REFUSAL_MESSAGE, Talk, TaskConfig, TaskType
+from vlln.tasks.taxonomy import classify
+from vlln.world.frame import yaw_of, yaw_to_quaternion
+from vlln.world.model import ObjectInstance
+
+SEED = 2
+
+
+@pytest.fixture(scope="module")
+def scenes() -> SceneCache:
+    cache = SceneCache()
+    yield cache
+    cache.close()
+
+
+def episode_for(
+    scenes: SceneCache, target: ObjectInstance, start: tuple[float, float], yaw: float = 0.0
+) -> Episode:
+    sim = scenes.get(procedural_scene_id(SEED))
+    points = view_points(sim.grid, target.box)
+    goal = Goal(
+        target.position,
+        None,
+        (*target.box.min, *target.box.max),
+        tuple(ViewPoint((x, 0.0, z)) for x, z in points),
+    )
+    return Episode(
+        "e0",
+        procedural_scene_id(SEED),
+        (start[0], 0.0, start[1]),
+        tuple(yaw_to_quaternion(yaw)),
+        target.category,
+        (goal,),
+        Instruction("iign", f"Search for the {target.category}.", (str(target.id),)),
+    )
+
+
+def ambiguous_target(scenes: SceneCache) -> tuple[ObjectInstance, ObjectInstance]:
+    """A target and a same-category distractor more than 3 m apart, both with view points."""
+    sim = scenes.get(procedural_scene_id(SEED))
+    for category in ("chair", "picture", "plant", "pillow", "cabinet"):
+        found = [i for i in sim.house.instances_of(category) if view_points(sim.grid, i.box)]
+        for other in found[1:]:
+            if found[0].box.distance_to(other.box) > 3.0:
+                return found[0], other
+    raise AssertionError("house has no ambiguous category")
+
+
+def far_start(scenes: SceneCache, target: ObjectInstance) -> tuple[float, float]:
+    sim = scenes.get(procedural_scene_id(SEED))
+    field = sim.geodesic_field(view_points(sim.grid, target.box))
+    rng = np.random.default_rng(0)
+    while True:
+        x, z = sim.grid.sample_navigable_point(rng, sim.grid.largest_component())
+        if 3.0 < field.distance(x, z) < 30.0:
+            return x, z
+
+
+def test_expert_actions_succeed_and_the_record_says_so(scenes: SceneCache) -> None:
+    target, _ = ambiguous_target(scenes)
+    env = NavigationEnv(
+        [episode_for(scenes, target, far_start(scenes, target))],
+        TaskConfig(task=TaskType.IGN),
+        scenes,
+        privileged=True,
+    )
+    obs, _ = env.reset(options={"episode_index": 0})
+    assert {"rgb", "depth", "gps", "compass", "instance_ids", "expert_action"} <= set(obs)
+    np.testing.assert_allclose(obs["gps"], 0.0, atol=1e-6)
+    while True:
+        obs, _, terminated, truncated, _ = env.step(obs["expert_action"])
+        if terminated or truncated:
+            break
+    record = env.record("expert")
+    assert terminated and record.end_reason == EndReason.STOP
+    assert classify(record) == "success"
+    assert record.stop_instance_id == target.id
+    assert record.target_seen_step is not None
+    assert record.path_length >= record.geodesic_start * 0.9
+
+
+def test_unprivileged_agents_get_no_ids_and_gps_follows_the_start_frame(
+    scenes: SceneCache,
+) -> None:
+    target, _ = ambiguous_target(scenes)
+    start = far_start(scenes, target)
+    yaw = 1.0
+    env = NavigationEnv(
+        [episode_for(scenes, target, start, yaw)], TaskConfig(task=TaskType.IGN), scenes
+    )
+    obs, _ = env.reset(options={"episode_index": 0})
+    assert "instance_ids" not in obs and "expert_action" not in obs
+    obs, *_ = env.step(Action.MOVE_FORWARD)
+    moved = math.hypot(*obs["gps"])
+    if moved > 0.2:  # not blocked: moving forward goes along -z of the start frame
+        assert obs["gps"][1] < -0.2 and abs(obs["gps"][0]) < 0.05
+
+
+def test_dialog_budget_and_talk_cap(scenes: SceneCache) -> None:
+    target, _ = ambiguous_target(scenes)
+    config = TaskConfig(task=TaskType.IIGN, dialog_budget=2, max_talk_actions=4)
+    env = NavigationEnv(
+        [episode_for(scenes, target, far_start(scenes, target))],
+        config,
+        scenes,
+        oracle=RuleOracle(seed=0),
+    )
+    env.reset(options={"episode_index": 0})
+    answers = []
+    for _ in range(4):
+        obs, _, terminated, truncated, _ = env.step(Talk("What color is it?"))
+        answers.append(obs["oracle_answer"])
+    assert answers[0] != REFUSAL_MESSAGE and answers[2] == REFUSAL_MESSAGE
+    assert truncated and not terminated
+    record = env.record("talker")
+    assert record.end_reason == EndReason.TALK_CAP
+    assert [turn.answered for turn in record.dialog] == [True, True, False, False]
+    assert record.steps == 0  # TALK does not count toward the step cap
+
+
+def test_garbage_outputs_are_failed_actions_not_stops(scenes: SceneCache) -> None:
+    target, _ = ambiguous_target(scenes)
+    env = NavigationEnv(
+        [episode_for(scenes, target, far_start(scenes, target))],
+        TaskConfig(task=TaskType.IGN, max_failed_actions=3),
+        scenes,
+    )
+    env.reset(options={"episode_index": 0})
+    for _ in range(3):
+        _, _, terminated, truncated, _ = env.step("jump!")  # type: ignore[arg-type]
+        assert not terminated
+    record = env.record("broken")
+    assert truncated and record.end_reason == EndReason.ERROR and record.failed_actions == 3
+    with pytest.raises(ConfigError, match="has ended"):
+        env.step(Action.STOP)
+
+
+def test_look_actions_have_their_own_cap(scenes: SceneCache) -> None:
+    target, _ = ambiguous_target(scenes)
+    env = NavigationEnv(
+        [episode_for(scenes, target, far_start(scenes, target))],
+        TaskConfig(task=TaskType.IGN, max_look_actions=5),
+        scenes,
+    )
+    env.reset(options={"episode_index": 0})
+    for _ in range(5):
+        *_, truncated, _ = env.step(Action.LOOK_DOWN)
+    record = env.record("looker")
+    assert truncated and record.end_reason == EndReason.LOOK_CAP and record.steps == 0
+
+
+def test_stopping_at_a_distractor_is_an_ambiguous_detection(scenes: SceneCache) -> None:
+    target, distractor = ambiguous_target(scenes)
+    sim = scenes.get(procedural_scene_id(SEED))
+    # Stand at the distractor's nearest view point, facing it.
+    cx, _, cz = distractor.position
+    points = view_points(sim.grid, distractor.box)
+    x, z = min(points, key=lambda p: math.hypot(p[0] - cx, p[1] - cz))
+    yaw = yaw_of(cx - x, cz - z)
+    env = NavigationEnv(
+        [episode_for(scenes, target, (x, z), yaw)], TaskConfig(task=TaskType.IGN), scenes
+    )
+    env.reset(options={"episode_index": 0})
+    env.step(Action.STOP)
+    record = env.record("fooled")
+    assert record.stop_instance_id == distractor.id
+    assert record.geodesic_final > 1.0
+    assert classify(record) == "ambiguous_detection"
