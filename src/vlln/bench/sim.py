@@ -22,6 +22,7 @@ from vlln.sim.agent import Action, AgentState
 from vlln.sim.camera import CameraSpec
 from vlln.sim.geodesic import GeodesicField
 from vlln.sim.gl_context import create_headless_context
+from vlln.sim.renderer import DrawList
 from vlln.sim.shaders import (
     FRAGMENT_SHADER,
     VERTEX_ATTRIBUTES,
@@ -29,6 +30,7 @@ from vlln.sim.shaders import (
     VERTEX_SHADER,
     interleave_vertices,
     pose_uniforms,
+    program_uniform,
     upload_static_uniforms,
 )
 from vlln.sim.simulator import Simulator
@@ -87,50 +89,60 @@ def _render_fps(sim: Simulator, poses: list[AgentState]) -> float:
 
 
 def _raw_raster_fps(sim: Simulator, poses: list[AgentState]) -> float:
+    """The renderer's per-frame GL work (uniforms, index list, one draw, three read-backs)
+    with every index list and uniform prepared before the clock starts."""
     mesh: Mesh = sim.house.geometry.mesh  # type: ignore[union-attr]
     spec: CameraSpec = sim.config.camera
+    draw_list = DrawList.from_vertices(interleave_vertices(mesh))
     ctx = create_headless_context()
     try:
-        ctx.enable(moderngl.DEPTH_TEST | moderngl.CULL_FACE)
-        ctx.front_face = "cw"
-        program = ctx.program(vertex_shader=VERTEX_SHADER, fragment_shader=FRAGMENT_SHADER)
-        upload_static_uniforms(program, spec)
-        vbo = ctx.buffer(interleave_vertices(mesh))
-        vao = ctx.vertex_array(program, [(vbo, VERTEX_FORMAT, *VERTEX_ATTRIBUTES)])
-        size = (spec.width, spec.height)
-        targets = [
-            ctx.renderbuffer(size, 4, dtype="f1"),
-            ctx.renderbuffer(size, 1, dtype="f4"),
-            ctx.renderbuffer(size, 1, dtype="i4"),
-        ]
-        fbo = ctx.framebuffer(targets, ctx.depth_renderbuffer(size))
-        rgb = np.empty((spec.height, spec.width, 3), np.uint8)
-        depth = np.empty((spec.height, spec.width), np.float32)
-        ids = np.empty((spec.height, spec.width), np.int32)
-        uniforms = [
-            [
-                (program[name], value)
-                for name, value in pose_uniforms(spec, p.position, p.yaw, p.tilt).items()
+        with ctx:
+            ctx.enable(moderngl.DEPTH_TEST | moderngl.CULL_FACE)
+            ctx.front_face = "cw"
+            program = ctx.program(vertex_shader=VERTEX_SHADER, fragment_shader=FRAGMENT_SHADER)
+            upload_static_uniforms(program, spec)
+            vbo = ctx.buffer(draw_list.vertices)
+            ibo = ctx.buffer(draw_list.corners, dynamic=True)
+            vao = ctx.vertex_array(
+                program,
+                [(vbo, VERTEX_FORMAT, *VERTEX_ATTRIBUTES)],
+                index_buffer=ibo,
+                index_element_size=4,
+            )
+            size = (spec.width, spec.height)
+            targets = [
+                ctx.renderbuffer(size, 4, dtype="f1"),
+                ctx.renderbuffer(size, 1, dtype="f4"),
+                ctx.renderbuffer(size, 1, dtype="i4"),
             ]
-            for p in poses
-        ]
-        n_vertices = len(mesh.positions)
+            fbo = ctx.framebuffer(targets, ctx.depth_renderbuffer(size))
+            rgb = np.empty((spec.height, spec.width, 3), np.uint8)
+            depth = np.empty((spec.height, spec.width), np.float32)
+            ids = np.empty((spec.height, spec.width), np.int32)
+            frames = []
+            for p in poses:
+                uniforms = pose_uniforms(spec, p.position, p.yaw, p.tilt).items()
+                indices = draw_list.indices(spec, p.position, p.yaw, p.tilt)
+                frames.append(
+                    ([(program_uniform(program, n), v) for n, v in uniforms], indices.tobytes())
+                )
 
-        def draw(pose_uniforms_list: list) -> None:  # type: ignore[type-arg]
-            for uniform, value in pose_uniforms_list:
-                uniform.write(value)
-            fbo.use()
-            fbo.clear(0.0, 0.0, 0.0, 0.0, depth=1.0)
-            vao.render(moderngl.TRIANGLES, vertices=n_vertices)
-            fbo.read_into(rgb, components=3, attachment=0)
-            fbo.read_into(depth, components=1, attachment=1, dtype="f4")
-            fbo.read_into(ids, components=1, attachment=2, dtype="i4")
+            def draw(uniforms: list[tuple[moderngl.Uniform, bytes]], indices: bytes) -> None:
+                for uniform, value in uniforms:
+                    uniform.write(value)
+                ibo.write(indices)
+                fbo.use()
+                fbo.clear(0.0, 0.0, 0.0, 0.0, depth=1.0)
+                vao.render(moderngl.TRIANGLES, vertices=len(indices) // 4)
+                fbo.read_into(rgb, components=3, attachment=0)
+                fbo.read_into(depth, components=1, attachment=1, dtype="f4")
+                fbo.read_into(ids, components=1, attachment=2, dtype="i4")
 
-        draw(uniforms[0])
-        start = time.perf_counter()
-        for pose in uniforms:
-            draw(pose)
-        return len(uniforms) / (time.perf_counter() - start)
+            draw(*frames[0])
+            start = time.perf_counter()
+            for frame in frames:
+                draw(*frame)
+            return len(frames) / (time.perf_counter() - start)
     finally:
         ctx.release()
 
@@ -181,6 +193,7 @@ def _step_fps(
 
 _RSS_PROBE = """
 import gc, json, sys
+from vlln.sim.renderer import DrawList
 from vlln.sim.simulator import Simulator
 from vlln.world.generator import generate_house
 sim = Simulator(generate_house(int(sys.argv[1])))
