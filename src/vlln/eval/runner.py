@@ -10,8 +10,7 @@ derived from (``--seed``, scene, episode, budget) by a hash, so an episode line 
 nothing that ran before it: one process, many shards, or a resumed run give identical lines.
 
 Simulators: the plan never returns to a scene it has left, so the previous house's simulator
-is closed before the next one is built. That keeps one headless GL context alive at a time,
-which the renderer needs: it draws with whichever context was made current last.
+is closed before the next one is built, and memory stays that of one house.
 
 Robustness: an exception inside the agent's ``reset`` or ``act`` ends that episode, recorded
 with end reason ``error`` and the exception text, and the run goes on; outputs that are not
@@ -207,7 +206,7 @@ def run_evaluation(
                 scene: str | None = None
                 for item in todo:
                     if scene is not None and item.episode.scene_id != scene:
-                        cache.close()  # one GL context alive at a time (see module doc)
+                        cache.close()  # episodes come grouped by scene: free the last house
                     scene = item.episode.scene_id
                     writer.append(
                         _play_item(item, config, task, cache, agent_factory, oracle_factory)
