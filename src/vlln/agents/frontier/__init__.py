@@ -1,0 +1,5 @@
+"""The frontier-exploration baseline: own depth map, frontiers, ground-truth detector, dialog."""
+
+from vlln.agents.frontier.agent import FrontierAgent, FrontierConfig
+
+__all__ = ["FrontierAgent", "FrontierConfig"]

@@ -1,0 +1,341 @@
+"""The frontier-exploration baseline with a ground-truth detector and an optional dialog.
+
+It follows the reference's data-collection policy (reference-facts §5): a 360° scan, then
+frontier exploration on a map built from depth, and once an instance of the target category
+that fits what is known about the target is seen, a walk up to it and STOP facing it. It never
+reads the expert action or the geodesic field; its privileges are the instance-id image and
+the detector's id -> (category, attributes) lookup.
+
+What is known about the target comes from the instruction's adjectives (IGN) or, on IIGN with
+a question budget, from the oracle: a colour question at the start, "is this the one?" before
+stopping at a candidate, and "which way?" when exploration drags on or gets stuck. Every
+random choice comes from a generator seeded by the agent's seed and the episode id.
+"""
+
+from __future__ import annotations
+
+import math
+import zlib
+from collections import deque
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from vlln.agents.frontier import dialog
+from vlln.agents.frontier.detector import Candidate, CandidateTracker
+from vlln.agents.frontier.explorer import Explorer, ExplorerConfig
+from vlln.agents.frontier.mapping import MapConfig, ObstacleMap, Pose
+from vlln.agents.frontier.planner import turn_toward
+from vlln.errors import ConfigError
+from vlln.sim.agent import Action
+from vlln.tasks.env import EpisodeInfo, Observation
+from vlln.tasks.spec import AgentOutput, Talk, TaskType
+from vlln.world.frame import wrap_angle, yaw_of
+
+_COUNTED = (Action.STOP, Action.MOVE_FORWARD, Action.TURN_LEFT, Action.TURN_RIGHT)
+
+
+@dataclass(frozen=True)
+class FrontierConfig:
+    """Settings of the frontier agent; distances in metres, counts in steps or pixels."""
+
+    map: MapConfig = field(default_factory=MapConfig)
+    explorer: ExplorerConfig = field(default_factory=ExplorerConfig)
+    scan_turns: int = 12  # the opening 360° scan
+    min_detection_pixels: int = 100  # pixels an instance must cover to become a candidate
+    arrive_distance: float = 0.5  # stop this close to the nearest seen point of the object
+    ask_distance: float = 2.5  # ask "is this the one?" within this of the object
+    min_central_pixels: int = 200  # object pixels in the image centre needed to ask
+    route_after: int = 60  # exploration steps without a candidate before asking the way
+    hint_steps: int = 60  # steps a route answer steers the frontier choice
+    reserve_questions: int = 1  # kept for "is this the one?"
+    stuck_steps: int = 30  # mostly forward moves over this many steps ...
+    stuck_distance: float = 0.6  # ... that got less far than this mean stuck
+    max_looks: int = 40  # camera tilts per episode (the task caps them too)
+
+    def __post_init__(self) -> None:
+        if self.scan_turns < 0 or self.stuck_steps < 2 or self.route_after < 1:
+            raise ConfigError(
+                "scan_turns must be >= 0, stuck_steps >= 2 and route_after >= 1; got "
+                f"{self.scan_turns}, {self.stuck_steps}, {self.route_after}"
+            )
+
+
+class FrontierAgent:
+    """Frontier exploration + ground-truth detection (+ questions on IIGN)."""
+
+    name = "frontier"
+    privileged = True
+
+    def __init__(self, seed: int = 0, config: FrontierConfig | None = None) -> None:
+        self.seed = int(seed)
+        self.config = config or FrontierConfig()
+        self._info: EpisodeInfo | None = None
+
+    # ----------------------------------------------------------------- episode start
+    def reset(self, episode: EpisodeInfo) -> None:
+        if episode.detector is None:
+            raise ConfigError(
+                "the frontier agent is privileged: run it in NavigationEnv(privileged=True) so "
+                "that EpisodeInfo carries the detector lookup"
+            )
+        cfg = self.config
+        self._info = episode
+        self._rng = np.random.default_rng([self.seed, zlib.crc32(episode.episode_id.encode())])
+        self._turn = math.radians(episode.motion.turn_deg)
+        self._tilt_step = math.radians(episode.motion.tilt_step_deg)
+        self.map = ObstacleMap(episode.camera, cfg.map)
+        self.tracker = CandidateTracker(
+            episode.camera,
+            episode.detector,
+            episode.object_category,
+            self.map,
+            min_pixels=cfg.min_detection_pixels,
+        )
+        self.explorer = Explorer(self.map, self._turn, self._rng, cfg.explorer)
+        vocabulary = dialog.Vocabulary.from_attributes(
+            d.attributes for d in episode.detector.values()
+        )
+        self._answer_vocabulary = vocabulary.restricted(dialog.ANSWER_ATTRIBUTES)
+        self.known: dict[str, str] = {}
+        if episode.task == TaskType.IGN:
+            self.known = dialog.stated_attributes(
+                episode.instruction, episode.object_category, vocabulary
+            )
+        self.rejected: set[int] = set()
+        self.confirmed: int | None = None
+        self._target: int | None = None
+        self._pending: tuple[str, int | None] | None = None
+        self._asked_attribute = False
+        self._dialog_closed = False
+        self._questions_left = episode.dialog_budget
+        self._aim: int | None = None
+        self._looks = 0
+        self._exhausted = False  # no frontier left: any candidate of the category will do
+        self._aim_failed_at: tuple[float, float] | None = None
+        self._scan_left = cfg.scan_turns
+        self._explore_steps = 0
+        self._hint: tuple[float, int] | None = None  # (yaw, last step it applies)
+        self._steps = 0
+        self._last: tuple[AgentOutput, Pose] | None = None
+        self._trail: deque[tuple[float, float, bool]] = deque(maxlen=cfg.stuck_steps)
+        self._started = False
+
+    @property
+    def episode(self) -> EpisodeInfo:
+        if self._info is None:
+            raise ConfigError("call reset(episode_info) before act()")
+        return self._info
+
+    # ----------------------------------------------------------------- one step
+    def act(self, observation: Observation) -> AgentOutput:
+        info = self.episode
+        gps = observation["gps"]
+        pose = Pose(float(gps[0]), float(gps[1]), float(observation["compass"]))
+        tilt = float(observation["tilt"])
+        self._questions_left = int(observation["questions_left"])
+        if self._pending is not None:
+            kind, about = self._pending
+            self._pending = None
+            self._read_answer(kind, about, str(observation["oracle_answer"] or ""), pose)
+        else:
+            self._sense(observation, pose, tilt)
+        action = self._decide(info, pose, tilt)
+        self._last = (action, pose)
+        if action in (Action.LOOK_UP, Action.LOOK_DOWN):
+            self._looks += 1
+        if isinstance(action, Action) and action in _COUNTED:
+            self._steps += 1
+            self._trail.append((pose.x, pose.z, action == Action.MOVE_FORWARD))
+        return action
+
+    def _sense(self, observation: Observation, pose: Pose, tilt: float) -> None:
+        if not self._started:
+            self.map.mark_free_disc(pose, 0.3)
+            self._started = True
+        if self._last is not None:
+            action, before = self._last
+            moved = math.hypot(pose.x - before.x, pose.z - before.z)
+            if action == Action.MOVE_FORWARD and moved < 0.05:
+                self.map.mark_blocked_ahead(before, 0.3, 0.1)
+                self.explorer.drop_path()
+        depth = observation["depth"]
+        if tilt == 0.0:
+            new = self.map.update(depth, pose, 0.0)
+            self.explorer.note_obstacles(new)
+        self.tracker.update(observation["instance_ids"], depth, pose, tilt)
+
+    def _decide(self, info: EpisodeInfo, pose: Pose, tilt: float) -> AgentOutput:
+        if self._can_ask() and not self._asked_attribute:
+            self._asked_attribute = True
+            text = dialog.question(
+                dialog.ATTRIBUTE_TEMPLATES["color"], info.object_category, self._rng
+            )
+            return self._ask("attribute", text)
+        if tilt != 0.0 and self._aim is None:
+            return self._level(tilt)
+        if self._scan_left > 0:
+            self._scan_left -= 1
+            self._trail.clear()
+            return Action.TURN_LEFT
+        stuck = self._stuck()
+        if stuck:
+            self.explorer.give_up_goal()
+        candidate = self._choose_candidate(pose)
+        if candidate is not None:
+            action = self._pursue(candidate, pose, tilt)
+            if action is not None:
+                self._explore_steps = 0
+                return action
+        self._aim = None
+        if tilt != 0.0:
+            return self._level(tilt)
+        if self._can_ask(spare=True) and (stuck or self._explore_steps >= self.config.route_after):
+            self._explore_steps = 0
+            text = dialog.question(dialog.ROUTE_TEMPLATES, info.object_category, self._rng)
+            return self._ask("route", text)
+        self._explore_steps += 1
+        hint = self._hint[0] if self._hint and self._hint[1] >= self._steps else None
+        action = self.explorer.step(pose, hint)
+        if action is not None:
+            return action
+        if not self._exhausted:
+            self._exhausted = True
+            fallback = self._choose_candidate(pose)
+            if fallback is not None:
+                return self._pursue(fallback, pose, tilt) or Action.STOP
+        return Action.STOP
+
+    # ----------------------------------------------------------------- candidates
+    def _choose_candidate(self, pose: Pose) -> Candidate | None:
+        """The candidate to go to: the confirmed one, else the current one while it still fits,
+        else the nearest that fits what is known (anything not rejected once the house is
+        explored)."""
+        detected = {c.instance_id: c for c in self.tracker.detected()}
+        if self.confirmed is not None and self.confirmed in detected:
+            return detected[self.confirmed]
+        pool = [
+            c
+            for c in detected.values()
+            if c.instance_id not in self.rejected
+            and c.instance_id not in self.explorer.unreachable
+            and (self._exhausted or dialog.matches_known(c.attributes, self.known))
+        ]
+        if not pool:
+            self._target = None
+            return None
+        current = next((c for c in pool if c.instance_id == self._target), None)
+        if current is None:
+            current = min(pool, key=lambda c: (c.distance_from(pose.x, pose.z), c.instance_id))
+            self._target = current.instance_id
+        return current
+
+    def _pursue(self, candidate: Candidate, pose: Pose, tilt: float) -> AgentOutput | None:
+        """Walk to the candidate, ask about it on the way if the dialog allows, then stop."""
+        cfg = self.config
+        near = candidate.distance_from(pose.x, pose.z)
+        cx, _, cz = candidate.centroid
+        if self._needs_confirmation(candidate) and self._may_aim(pose) and near <= cfg.ask_distance:
+            action = self._aim_and_ask(candidate, pose, tilt)
+            if action is not None:
+                return action
+        self._aim = None
+        if tilt != 0.0:
+            return self._level(tilt)
+        if near > cfg.arrive_distance and candidate.instance_id not in self.explorer.unreachable:
+            action = self.explorer.approach(candidate, pose)
+            if action is not None:
+                return action
+            if candidate.instance_id in self.explorer.unreachable:
+                return None if candidate.instance_id != self.confirmed else Action.STOP
+        # As close as it gets: face the object and stop.
+        error = wrap_angle(yaw_of(cx - pose.x, cz - pose.z) - pose.yaw)
+        return turn_toward(error, self._turn) or Action.STOP
+
+    def _aim_and_ask(self, candidate: Candidate, pose: Pose, tilt: float) -> AgentOutput | None:
+        """Face the candidate (turns, then camera tilt) and ask about it; None when it is not
+        in the middle of the view once faced (occluded), so the agent walks on."""
+        self._aim = candidate.instance_id
+        cx, cy, cz = candidate.centroid
+        error = wrap_angle(yaw_of(cx - pose.x, cz - pose.z) - pose.yaw)
+        turn = turn_toward(error, self._turn)
+        if turn is not None:
+            return turn
+        info = self.episode
+        elevation = math.atan2(cy - info.camera.height_m, math.hypot(cx - pose.x, cz - pose.z))
+        low = math.radians(info.motion.min_tilt_deg)
+        high = math.radians(info.motion.max_tilt_deg)
+        want = min(max(round(elevation / self._tilt_step) * self._tilt_step, low), high)
+        if tilt < want - 1e-6:
+            return Action.LOOK_UP
+        if tilt > want + 1e-6:
+            return Action.LOOK_DOWN
+        if self.tracker.centred(candidate.instance_id, self.config.min_central_pixels):
+            text = dialog.question(dialog.DISAMBIGUATION_TEMPLATES, info.object_category, self._rng)
+            return self._ask("disambiguation", text, candidate.instance_id)
+        self._aim = None
+        self._aim_failed_at = (pose.x, pose.z)
+        return None
+
+    def _may_aim(self, pose: Pose) -> bool:
+        """After a failed aim, try again only from somewhere else."""
+        failed = self._aim_failed_at
+        if self._looks >= self.config.max_looks:
+            return False
+        return failed is None or math.hypot(pose.x - failed[0], pose.z - failed[1]) > 0.5
+
+    def _needs_confirmation(self, candidate: Candidate) -> bool:
+        return candidate.instance_id != self.confirmed and self._can_ask()
+
+    # ----------------------------------------------------------------- dialog
+    def _can_ask(self, spare: bool = False) -> bool:
+        info = self._info
+        if info is None or info.task != TaskType.IIGN or self._dialog_closed:
+            return False
+        reserve = self.config.reserve_questions if spare and self.confirmed is None else 0
+        return self._questions_left > reserve
+
+    def _ask(self, kind: str, text: str, about: int | None = None) -> Talk:
+        self._pending = (kind, about)
+        return Talk(text)
+
+    def _read_answer(self, kind: str, about: int | None, answer: str, pose: Pose) -> None:
+        self._aim = None
+        self._trail.clear()  # a question is a fresh start for the stuck test
+        if dialog.is_refusal(answer):
+            self._dialog_closed = True
+            return
+        if kind == "attribute":
+            self.known.update(self._answer_vocabulary.parse(answer))
+        elif kind == "disambiguation" and about is not None:
+            verdict = dialog.parse_yes_no(answer)
+            if verdict or dialog.says_too_far(answer):
+                self.confirmed = about
+            elif verdict is False:
+                self.rejected.add(about)
+                self.known.update(self._answer_vocabulary.parse(answer))
+        elif kind == "route":
+            if dialog.says_arrived(answer):
+                self._scan_left = self.config.scan_turns
+                return
+            turn = dialog.parse_route(answer)
+            if turn is not None:
+                self._hint = (wrap_angle(pose.yaw + turn), self._steps + self.config.hint_steps)
+                self.explorer.drop_path()
+
+    # ----------------------------------------------------------------- helpers
+    def _level(self, tilt: float) -> Action:
+        return Action.LOOK_UP if tilt < 0.0 else Action.LOOK_DOWN
+
+    def _stuck(self) -> bool:
+        """Mostly forward moves over the last steps, yet hardly any way made: walking into
+        something the map does not show, or back and forth between two plans."""
+        trail = self._trail
+        if len(trail) < self.config.stuck_steps:
+            return False
+        forwards = sum(1 for _, _, forward in trail if forward)
+        moved = math.hypot(trail[-1][0] - trail[0][0], trail[-1][1] - trail[0][1])
+        if 3 * forwards >= 2 * len(trail) and moved < self.config.stuck_distance:
+            trail.clear()
+            return True
+        return False

@@ -1,0 +1,160 @@
+"""Candidates of the target category, from the instance-id image used as a perfect detector.
+
+Privileged agents see the renderer's instance ids; with the episode's detector lookup (id ->
+category and attributes) that is what a perfect detector with attribute recognition reports.
+Every instance of the target category that covers enough pixels becomes a candidate; its
+pixels are back-projected with the depth into map cells, so the agent knows where the object
+is (its footprint as seen so far) and can walk up to it.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import NDArray
+
+from vlln.agents.frontier.mapping import ObstacleMap, Pose
+from vlln.errors import ConfigError
+from vlln.sim.camera import CameraSpec
+from vlln.tasks.env import DetectedObject
+from vlln.world.model import Attributes
+
+
+@dataclass
+class Candidate:
+    """One instance of the target category that the agent has seen."""
+
+    instance_id: int
+    attributes: Attributes
+    cells: NDArray[np.intp] = field(default_factory=lambda: np.zeros(0, np.intp))
+    centres: NDArray[np.float64] = field(default_factory=lambda: np.zeros((0, 2)))
+    point_sum: NDArray[np.float64] = field(default_factory=lambda: np.zeros(3))
+    point_count: int = 0
+    best_pixels: int = 0  # most pixels (at full resolution) it covered in one frame
+
+    @property
+    def centroid(self) -> tuple[float, float, float]:
+        """Mean (x, y, z) of every back-projected pixel so far; y is height above the floor."""
+        mean = self.point_sum / max(self.point_count, 1)
+        return float(mean[0]), float(mean[1]), float(mean[2])
+
+    def distance_from(self, x: float, z: float) -> float:
+        """Floor-plan distance from a point to the nearest cell the object was seen in."""
+        if self.centres.shape[0] == 0:
+            return math.inf
+        return float(np.hypot(self.centres[:, 0] - x, self.centres[:, 1] - z).min())
+
+
+@dataclass(frozen=True)
+class Sighting:
+    """How a candidate appears in the current frame (pixel counts at full resolution)."""
+
+    pixels: int
+    central_pixels: int  # inside rows H/4..3H/4 and columns W/4..3W/4
+
+
+class CandidateTracker:
+    """Keeps the candidates of one category up to date, frame by frame."""
+
+    def __init__(
+        self,
+        camera: CameraSpec,
+        detector: dict[int, DetectedObject],
+        category: str,
+        obstacle_map: ObstacleMap,
+        stride: int = 2,
+        min_pixels: int = 100,
+    ) -> None:
+        if stride < 1:
+            raise ConfigError(f"stride must be >= 1, got {stride}")
+        self.camera = camera
+        self.detector = detector
+        self.map = obstacle_map
+        self.min_pixels = min_pixels
+        self._scale = stride * stride
+        wanted = [i for i, d in detector.items() if d.category == category and i > 0]
+        self._lookup = np.zeros(max(wanted, default=0) + 2, bool)
+        self._lookup[wanted] = True
+        self._pixels = (slice(stride // 2, None, stride), slice(stride // 2, None, stride))
+        us = np.arange(stride // 2, camera.width, stride)
+        vs = np.arange(stride // 2, camera.height, stride)
+        uu, vv = np.meshgrid(us, vs)
+        self._rays = camera.pixel_ray(uu, vv)
+        w, h = camera.width, camera.height
+        self._central = (uu >= w / 4) & (uu < 3 * w / 4) & (vv >= h / 4) & (vv < 3 * h / 4)
+        rows, cols = np.nonzero(self._central)
+        self._central_window = (
+            slice(int(rows.min()), int(rows.max()) + 1),
+            slice(int(cols.min()), int(cols.max()) + 1),
+        )
+        self._last_ids = np.zeros(uu.shape, np.int32)
+        self.candidates: dict[int, Candidate] = {}
+        self.visible: dict[int, Sighting] = {}
+
+    def update(
+        self,
+        instance_ids: NDArray[np.int32],
+        depth: NDArray[np.float32],
+        pose: Pose,
+        tilt: float,
+    ) -> None:
+        ids = np.asarray(instance_ids)[self._pixels]
+        self._last_ids = ids
+        mask = np.take(self._lookup, ids, mode="clip")  # structure ids (< 0) read slot 0
+        self.visible = {}
+        if not mask.any():
+            return
+        d = np.asarray(depth)[self._pixels][mask].astype(np.float64)
+        hit = (d > 0.0) & (d < self.camera.max_depth * 0.999)
+        seen_ids = ids[mask]
+        central = self._central[mask]
+        pose_matrix = self.camera.camera_to_world((pose.x, 0.0, pose.z), pose.yaw, tilt)
+        points = (self._rays[mask] * d[:, None]) @ pose_matrix[:3, :3].T + pose_matrix[:3, 3]
+        for instance_id in np.unique(seen_ids).tolist():
+            mine = seen_ids == instance_id
+            pixels = int(np.count_nonzero(mine)) * self._scale
+            self.visible[instance_id] = Sighting(
+                pixels, int(np.count_nonzero(mine & central)) * self._scale
+            )
+            usable = mine & hit
+            if not usable.any():
+                continue
+            candidate = self.candidates.get(instance_id)
+            if candidate is None:
+                candidate = Candidate(instance_id, self.detector[instance_id].attributes)
+                self.candidates[instance_id] = candidate
+            own = points[usable]
+            candidate.point_sum += own.sum(axis=0)
+            candidate.point_count += own.shape[0]
+            candidate.best_pixels = max(candidate.best_pixels, pixels)
+            cells = np.union1d(candidate.cells, self.map.flat_cells(own[:, 0], own[:, 2]))
+            if cells.size != candidate.cells.size:
+                candidate.cells = cells
+                n_cols = self.map.shape[1]
+                s, (ox, oz) = self.map.cell_size, self.map.origin
+                candidate.centres = np.stack(
+                    [ox + (cells % n_cols + 0.5) * s, oz + (cells // n_cols + 0.5) * s], axis=1
+                )
+
+    def centred(self, instance_id: int, min_pixels: int) -> bool:
+        """Whether the current view is unmistakably of this instance: at least ``min_pixels``
+        of it in the image centre, more than any other instance of the category there, and
+        either the object with most pixels in the centre or at least half of it inside the
+        centre. Asking "is this the one?" about anything less invites a misleading "no"."""
+        sighting = self.visible.get(instance_id)
+        if sighting is None or sighting.central_pixels < min_pixels:
+            return False
+        rivals = (s.central_pixels for i, s in self.visible.items() if i != instance_id)
+        if any(pixels >= sighting.central_pixels for pixels in rivals):
+            return False
+        if 2 * sighting.central_pixels >= sighting.pixels:
+            return True
+        centre = self._last_ids[self._central_window]
+        ids, counts = np.unique(centre[centre > 0], return_counts=True)
+        return ids.size > 0 and int(ids[np.argmax(counts)]) == instance_id
+
+    def detected(self) -> list[Candidate]:
+        """Candidates seen well enough to act on, by id."""
+        return [c for _, c in sorted(self.candidates.items()) if c.best_pixels >= self.min_pixels]

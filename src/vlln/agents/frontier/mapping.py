@@ -1,0 +1,265 @@
+"""The agent's own top-down map, built from depth alone, in the start frame of its GPS.
+
+Each frame is back-projected (a subsample of pixels, with the camera intrinsics and tilt) into
+the frame that the ``gps``/``compass`` observations use: the start position is the origin and
+the start heading looks along -z. Points in a height band above the floor are obstacles; floor
+points and the free space along each image column up to its first obstacle are explored free
+space. The map is a fixed square of cells around the start, big enough for any house; every
+operation that scales with area works on the explored bounding box only.
+
+Obstacles, once seen, stay (the world is static and the depth is exact), so a ray that grazes a
+corner cannot erase a wall. Low obstacles hidden below the camera's field of view near the
+agent are found by bumping into them (:meth:`ObstacleMap.mark_blocked_ahead`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import NamedTuple
+
+import numpy as np
+from numpy.typing import NDArray
+
+from vlln.errors import ConfigError
+from vlln.sim.camera import CameraSpec
+from vlln.world.frame import heading_vector
+
+
+class Pose(NamedTuple):
+    """The agent in the start frame: floor-plan position (x, z) and yaw (see world.frame)."""
+
+    x: float
+    z: float
+    yaw: float
+
+
+class CellBox(NamedTuple):
+    """Rows ``r0:r1`` and columns ``c0:c1`` of the map (half-open)."""
+
+    r0: int
+    r1: int
+    c0: int
+    c1: int
+
+
+@dataclass(frozen=True)
+class MapConfig:
+    """Resolution and sensing limits of the map."""
+
+    cell_size: float = 0.1
+    extent: float = 60.0  # side of the square map, metres, centred on the start
+    pixel_stride: int = 4  # back-project every n-th pixel in both directions
+    floor_height: float = 0.08  # points lower than this are floor
+    obstacle_band: tuple[float, float] = (0.15, 1.5)  # points in this band are obstacles
+    free_range: float = 5.0  # free space is traced this far along each column at most
+    obstacle_range: float = 7.0  # obstacle points farther than this are ignored
+
+    def __post_init__(self) -> None:
+        if not 0.01 <= self.cell_size <= 0.5:
+            raise ConfigError(f"cell_size must be in [0.01, 0.5] m, got {self.cell_size}")
+        if not self.extent > 4.0 * self.free_range:
+            raise ConfigError(
+                f"extent ({self.extent} m) must exceed 4 * free_range ({self.free_range} m)"
+            )
+        if self.pixel_stride < 1:
+            raise ConfigError(f"pixel_stride must be >= 1, got {self.pixel_stride}")
+        low, high = self.obstacle_band
+        if not self.floor_height < low < high:
+            raise ConfigError(
+                f"need floor_height < obstacle_band[0] < obstacle_band[1], got "
+                f"{self.floor_height}, {self.obstacle_band}"
+            )
+
+
+class ObstacleMap:
+    """Obstacle and explored cells; rows run along +z, columns along +x."""
+
+    def __init__(self, camera: CameraSpec, config: MapConfig | None = None) -> None:
+        self.config = config or MapConfig()
+        self.camera = camera
+        cfg = self.config
+        self.cell_size = cfg.cell_size
+        n = math.ceil(cfg.extent / cfg.cell_size)
+        self.shape = (n, n)
+        self.origin = (-n * cfg.cell_size / 2.0, -n * cfg.cell_size / 2.0)
+        self.obstacle = np.zeros(self.shape, bool)
+        self.explored = np.zeros(self.shape, bool)
+        self._box = CellBox(n // 2, n // 2 + 1, n // 2, n // 2 + 1)
+        stride = cfg.pixel_stride
+        us = np.arange(stride // 2, camera.width, stride)
+        vs = np.arange(stride // 2, camera.height, stride)
+        self._pixels = (slice(stride // 2, None, stride), slice(stride // 2, None, stride))
+        uu, vv = np.meshgrid(us, vs)
+        rays = camera.pixel_ray(uu, vv)  # (h, w, 3), unit z-depth
+        self._ray_x = rays[..., 0].astype(np.float32)
+        self._ray_y = rays[..., 1].astype(np.float32)
+        # Horizontal direction of each column in the camera frame (level camera).
+        column_x = rays[0, :, 0]
+        norm = np.hypot(column_x, 1.0)
+        self._column_dirs = np.stack([column_x / norm, -1.0 / norm], axis=1)  # (w, 2): x, z
+        self._trace_steps = np.arange(0.0, cfg.free_range, cfg.cell_size * 0.7)
+        self._offsets: dict[float, tuple[NDArray[np.intp], NDArray[np.intp]]] = {}
+
+    # ----------------------------------------------------------------- cells
+    def cell_of(self, x: float, z: float) -> tuple[int, int]:
+        s = self.cell_size
+        return math.floor((z - self.origin[1]) / s), math.floor((x - self.origin[0]) / s)
+
+    def cell_centre(self, row: float, col: float) -> tuple[float, float]:
+        s = self.cell_size
+        return self.origin[0] + (col + 0.5) * s, self.origin[1] + (row + 0.5) * s
+
+    def flat_cells(self, x: NDArray[np.floating], z: NDArray[np.floating]) -> NDArray[np.intp]:
+        """Flat indices of the cells holding the points; points off the map are dropped."""
+        s = self.cell_size
+        cols = np.floor((x - self.origin[0]) / s).astype(np.intp)
+        rows = np.floor((z - self.origin[1]) / s).astype(np.intp)
+        n_rows, n_cols = self.shape
+        inside = (rows >= 0) & (rows < n_rows) & (cols >= 0) & (cols < n_cols)
+        flat: NDArray[np.intp] = rows[inside] * n_cols + cols[inside]
+        return flat
+
+    def box(self, margin: int = 0) -> CellBox:
+        """Bounding box of everything explored so far, grown by ``margin`` cells."""
+        r0, r1, c0, c1 = self._box
+        n_rows, n_cols = self.shape
+        return CellBox(
+            max(0, r0 - margin),
+            min(n_rows, r1 + margin),
+            max(0, c0 - margin),
+            min(n_cols, c1 + margin),
+        )
+
+    # ----------------------------------------------------------------- updates
+    def mark_free_disc(self, pose: Pose, radius: float) -> None:
+        """Explore a disc around the agent: where it stands is floor."""
+        r, c = self.cell_of(pose.x, pose.z)
+        k = math.ceil(radius / self.cell_size)
+        rows, cols = np.mgrid[r - k : r + k + 1, c - k : c + k + 1]
+        inside = (rows - r) ** 2 + (cols - c) ** 2 <= (radius / self.cell_size) ** 2
+        flat = self._clip_flat(rows[inside], cols[inside])
+        self.explored.flat[flat] = True
+        self._grow_box(flat)
+
+    def mark_blocked_ahead(self, pose: Pose, distance: float, half_width: float) -> None:
+        """A forward move made no progress: something too low to see is in front."""
+        hx, hz = heading_vector(pose.yaw)
+        along = np.arange(distance, distance + 2.0 * self.cell_size, self.cell_size / 2.0)
+        across = np.arange(-half_width, half_width + 1e-9, self.cell_size / 2.0)
+        a, b = np.meshgrid(along, across)
+        x = pose.x + a * hx - b * hz
+        z = pose.z + a * hz + b * hx
+        flat = self.flat_cells(x.ravel(), z.ravel())
+        self.obstacle.flat[flat] = True
+        self.explored.flat[flat] = True
+        self._grow_box(flat)
+
+    def update(self, depth: NDArray[np.float32], pose: Pose, tilt: float) -> NDArray[np.intp]:
+        """Add one depth frame; returns the flat indices of cells that became obstacles."""
+        cfg = self.config
+        d = np.asarray(depth, np.float32)[self._pixels]
+        valid = (d > 0.0) & (d < self.camera.max_depth * 0.999)
+        pose_matrix = self.camera.camera_to_world((pose.x, 0.0, pose.z), pose.yaw, tilt)
+        r = pose_matrix[:3, :3].astype(np.float32)
+        # Camera-frame point = ray * depth with ray = (rx, ry, -1); rotate and translate.
+        cx, cy = self._ray_x * d, self._ray_y * d
+        x = r[0, 0] * cx + r[0, 1] * cy - r[0, 2] * d + np.float32(pose.x)
+        y = r[1, 0] * cx + r[1, 1] * cy - r[1, 2] * d + np.float32(pose_matrix[1, 3])
+        z = r[2, 0] * cx + r[2, 1] * cy - r[2, 2] * d + np.float32(pose.z)
+        dx, dz = x - np.float32(pose.x), z - np.float32(pose.z)
+        squared = dx * dx + dz * dz  # horizontal distance, squared
+        low, high = cfg.obstacle_band
+        is_obstacle = valid & (y > low) & (y < high) & (squared < cfg.obstacle_range**2)
+        is_floor = valid & (y < cfg.floor_height)
+        flat = self._flat_or_minus_one(x, z)
+        obstacle_cells = flat[is_obstacle]
+        obstacle_cells = obstacle_cells[obstacle_cells >= 0]
+        new = np.unique(obstacle_cells[~self.obstacle.flat[obstacle_cells]])
+        self.obstacle.flat[obstacle_cells] = True
+        seen = flat[is_obstacle | is_floor]
+        seen = seen[seen >= 0]
+        self.explored.flat[seen] = True
+        self._grow_box(seen)
+        if tilt == 0.0:
+            self._trace_free(pose, squared, is_obstacle, is_floor, valid, d)
+        return new
+
+    def _flat_or_minus_one(
+        self, x: NDArray[np.float32], z: NDArray[np.float32]
+    ) -> NDArray[np.intp]:
+        """Flat cell index of every point, -1 for points off the map."""
+        s = self.cell_size
+        cols = np.floor((x - self.origin[0]) / s).astype(np.intp)
+        rows = np.floor((z - self.origin[1]) / s).astype(np.intp)
+        n_rows, n_cols = self.shape
+        inside = (rows >= 0) & (rows < n_rows) & (cols >= 0) & (cols < n_cols)
+        flat: NDArray[np.intp] = np.where(inside, rows * n_cols + cols, -1)
+        return flat
+
+    def _trace_free(
+        self,
+        pose: Pose,
+        squared: NDArray[np.float32],
+        is_obstacle: NDArray[np.bool_],
+        is_floor: NDArray[np.bool_],
+        valid: NDArray[np.bool_],
+        depth: NDArray[np.float32],
+    ) -> None:
+        """Explore each level column from the camera to its first obstacle (or as far as it
+        sees floor, or ``free_range`` where nothing was hit).
+
+        The cells along each column's ray are fixed offsets from the agent's cell for a given
+        heading, so they are computed once per heading (the agent only ever faces a few)."""
+        cfg = self.config
+        nearest_obstacle = np.sqrt(np.where(is_obstacle, squared, np.inf).min(axis=0))
+        farthest_floor = np.sqrt(np.where(is_floor, squared, 0.0).max(axis=0))
+        open_column = (~valid & (depth > 0.0)).any(axis=0)
+        reach = np.where(open_column, cfg.free_range, farthest_floor)
+        reach = np.minimum(np.minimum(nearest_obstacle, reach), cfg.free_range) - self.cell_size
+        offsets = self._ray_offsets(pose.yaw)
+        row, col = self.cell_of(pose.x, pose.z)
+        keep = self._trace_steps[None, :] < reach[:, None]
+        rows = row + offsets[0][keep]
+        cols = col + offsets[1][keep]
+        flat = self._clip_flat(rows, cols)
+        self.explored.flat[flat] = True
+        self._grow_box(flat)
+
+    def _ray_offsets(self, yaw: float) -> tuple[NDArray[np.intp], NDArray[np.intp]]:
+        """(row, col) offsets of the cells along every column's ray, per trace step."""
+        key = round(yaw, 6)
+        cached = self._offsets.get(key)
+        if cached is None:
+            c, s = math.cos(yaw), math.sin(yaw)
+            dirs = self._column_dirs
+            # Rotate the camera-frame (x, z) directions about +y by the yaw.
+            wx = c * dirs[:, 0] + s * dirs[:, 1]
+            wz = -s * dirs[:, 0] + c * dirs[:, 1]
+            steps = self._trace_steps[None, :] / self.cell_size
+            cached = (
+                np.rint(wz[:, None] * steps).astype(np.intp),
+                np.rint(wx[:, None] * steps).astype(np.intp),
+            )
+            self._offsets[key] = cached
+        return cached
+
+    # ----------------------------------------------------------------- internals
+    def _clip_flat(self, rows: NDArray[np.intp], cols: NDArray[np.intp]) -> NDArray[np.intp]:
+        n_rows, n_cols = self.shape
+        inside = (rows >= 0) & (rows < n_rows) & (cols >= 0) & (cols < n_cols)
+        flat: NDArray[np.intp] = rows[inside] * n_cols + cols[inside]
+        return flat
+
+    def _grow_box(self, flat: NDArray[np.intp]) -> None:
+        if flat.size == 0:
+            return
+        n_cols = self.shape[1]
+        rows, cols = flat // n_cols, flat % n_cols
+        r0, r1, c0, c1 = self._box
+        self._box = CellBox(
+            min(r0, int(rows.min())),
+            max(r1, int(rows.max()) + 1),
+            min(c0, int(cols.min())),
+            max(c1, int(cols.max()) + 1),
+        )

@@ -1,0 +1,86 @@
+import math
+
+import pytest
+
+from tests.agents import world
+from vlln.agents.frontier import FrontierAgent
+from vlln.errors import ConfigError
+from vlln.sim.agent import Action, MotionConfig
+from vlln.sim.camera import CameraSpec
+from vlln.sim.simulator import Simulator
+from vlln.tasks.env import EpisodeInfo
+from vlln.tasks.spec import Talk, TaskType
+from vlln.tasks.taxonomy import classify
+
+
+@pytest.fixture(scope="module")
+def sim() -> Simulator:
+    return Simulator(world.two_room_house())
+
+
+def test_ign_goes_to_the_described_chair_in_view(sim: Simulator) -> None:
+    # Start in room A looking east, the red chair ahead, the blue one behind the door.
+    episode = world.episode(sim, world.RED_CHAIR, (2.5, 2.0), -math.pi / 2, "Find the red chair.")
+    env = world.make_env(sim, [episode], TaskType.IGN)
+    actions = world.play(env, FrontierAgent(seed=3))
+    record = env.record("frontier")
+    assert actions[-1] == Action.STOP
+    assert classify(record) == "success"
+    assert record.stop_instance_id == world.RED_CHAIR  # it stopped facing the chair
+
+
+def test_ign_explores_past_a_chair_of_the_wrong_colour(sim: Simulator) -> None:
+    episode = world.episode(
+        sim, world.BLUE_CHAIR, (3.5, 2.0), -math.pi / 2, "Search for the blue chair."
+    )
+    env = world.make_env(sim, [episode], TaskType.IGN)
+    world.play(env, FrontierAgent(seed=3))
+    record = env.record("frontier")
+    assert classify(record) == "success"
+    assert record.steps > 20  # it had to find the door first
+
+
+def test_iign_without_dialog_takes_the_first_chair_and_with_dialog_the_right_one(
+    sim: Simulator,
+) -> None:
+    episode = world.episode(sim, world.BLUE_CHAIR, (3.5, 2.0), -math.pi / 2)
+    alone = world.make_env(sim, [episode], TaskType.IIGN, budget=0)
+    world.play(alone, FrontierAgent(seed=3))
+    assert classify(alone.record("frontier")) == "ambiguous_detection"
+
+    talking = world.make_env(sim, [episode], TaskType.IIGN, budget=5)
+    actions = world.play(talking, FrontierAgent(seed=3))
+    record = talking.record("frontier")
+    assert classify(record) == "success"
+    questions = [a.text for a in actions if isinstance(a, Talk)]
+    assert questions[0].startswith("What")  # the colour question comes first
+    assert any(q.startswith("Is this") for q in questions)
+    assert len(questions) <= 5
+
+
+def test_refusals_are_handled_and_the_budget_is_never_exceeded(sim: Simulator) -> None:
+    episode = world.episode(sim, world.BLUE_CHAIR, (3.5, 2.0), -math.pi / 2)
+    env = world.make_env(sim, [episode], TaskType.IIGN, budget=1)
+    actions = world.play(env, FrontierAgent(seed=3))
+    assert sum(isinstance(a, Talk) for a in actions) == 1
+    assert env.record("frontier").end_reason == "stop"
+
+
+def test_same_seed_same_actions(sim: Simulator) -> None:
+    episode = world.episode(sim, world.BLUE_CHAIR, (4.5, 1.0), math.pi)
+    runs = []
+    for _ in range(2):
+        env = world.make_env(sim, [episode], TaskType.IIGN, budget=5)
+        runs.append(world.play(env, FrontierAgent(seed=11)))
+    assert runs[0] == runs[1]
+
+
+def test_needs_reset_and_a_privileged_environment() -> None:
+    agent = FrontierAgent(seed=0)
+    with pytest.raises(ConfigError, match="reset"):
+        agent.act({})
+    info = EpisodeInfo(
+        "0", TaskType.IIGN, "Search for the chair.", "chair", CameraSpec(), MotionConfig(), 5, 500
+    )
+    with pytest.raises(ConfigError, match="privileged"):
+        agent.reset(info)
