@@ -305,3 +305,16 @@ def test_unknown_material_index_is_refused() -> None:
     builder.box((0.0, 1.0, -3.0), (1.0, 1.0, 1.0), GREY, len(MATERIALS))
     with pytest.raises(ConfigError, match="material index 12"):
         Renderer(builder.build())
+
+
+def test_renderers_sharing_a_process_each_draw_their_own_scene() -> None:
+    """Creating, using and closing other renderers must not change what one renders."""
+    first = Renderer(box_scene(distance=2.5))
+    before = first.render(ORIGIN, 0.0)
+    second = Renderer(box_scene(distance=4.0))
+    assert centre_value(second.render(ORIGIN, 0.0).depth) == pytest.approx(4.0, abs=0.01)
+    second.close()
+    after = first.render(ORIGIN, 0.0)
+    first.close()
+    assert after.instance_ids.tobytes() == before.instance_ids.tobytes()
+    assert after.depth.tobytes() == before.depth.tobytes()
