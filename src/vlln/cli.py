@@ -26,7 +26,7 @@ def _world_show(args: argparse.Namespace) -> int:
 def _bench_sim(args: argparse.Namespace) -> int:
     from vlln.bench.sim import run_sim_benchmark
 
-    run_sim_benchmark(seed=args.seed, frames=args.frames, as_json=args.json)
+    run_sim_benchmark(seed=args.seed, frames=args.frames, repeats=args.repeats, as_json=args.json)
     return 0
 
 
@@ -193,6 +193,7 @@ def build_parser() -> argparse.ArgumentParser:
     sim = bench.add_parser("sim", help="renderer, motion and geodesic figures")
     sim.add_argument("--seed", type=int, default=0, help="house seed (default 0)")
     sim.add_argument("--frames", type=int, default=300, help="frames per timing (default 300)")
+    sim.add_argument("--repeats", type=int, default=3, help="passes per frame rate (default 3)")
     sim.add_argument("--json", action="store_true", help="print one JSON object per line")
     sim.set_defaults(handler=_bench_sim)
     bench_eval = bench.add_parser("eval", help="episodes per hour of the evaluation runner")

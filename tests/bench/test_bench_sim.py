@@ -1,0 +1,26 @@
+"""`vlln bench sim --json` prints one well-formed figure per line for every promised metric."""
+
+import json
+
+import pytest
+
+from vlln.cli import main
+
+REQUIRED = {
+    "render_fps",
+    "step_fps",
+    "raw_raster_fps",
+    "geodesic_query_us",
+    "field_build_ms",
+    "house_build_s",
+    "sim_rss_mb",
+}
+
+
+def test_sim_benchmark_prints_json_lines(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["bench", "sim", "--json", "--frames", "40", "--repeats", "1", "--seed", "3"]) == 0
+    lines = [json.loads(line) for line in capsys.readouterr().out.splitlines()]
+    assert all(set(line) == {"metric", "value", "unit"} for line in lines)
+    values = {line["metric"]: line["value"] for line in lines}
+    assert REQUIRED <= set(values)
+    assert all(values[name] > 0 for name in REQUIRED)
