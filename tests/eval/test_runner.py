@@ -13,7 +13,13 @@ from tests.eval.runs import evaluate, lines, summary
 from vlln.errors import ConfigError
 from vlln.eval.config import EvalConfig
 from vlln.eval.results import load_run_records
-from vlln.eval.runner import derive_seed, load_episodes, order_by_scene, plan_work
+from vlln.eval.runner import (
+    derive_seed,
+    load_episodes,
+    order_by_scene,
+    plan_work,
+    spread_over_scenes,
+)
 from vlln.eval.sharding import Shard
 from vlln.eval.summary import summarize_run, summary_json
 from vlln.tasks.record import EndReason
@@ -160,17 +166,30 @@ def test_tasks_without_dialog_run_at_budget_zero_and_resume(
     assert all(r.task == "objectnav" for r in outcome.records)
 
 
-def test_plan_groups_by_scene_takes_the_first_n_and_shards_round_robin(split_cache: Path) -> None:
+def test_plan_spreads_n_episodes_and_shards_round_robin(split_cache: Path) -> None:
     config = EvalConfig(agent="random", task="iign", houses=1, episodes=5, budgets=(0, 2))
     episodes = load_episodes(config, split_cache, progress=False)
     plan = plan_work(episodes, config)
-    expected = order_by_scene(episodes)[:5]
+    ordered = order_by_scene(episodes)
+    expected = [ordered[k * len(ordered) // 5] for k in range(5)]
     assert [item.episode for item in plan[::2]] == expected
     assert [item.budget for item in plan] == [0, 2] * 5
     sharded = plan_work(episodes, replace(config, shard=Shard(1, 2)))
     assert [item.episode for item in sharded[::2]] == expected[1::2]
     with pytest.raises(ConfigError, match="only"):
         plan_work(episodes[:3], config)
+
+
+def test_spread_over_scenes_shares_episodes_between_houses(split_cache: Path) -> None:
+    config = EvalConfig(agent="random", task="iign", houses=1)
+    episodes = load_episodes(config, split_cache, progress=False)[:10]
+    other = [
+        replace(e, scene_id="vlln/house_99999", episode_id=f"o{i}")
+        for i, e in enumerate(episodes[:2])
+    ]
+    chosen = spread_over_scenes([*episodes, *other], 5)
+    assert [e.scene_id for e in chosen].count("vlln/house_99999") == 2
+    assert len(chosen) == 5 and len({e.episode_id for e in chosen}) == 5
 
 
 def test_order_by_scene_keeps_first_appearance(split_cache: Path) -> None:

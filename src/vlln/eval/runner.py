@@ -1,8 +1,9 @@
 """The evaluation runner: plays an agent over a fixed list of episodes, one line per episode.
 
 Order: the episodes of the source (a built-in split or an episode file) are grouped by scene,
-keeping first appearance, so one simulator serves a whole house; the first ``--episodes`` of
-that list are kept, ``--shard i/n`` takes every n-th of them, and each episode is played at
+keeping first appearance, so one simulator serves a whole house; ``--episodes N`` keeps N of
+them spread evenly over the scenes (:func:`spread_over_scenes`), ``--shard i/n`` takes every
+n-th of them, and each episode is played at
 every dialog budget before the next one (the geodesic field of its goals is reused).
 
 Determinism: for every (episode, budget) the agent and the oracle are made afresh with seeds
@@ -92,16 +93,37 @@ def order_by_scene(episodes: Sequence[Episode]) -> list[Episode]:
     return [episode for group in by_scene.values() for episode in group]
 
 
+def spread_over_scenes(episodes: Sequence[Episode], count: int) -> list[Episode]:
+    """``count`` episodes shared as evenly as possible between the scenes (earlier scenes take
+    the remainder) and spaced evenly through each scene's list, so a small evaluation still
+    visits every house and every kind of target; grouped by scene."""
+    if count > len(episodes):
+        raise ConfigError(
+            f"asked for {count} episodes but the source has only {len(episodes)}; "
+            "pass fewer --episodes or more --houses"
+        )
+    by_scene: dict[str, list[Episode]] = {}
+    for episode in episodes:
+        by_scene.setdefault(episode.scene_id, []).append(episode)
+    groups = list(by_scene.values())
+    quotas = [0] * len(groups)
+    left = count
+    while left > 0:  # hand out one episode per scene per round, skipping full scenes
+        for index, group in enumerate(groups):
+            if left > 0 and quotas[index] < len(group):
+                quotas[index] += 1
+                left -= 1
+    chosen = []
+    for group, quota in zip(groups, quotas, strict=True):
+        chosen += [group[k * len(group) // quota] for k in range(quota)]
+    return chosen
+
+
 def plan_work(episodes: Sequence[Episode], config: EvalConfig) -> list[WorkItem]:
     """The (episode, budget) pairs this run plays, in playing order (module doc)."""
     ordered = order_by_scene(episodes)
     if config.episodes is not None:
-        if config.episodes > len(ordered):
-            raise ConfigError(
-                f"asked for {config.episodes} episodes but the source has only {len(ordered)}; "
-                "pass fewer --episodes or more --houses"
-            )
-        ordered = ordered[: config.episodes]
+        ordered = spread_over_scenes(ordered, config.episodes)
     return [
         WorkItem(episode, budget)
         for episode in config.shard.take(ordered)
