@@ -1,5 +1,6 @@
 from __future__ import annotations
 
+import json
 import math
 from typing import Any
 
@@ -140,3 +141,9 @@ def test_record_round_trip_keeps_metrics() -> None:
     assert oracle_success(restored) == oracle_success(record)
     assert navigation_error(restored) == pytest.approx(navigation_error(record))
     assert record_spl(restored) == record_spl(record) == 0.0
+
+
+def test_a_stop_just_inside_the_radius_survives_the_json_round_trip() -> None:
+    record = make_record(geodesic_trace=[1.0, 0.24999999])
+    restored = EpisodeRecord.from_json(json.loads(json.dumps(record.to_json())))
+    assert success(restored)

@@ -90,8 +90,9 @@ class EpisodeRecord:
 
 
 def _finite_or_none(value: float) -> float | None:
-    """JSON has no infinity; an unreachable distance is written as null."""
-    return None if value == float("inf") else round(value, 4)
+    """JSON has no infinity; an unreachable distance is written as null. Finite distances keep
+    every digit: rounding could carry a stop at 0.24999 m over the 0.25 m success radius."""
+    return None if value == float("inf") else value
 
 
 def _none_to_inf(value: float | None) -> float:
