@@ -145,9 +145,16 @@ _RULES: tuple[tuple[float, _Topic, str], ...] = (
         r"|have i found|did i find|i spotted|found it|right here|over here|before me|i got it"
         r"|i am at|i reached|have i reached|did i reach)\b",
     ),
-    (3, _D, r"^is it (this|that|these|the one)\b|^is .* the (target|goal|one|right one)$"),
+    (4, _D, r"^is it (this|that|these|the one)\b|^is .* the (target|goal|one|right one)$"),
     (3, _D, r"\b(is|are) (this|that) it\b|\b(this|that) (is|was) (it|the one)\b"),
     (3, _D, r"\bis (this|that|it) what you\b"),
+    (
+        2,
+        _D,
+        r"\byou (want|mean|meant|described|are describing|are talking about|are thinking of"
+        r"|have in mind)\b",
+    ),
+    (3, _D, r"^(this|that|these|those) (?!(way|room|direction|side)$)\w+$"),
     (3, _D, r"\bam i (looking at|in front of|facing|at|next to) (it|the (right|correct|target))"),
     # Route, orientation: the direction of the target.
     (4, _O, r"\b(which|what) direction\b"),
@@ -159,8 +166,8 @@ _RULES: tuple[tuple[float, _Topic, str], ...] = (
     (
         2,
         _O,
-        r"^(is|are) (it|they|the \w+) (ahead|behind|in front|to the|on the|straight|left|right)"
-        rf"\b(?!.* ({_SUPPORTS}|{_ROOMS})\b)",
+        r"^(is|are) (it|they|the \w+) (ahead|behind|in front|straight|left|right"
+        r"|(to|on) (the|my|your) (left|right))\b",
     ),
     # Route, path: a way through the house.
     (
@@ -254,6 +261,12 @@ _RULES: tuple[tuple[float, _Topic, str], ...] = (
         rf"|lying on) (the|a|top of) {_SUPPORTS}\b",
     ),
     (2, _A.SUPPORT, r"\b(on top of|under|underneath|below|above|hanging|mounted|against)\b"),
+    (
+        3,
+        _A.SUPPORT,
+        r"^(is|are) (it|they|the \w+) (on|sitting on|standing on|resting on|lying on|placed on"
+        r"|hanging on|mounted on|on top of) (the|a|an|some|top of) (?!(left|right|way|other)\b)",
+    ),
     (5, _A.CATEGORY, r"\bwhat (kind|type|sort|style|model|brand)\b|\b(category|categories)\b"),
     (3, _A.CATEGORY, r"^what is (it|the target|the goal|the object)$|\bwhat exactly\b"),
     (
@@ -264,7 +277,11 @@ _RULES: tuple[tuple[float, _Topic, str], ...] = (
     ),
     (4, _A.DESCRIPTION, r"\blooks? like\b|\btell me (more )?about\b|\bwhat do you know\b"),
     (4, _A.DESCRIPTION, r"\bhow (it|they|the \w+) looks?\b"),
-    (4, _A.DESCRIPTION, r"\b(more|any|some|other) (info|information|hints?|clues?|details)\b"),
+    (
+        4,
+        _A.DESCRIPTION,
+        r"\b(more|any|some|other|a|another) (info|information|hints?|clues?|details)\b",
+    ),
     (5, _A.DESCRIPTION, r"\bwhat (am i|are we|are you) (looking|searching) for\b"),
     (5, _A.DESCRIPTION, r"\bwhat (should|do|must|shall) (i|we) (look|search) for\b"),
     (
@@ -327,7 +344,7 @@ def classify_question(text: str) -> QuestionType:
 
 def analyse_question(text: str) -> QuestionAnalysis:
     """Type, topic and mentioned values of a question, by weighted phrase patterns."""
-    normalised = _FILLER.sub("", normalise(text))
+    normalised = _FILLER.sub("", normalise(text)).strip()
     type_scores = dict.fromkeys(_TYPE_ORDER, 0.0)
     topic_scores: dict[_Topic, float] = {}
     for pattern, weight, topic in _COMPILED:
@@ -359,7 +376,11 @@ def analyse_question(text: str) -> QuestionAnalysis:
     return analysis
 
 
-_FILLER = re.compile(r"^((so|and|ok|okay|well|then|hmm|um|uh|hey|hi|please|sorry|oh|alright) )+")
+_FILLER = re.compile(
+    r"^((so|and|ok|okay|well|then|hmm|um|uh|hey|hi|please|sorry|oh|alright|wait|excuse me"
+    r"|quick question|one question|a question|question) )+"
+    r"|( (please|thanks|thank you|then|now please))+$"
+)
 _THIS_ROOM = re.compile(r"\b(this|same|current) room\b|\broom (i am|we are) in\b")
 _TopicT = TypeVar("_TopicT", RouteKind, AttributeTopic, OtherTopic)
 

@@ -67,6 +67,7 @@ _CHAT_SPELLINGS: dict[str, str] = {
     "pls": "please",
     "plz": "please",
     "thx": "thanks",
+    "tat": "that",
     "colour": "color",
     "colours": "colors",
     "coloured": "colored",
@@ -109,6 +110,8 @@ _KEYWORDS: frozenset[str] = frozenset(
     correct right same found find looking visible view sight see seeing guide lead navigate
     continue keep going stop upstairs downstairs through toward please answer wooden metal
     metallic plastic fabric leather glass ceramic marble adjacent neighbor surrounded under
+    soft hard smooth rough shiny glossy striped pattern brown black white green yellow purple
+    orange beige silver leave enter exit
     underneath above below sitting standing placed lying hanging mounted against corner wall
     floor table shelf counter progress track almost nearly getting relative compared pointing
     point orientation angle degrees moving move walk exactly information tell more another
@@ -129,6 +132,7 @@ _KNOWN_WORDS: frozenset[str] = _KEYWORDS | frozenset(
     want need know think see saw seen looked find finding give tell told say said mean
     meant wait stay take come came try again ok okay hi hello hey thanks thank sorry
     good great fine well bad best better need help sure last first second third side sides
+    described describing describes question quick
     book books look lamp lamps lamp cup cups bed beds chair chairs sofa sofas desk desks
     rug rugs tv plant plants vase vases bowl bowls plate plates towel towels mirror mirrors
     picture pictures clock clocks pillow pillows stool stools bench benches couch couches
