@@ -4,6 +4,7 @@ errors raised on purpose (vlln.errors.VllnError) are printed as one line, not a 
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from collections.abc import Callable, Sequence
 from pathlib import Path
@@ -167,6 +168,44 @@ def _add_eval_commands(commands: argparse._SubParsersAction[argparse.ArgumentPar
     report.set_defaults(handler=_report)
 
 
+def _oracle_serve(args: argparse.Namespace) -> int:
+    from vlln.oracle.service.server import serve
+
+    token = os.environ.get(args.token_env) or None
+    serve(
+        host=args.host,
+        port=args.port,
+        token=token,
+        episodes=None if args.episodes is None else Path(args.episodes),
+        allow_remote=args.allow_remote,
+        max_sessions=args.max_sessions,
+        oracle_seed=args.oracle_seed,
+    )
+    return 0
+
+
+def _add_oracle_commands(commands: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
+    oracle = commands.add_parser("oracle", help="the oracle").add_subparsers(
+        dest="oracle_command", required=True
+    )
+    serve = oracle.add_parser("serve", help="answer questions over HTTP (FastAPI)")
+    serve.add_argument("--host", default="127.0.0.1", help="address (default loopback only)")
+    serve.add_argument("--port", type=int, default=8765, help="port (default 8765)")
+    serve.add_argument(
+        "--token-env",
+        default="VLLN_ORACLE_TOKEN",
+        help="environment variable holding the bearer token; unset = no token "
+        "(default VLLN_ORACLE_TOKEN)",
+    )
+    serve.add_argument("--episodes", help="an episode file whose episodes sessions can name")
+    serve.add_argument(
+        "--allow-remote", action="store_true", help="allow a host other than loopback"
+    )
+    serve.add_argument("--max-sessions", type=int, default=64, help="sessions kept (default 64)")
+    serve.add_argument("--oracle-seed", type=int, default=0, help="paraphrase seed (default 0)")
+    serve.set_defaults(handler=_oracle_serve)
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="vlln", description=__doc__)
     commands = parser.add_subparsers(dest="command", required=True)
@@ -206,6 +245,7 @@ def build_parser() -> argparse.ArgumentParser:
     demo.add_argument("--out", default="out/demo", help="output directory (default out/demo)")
     demo.set_defaults(handler=_demo)
     _add_eval_commands(commands)
+    _add_oracle_commands(commands)
     return parser
 
 

@@ -1,0 +1,247 @@
+"""The oracle behind the HTTP service: sessions over shared simulators, without any HTTP.
+
+Clients send only a pose; the current view that the disambiguation rule needs is rendered here
+from that pose, so a client in any language (or a robot whose camera differs from ours) gets the
+same answer as an agent inside :class:`vlln.tasks.env.NavigationEnv`. The dialog budget works
+as in the environment: the first ``dialog_budget`` questions are answered, later ones get
+:data:`vlln.tasks.spec.REFUSAL_MESSAGE`.
+
+Not thread-safe: the service calls it from one worker thread, which also keeps every OpenGL
+context on one thread.
+"""
+
+from __future__ import annotations
+
+import math
+
+from vlln import __version__
+from vlln.errors import VllnError
+from vlln.oracle.protocol import EpisodeContext, Question, QuestionType
+from vlln.oracle.rule_oracle import RuleOracle
+from vlln.oracle.service.config import ServiceConfig
+from vlln.oracle.service.schemas import (
+    AskRequest,
+    AskResponse,
+    CreateSessionRequest,
+    CreateSessionResponse,
+    DialogTurnView,
+    HealthResponse,
+    Pose,
+    SessionView,
+)
+from vlln.oracle.service.schemas import QuestionType as WireQuestionType
+from vlln.oracle.service.sessions import ServiceError, Session, SessionStore
+from vlln.sim.agent import AgentState
+from vlln.sim.simulator import Simulator
+from vlln.sim.viewpoints import view_points
+from vlln.tasks.episode import Episode
+from vlln.tasks.scenes import SceneCache, procedural_scene_id, procedural_seed
+from vlln.tasks.spec import REFUSAL_MESSAGE
+from vlln.world.frame import wrap_angle
+from vlln.world.model import ObjectInstance
+
+Point2 = tuple[float, float]
+_WIRE_TYPES: dict[QuestionType, WireQuestionType] = {
+    QuestionType.ATTRIBUTE: "attribute",
+    QuestionType.ROUTE: "route",
+    QuestionType.DISAMBIGUATION: "disambiguation",
+    QuestionType.OTHER: "other",
+}
+
+
+class HostedOracle:
+    """Creates, answers, shows and deletes dialog sessions."""
+
+    def __init__(self, config: ServiceConfig) -> None:
+        self.config = config
+        self.scenes = SceneCache(config.simulator, capacity=config.scene_capacity)
+        self.sessions = SessionStore(config.max_sessions)
+        self.episodes = {episode.episode_id: episode for episode in config.episodes}
+
+    # ----------------------------------------------------------------- endpoints
+    def create(self, request: CreateSessionRequest) -> CreateSessionResponse:
+        if request.episode_id is not None:
+            episode = self._episode(request.episode_id)
+            scene_id, episode_id = episode.scene_id, episode.episode_id
+            instruction: str | None = episode.instruction.instruction_text
+            sim = self._simulator(scene_id)
+            target, goals = self._episode_target(sim, episode)
+        elif request.scene_id is not None and request.target_instance_id is not None:
+            scene_id, episode_id, instruction = request.scene_id, None, None
+            sim = self._simulator(scene_id)
+            target = self._instance(sim, request.target_instance_id)
+            goals = view_points(sim.grid, target.box)
+        else:
+            raise ServiceError(
+                422, "no target", "give scene_id and target_instance_id, or episode_id"
+            )
+        if not goals:
+            raise ServiceError(
+                422,
+                "target has no view points",
+                f"instance {target.id} ({target.category}) in {scene_id} has no navigable point "
+                "within 0.6 m of its box, so it cannot be a navigation target; choose another",
+            )
+        oracle = RuleOracle(seed=self.config.oracle_seed)
+        oracle.start(EpisodeContext(sim, target, tuple(goals)))
+        session = Session(
+            session_id=self.sessions.fresh_id(),
+            scene_id=scene_id,
+            episode_id=episode_id,
+            target=target,
+            instruction=instruction,
+            dialog_budget=request.dialog_budget,
+            oracle=oracle,
+        )
+        self.sessions.add(session)
+        return CreateSessionResponse(
+            session_id=session.session_id,
+            scene_id=scene_id,
+            episode_id=episode_id,
+            target_category=target.category,
+            instruction=instruction,
+            dialog_budget=session.dialog_budget,
+            questions_left=session.questions_left,
+        )
+
+    def ask(self, session_id: str, request: AskRequest) -> AskResponse:
+        session = self.sessions.get(session_id)
+        sim = self._simulator(session.scene_id)
+        state = self._state(sim, request.pose)
+        kind: WireQuestionType
+        if session.answered >= session.dialog_budget:
+            answer, kind, answered = REFUSAL_MESSAGE, "refused", False
+        else:
+            frame = sim.render(state)
+            reply = session.oracle.answer(Question(request.question, state, frame))
+            answer, kind, answered = reply.answer, _WIRE_TYPES[reply.question_type], True
+            session.answered += 1
+        turn = DialogTurnView(
+            question=request.question,
+            answer=answer,
+            question_type=kind,
+            answered=answered,
+            pose=request.pose,
+        )
+        session.dialog.append(turn)
+        return AskResponse(
+            answer=answer,
+            question_type=turn.question_type,
+            answered=answered,
+            questions_left=session.questions_left,
+        )
+
+    def view(self, session_id: str) -> SessionView:
+        session = self.sessions.get(session_id)
+        return SessionView(
+            session_id=session.session_id,
+            scene_id=session.scene_id,
+            episode_id=session.episode_id,
+            target_category=session.target.category,
+            dialog_budget=session.dialog_budget,
+            questions_left=session.questions_left,
+            dialog=list(session.dialog),
+        )
+
+    def delete(self, session_id: str) -> None:
+        self.sessions.remove(session_id)
+
+    def health(self) -> HealthResponse:
+        return HealthResponse(
+            status="ok",
+            version=__version__,
+            sessions=len(self.sessions),
+            max_sessions=self.sessions.capacity,
+        )
+
+    def close(self) -> None:
+        self.scenes.close()
+
+    # ----------------------------------------------------------------- look-ups
+    def _simulator(self, scene_id: str) -> Simulator:
+        try:
+            procedural_seed(scene_id)
+        except VllnError:
+            raise ServiceError(
+                404,
+                "unknown scene",
+                f"scene {scene_id!r} is not served; scene ids have the form vlln/house_<seed> "
+                f"with a whole-number seed, e.g. {procedural_scene_id(76)!r}",
+            ) from None
+        try:
+            return self.scenes.get(scene_id)
+        except VllnError as error:
+            raise ServiceError(422, "scene cannot be built", str(error)) from None
+
+    def _episode(self, episode_id: str) -> Episode:
+        episode = self.episodes.get(episode_id)
+        if episode is not None:
+            return episode
+        if not self.episodes:
+            hint = "the server was started without an episode file; use scene_id instead"
+        else:
+            hint = f"{len(self.episodes)} episodes are loaded; check the id"
+        raise ServiceError(404, "unknown episode", f"no episode {episode_id!r}: {hint}")
+
+    def _instance(self, sim: Simulator, instance_id: int) -> ObjectInstance:
+        instances = sim.house.instances
+        for inst in instances:
+            if inst.id == instance_id:
+                return inst
+        ids = sorted(inst.id for inst in instances)
+        valid = f"ids {ids[0]}..{ids[-1]}" if ids else "no instances"
+        raise ServiceError(
+            404,
+            "unknown target instance",
+            f"{sim.house.name} has no instance {instance_id}; it has {valid}",
+        )
+
+    def _episode_target(
+        self, sim: Simulator, episode: Episode
+    ) -> tuple[ObjectInstance, list[Point2]]:
+        """The target and goal view points exactly as the navigation environment uses them."""
+        raw = episode.instruction.instance_id[0] if episode.instruction.instance_id else ""
+        try:
+            instance_id = int(raw)
+        except ValueError:
+            raise ServiceError(
+                422,
+                "episode has no usable target",
+                f"episode {episode.episode_id!r} names target instance {raw!r}, which is not a "
+                "whole-number instance id of a vlln house",
+            ) from None
+        goals = [(vp.position[0], vp.position[2]) for g in episode.goals for vp in g.view_points]
+        return self._instance(sim, instance_id), goals
+
+    def _state(self, sim: Simulator, pose: Pose) -> AgentState:
+        """The pose as an agent state, if it stands on the navigable floor within limits."""
+        x, y, z = pose.position
+        grid = sim.grid
+        motion = sim.config.motion
+        on_floor = abs(y - grid.floor_y) <= self.config.floor_tolerance
+        if not (on_floor and grid.is_navigable(x, z)):
+            sx, sz = grid.snap_point(x, z)
+            nearest = [round(sx, 4), grid.floor_y, round(sz, 4)]
+            raise ServiceError(
+                422,
+                "pose off the navigable area",
+                {
+                    "message": (
+                        f"position ({x:.3f}, {y:.3f}, {z:.3f}) is not on the navigable floor "
+                        f"of {sim.house.name} (floor height {grid.floor_y:.3f} m, tolerance "
+                        f"{self.config.floor_tolerance} m); the nearest navigable point is "
+                        f"({nearest[0]:.3f}, {nearest[1]:.3f}, {nearest[2]:.3f})"
+                    ),
+                    "nearest_navigable_point": nearest,
+                },
+            )
+        low, high = motion.min_tilt_deg, motion.max_tilt_deg
+        tilt_deg = math.degrees(pose.tilt)
+        if not low - 1e-6 <= tilt_deg <= high + 1e-6:
+            raise ServiceError(
+                422,
+                "tilt out of range",
+                f"tilt {pose.tilt:.4f} rad ({tilt_deg:.1f} deg) is outside the camera's range "
+                f"{low:g}..{high:g} deg",
+            )
+        return AgentState((x, grid.floor_y, z), wrap_angle(pose.yaw), pose.tilt)

@@ -1,0 +1,96 @@
+"""Running the oracle service with uvicorn (``vlln oracle serve``).
+
+The server listens on loopback unless told otherwise: the oracle hands out privileged
+knowledge of the house (where the target is), so exposing it on a network is a deliberate
+choice, made with ``allow_remote=True`` and announced with a warning on stderr.
+"""
+
+from __future__ import annotations
+
+import ipaddress
+import sys
+from pathlib import Path
+
+import uvicorn
+
+from vlln.errors import ConfigError
+from vlln.oracle.service.app import create_app
+from vlln.oracle.service.config import ServiceConfig
+from vlln.tasks.episode import read_episodes
+
+DEFAULT_HOST = "127.0.0.1"
+DEFAULT_PORT = 8765
+LOG_LEVELS = ("critical", "error", "warning", "info", "debug")
+
+
+def is_loopback(host: str) -> bool:
+    """Whether ``host`` names this machine only (``localhost`` or a loopback address)."""
+    if host.lower() == "localhost":
+        return True
+    try:
+        return ipaddress.ip_address(host).is_loopback
+    except ValueError:
+        return False
+
+
+def build_server(
+    config: ServiceConfig,
+    host: str = DEFAULT_HOST,
+    port: int = DEFAULT_PORT,
+    *,
+    allow_remote: bool = False,
+    log_level: str = "info",
+) -> uvicorn.Server:
+    """A uvicorn server for the oracle app, not yet running; ``port=0`` picks a free port."""
+    if isinstance(port, bool) or not isinstance(port, int) or not 0 <= port <= 65535:
+        raise ConfigError(f"port must be a whole number in 0..65535, got {port!r}")
+    if log_level not in LOG_LEVELS:
+        raise ConfigError(f"log_level must be one of {', '.join(LOG_LEVELS)}, got {log_level!r}")
+    if not is_loopback(host):
+        if not allow_remote:
+            raise ConfigError(
+                f"host {host!r} is not a loopback address; the oracle reveals where targets "
+                "are, so serving it beyond this machine needs allow_remote=True "
+                "(--allow-remote), ideally with a token"
+            )
+        auth = "with a bearer token" if config.token else "WITHOUT a token: anyone can use it"
+        print(
+            f"warning: the vlln oracle will listen on {host}:{port}, reachable from other "
+            f"machines, {auth}",
+            file=sys.stderr,
+        )
+    settings = uvicorn.Config(
+        create_app(config),
+        host=host,
+        port=port,
+        log_level=log_level,
+        proxy_headers=False,
+        server_header=False,
+        lifespan="on",
+    )
+    return uvicorn.Server(settings)
+
+
+def serve(
+    host: str = DEFAULT_HOST,
+    port: int = DEFAULT_PORT,
+    token: str | None = None,
+    episodes: Path | None = None,
+    *,
+    allow_remote: bool = False,
+    max_sessions: int = 64,
+    scene_capacity: int = 2,
+    oracle_seed: int = 0,
+    log_level: str = "info",
+) -> None:
+    """Serve the oracle until interrupted; ``episodes`` is an episode file (``.json.gz``) whose
+    episodes sessions may name by ``episode_id``."""
+    config = ServiceConfig(
+        token=token,
+        episodes=tuple(read_episodes(episodes)) if episodes is not None else (),
+        max_sessions=max_sessions,
+        scene_capacity=scene_capacity,
+        oracle_seed=oracle_seed,
+    )
+    server = build_server(config, host, port, allow_remote=allow_remote, log_level=log_level)
+    server.run()

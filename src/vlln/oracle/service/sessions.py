@@ -1,0 +1,99 @@
+"""Dialog sessions of the oracle service and the bounded store that keeps them.
+
+A session is one target with its own :class:`RuleOracle` and dialog budget. The store keeps at
+most ``capacity`` sessions and drops the least recently used one when a new one would exceed
+it, so a client that never deletes its sessions cannot grow the server's memory without bound.
+Session ids are unguessable (:func:`secrets.token_urlsafe`) because they are the only handle
+on a dialog; they name a session and never influence an answer, so determinism is unaffected.
+"""
+
+from __future__ import annotations
+
+import secrets
+from collections import OrderedDict
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+from vlln.errors import ConfigError, VllnError
+from vlln.oracle.rule_oracle import RuleOracle
+from vlln.oracle.service.schemas import DialogTurnView
+from vlln.world.model import ObjectInstance
+
+
+class ServiceError(VllnError):
+    """A request the service cannot serve; ``status`` is its HTTP status code."""
+
+    def __init__(self, status: int, error: str, detail: str | dict[str, object]) -> None:
+        super().__init__(f"{error}: {detail}")
+        self.status = status
+        self.error = error
+        self.detail = detail
+
+
+def new_session_id() -> str:
+    """128 random bits, URL-safe."""
+    return secrets.token_urlsafe(16)
+
+
+@dataclass
+class Session:
+    """One dialog: the target, its oracle, the budget and the turns so far."""
+
+    session_id: str
+    scene_id: str
+    episode_id: str | None
+    target: ObjectInstance
+    instruction: str | None
+    dialog_budget: int
+    oracle: RuleOracle
+    dialog: list[DialogTurnView] = field(default_factory=list)
+    answered: int = 0
+
+    @property
+    def questions_left(self) -> int:
+        return max(0, self.dialog_budget - self.answered)
+
+
+class SessionStore:
+    """Sessions by id, least recently used dropped first once ``capacity`` is reached."""
+
+    def __init__(self, capacity: int, new_id: Callable[[], str] = new_session_id) -> None:
+        if isinstance(capacity, bool) or not isinstance(capacity, int) or capacity < 1:
+            raise ConfigError(f"the session store needs a capacity >= 1, got {capacity!r}")
+        self.capacity = capacity
+        self._new_id = new_id
+        self._sessions: OrderedDict[str, Session] = OrderedDict()
+
+    def __len__(self) -> int:
+        return len(self._sessions)
+
+    def fresh_id(self) -> str:
+        """An id no stored session has."""
+        while True:
+            session_id = self._new_id()
+            if session_id not in self._sessions:
+                return session_id
+
+    def add(self, session: Session) -> None:
+        if session.session_id in self._sessions:
+            raise ConfigError(f"a session with id {session.session_id!r} is already stored")
+        self._sessions[session.session_id] = session
+        while len(self._sessions) > self.capacity:
+            self._sessions.popitem(last=False)
+
+    def get(self, session_id: str) -> Session:
+        """The session, marked as most recently used; 404 when it is unknown or was dropped."""
+        session = self._sessions.get(session_id)
+        if session is None:
+            raise ServiceError(
+                404,
+                "unknown session",
+                f"no session {session_id[:64]!r}; it was deleted, dropped as least recently used "
+                f"(at most {self.capacity} are kept), or never created: POST /v1/sessions",
+            )
+        self._sessions.move_to_end(session_id)
+        return session
+
+    def remove(self, session_id: str) -> None:
+        self.get(session_id)
+        del self._sessions[session_id]

@@ -1,0 +1,73 @@
+"""The real server: uvicorn on loopback in a thread, spoken to over HTTP with httpx."""
+
+from __future__ import annotations
+
+import threading
+import time
+
+import httpx
+import pytest
+
+from vlln.errors import ConfigError
+from vlln.oracle.service.config import ServiceConfig
+from vlln.oracle.service.server import build_server, is_loopback
+from vlln.tasks.spec import REFUSAL_MESSAGE
+
+from .conftest import TOKEN, World
+
+START_TIMEOUT = 15.0
+
+
+def test_uvicorn_serves_a_session_over_loopback(world: World) -> None:
+    server = build_server(ServiceConfig(token=TOKEN), "127.0.0.1", 0, log_level="warning")
+    thread = threading.Thread(target=server.run, daemon=True)
+    thread.start()
+    try:
+        deadline = time.monotonic() + START_TIMEOUT
+        while not server.started:
+            assert thread.is_alive() and time.monotonic() < deadline, "server did not start"
+            time.sleep(0.02)
+        host, port = server.servers[0].sockets[0].getsockname()[:2]
+        assert host == "127.0.0.1"
+        headers = {"Authorization": f"Bearer {TOKEN}"}
+        with httpx.Client(base_url=f"http://127.0.0.1:{port}", timeout=10.0) as client:
+            assert client.get("/v1/health").json()["status"] == "ok"
+            assert client.post("/v1/sessions", json={}).status_code == 401
+            created = client.post(
+                "/v1/sessions",
+                json={
+                    "scene_id": world.scene_id,
+                    "target_instance_id": world.target_id,
+                    "dialog_budget": 1,
+                },
+                headers=headers,
+            )
+            assert created.status_code == 201
+            ask_url = f"/v1/sessions/{created.json()['session_id']}/ask"
+            json_headers = {**headers, "Content-Type": "application/json"}
+            bad = client.post(ask_url, content=b'{"question": ', headers=json_headers)
+            assert bad.status_code == 400 and bad.json()["error"] == "malformed JSON"
+            question = {"question": "What color is it?", "pose": world.poses[0]}
+            answer = client.post(ask_url, json=question, headers=headers).json()
+            assert answer["answered"] and world.target_color in answer["answer"]
+            refused = client.post(ask_url, json=question, headers=headers).json()
+            assert refused["answer"] == REFUSAL_MESSAGE and not refused["answered"]
+    finally:
+        server.should_exit = True
+        thread.join(timeout=START_TIMEOUT)
+    assert not thread.is_alive()
+
+
+def test_loopback_is_the_default_and_other_hosts_need_consent(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    assert is_loopback("127.0.0.1") and is_loopback("::1") and is_loopback("localhost")
+    assert not is_loopback("0.0.0.0") and not is_loopback("example.org")
+    with pytest.raises(ConfigError, match="allow_remote"):
+        build_server(ServiceConfig(), "0.0.0.0", 0)
+    build_server(ServiceConfig(), "0.0.0.0", 0, allow_remote=True)  # built, never started
+    assert "WITHOUT a token" in capsys.readouterr().err
+    build_server(ServiceConfig(token=TOKEN), "0.0.0.0", 0, allow_remote=True)
+    assert "with a bearer token" in capsys.readouterr().err
+    with pytest.raises(ConfigError, match="port"):
+        build_server(ServiceConfig(), "127.0.0.1", 70000)
