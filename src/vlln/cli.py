@@ -184,6 +184,21 @@ def _oracle_serve(args: argparse.Namespace) -> int:
     return 0
 
 
+def _oracle_classify_report(args: argparse.Namespace) -> int:
+    from vlln.oracle.question_set import classifier_report
+
+    accuracy, table = classifier_report(args.questions)
+    print(f"accuracy: {accuracy:.1%}\n\n{table}")
+    return 0
+
+
+def _bench_oracle(args: argparse.Namespace) -> int:
+    from vlln.bench.oracle import run_oracle_benchmark
+
+    run_oracle_benchmark(seed=args.seed, questions=args.questions, as_json=args.json)
+    return 0
+
+
 def _add_oracle_commands(commands: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     oracle = commands.add_parser("oracle", help="the oracle").add_subparsers(
         dest="oracle_command", required=True
@@ -204,6 +219,11 @@ def _add_oracle_commands(commands: argparse._SubParsersAction[argparse.ArgumentP
     serve.add_argument("--max-sessions", type=int, default=64, help="sessions kept (default 64)")
     serve.add_argument("--oracle-seed", type=int, default=0, help="paraphrase seed (default 0)")
     serve.set_defaults(handler=_oracle_serve)
+    report = oracle.add_parser(
+        "classify-report", help="accuracy and confusion matrix of the offline classifier"
+    )
+    report.add_argument("--questions", help="a JSON Lines question set (default: held-out set)")
+    report.set_defaults(handler=_oracle_classify_report)
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -240,6 +260,13 @@ def build_parser() -> argparse.ArgumentParser:
     bench_eval.add_argument("--json", action="store_true", help="print one JSON object per line")
     bench_eval.add_argument("--cache-dir", help="where built splits are kept")
     bench_eval.set_defaults(handler=_bench_eval)
+    bench_oracle = bench.add_parser("oracle", help="answer latency of the offline oracle")
+    bench_oracle.add_argument("--seed", type=int, default=0, help="house seed (default 0)")
+    bench_oracle.add_argument(
+        "--questions", type=int, default=2000, help="questions (default 2000)"
+    )
+    bench_oracle.add_argument("--json", action="store_true", help="print one JSON object per line")
+    bench_oracle.set_defaults(handler=_bench_oracle)
 
     demo = commands.add_parser("demo", help="the main job on the built-in houses")
     demo.add_argument("--out", default="out/demo", help="output directory (default out/demo)")

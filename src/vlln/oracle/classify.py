@@ -145,7 +145,11 @@ _RULES: tuple[tuple[float, _Topic, str], ...] = (
         r"|have i found|did i find|i spotted|found it|right here|over here|before me|i got it"
         r"|i am at|i reached|have i reached|did i reach)\b",
     ),
-    (4, _D, r"^is it (this|that|these|the one)\b|^is .* the (target|goal|one|right one)$"),
+    (4, _D, r"^is it (this|that|these|the one)\b"),
+    (5, _D, r"^is .* the ((right|correct|same|target) )?(target|goal|one|object)$"),
+    (4, _D, r"\bis (this|that|it) (the )?(target|goal|one|right one|correct one)\b"),
+    (4, _D, r"^is it the \w+ (next to|in front of|near|beside|by) me\b"),
+    (4, _D, r"^(could|can|might|would) (this|that|it) be (the|it)\b"),
     (3, _D, r"\b(is|are) (this|that) it\b|\b(this|that) (is|was) (it|the one)\b"),
     (3, _D, r"\bis (this|that|it) what you\b"),
     (
@@ -154,7 +158,7 @@ _RULES: tuple[tuple[float, _Topic, str], ...] = (
         r"\byou (want|mean|meant|described|are describing|are talking about|are thinking of"
         r"|have in mind)\b",
     ),
-    (3, _D, r"^(this|that|these|those) (?!(way|room|direction|side)$)\w+$"),
+    (3, _D, r"^(this|that|these|those) (?!(way|room|direction|side)\b)\w+( right| correct| yes)?$"),
     (3, _D, r"\bam i (looking at|in front of|facing|at|next to) (it|the (right|correct|target))"),
     # Route, orientation: the direction of the target.
     (4, _O, r"\b(which|what) direction\b"),
@@ -162,11 +166,15 @@ _RULES: tuple[tuple[float, _Topic, str], ...] = (
     (3, _O, r"\bwhich (way|side)\b|\bpoint (me|at|to)\b|\b(should i|do i|must i) face\b"),
     (3, _O, r"\b(on|to) (my|the|your) (left|right)\b"),
     (2, _O, r"\b(heading|bearing|angle|orientation|degrees)\b|\bam i facing\b"),
+    (5, _O, r"\b(relative|compared) to (me|where i am|my)\b"),
+    (4, _O, r"\b(in front|ahead) (of me )?or behind\b|\bbehind (me )?or (in front|ahead)\b"),
+    (3, _O, r"\bin the direction (i am|of)\b"),
     (5, _O, r"\bwhere is (it|the \w+) (from here|from me|relative|compared|in relation)"),
     (
         2,
         _O,
-        r"^(is|are) (it|they|the \w+) (ahead|behind|in front|straight|left|right"
+        r"^(is|are) (it|they|the \w+) ((somewhere|maybe|probably|still) )?"
+        r"(ahead|behind|in front|straight|left|right"
         r"|(to|on) (the|my|your) (left|right))\b",
     ),
     # Route, path: a way through the house.
@@ -185,8 +193,10 @@ _RULES: tuple[tuple[float, _Topic, str], ...] = (
         r"(go|head|walk|move|proceed"
         r"|search|look|explore|turn)\b",
     ),
-    (3, _P, r"\b(guide|lead|take|show|direct|bring|help) (me|us)\b"),
+    (3, _P, r"\b(guide|lead|take|show|direct|bring|help|navigate|walk|steer) (me|us)\b"),
     (2, _P, r"\b(get|go) there\b|\bway (to|there)\b"),
+    (4, _P, r"\b(the|a|best|quickest|shortest|fastest) way (out|to|toward|into|through)\b"),
+    (4, _P, r"\bstep by step\b"),
     (
         5,
         _P,
@@ -211,6 +221,7 @@ _RULES: tuple[tuple[float, _Topic, str], ...] = (
     (4, _S, r"\bnext (step|move|action|turn)\b"),
     (2, _S, r"\b(turn|go|move|head|walk) (left|right|forward|straight|back|backward|ahead)\b"),
     (2, _S, r"\b(keep going|stop here|go on|continue)\b"),
+    (2, _S, r"^(should|do|shall|must|can) (i|we) .*\b(left|right)\b"),
     (3, _S, r"\b(upstairs|downstairs)\b|^(left|right|straight|forward|back|stop)$"),
     # Attribute: facts about the target.
     (4, _A.COLOR, r"\b(color|colors|colored|hue)\b"),
@@ -222,8 +233,10 @@ _RULES: tuple[tuple[float, _Topic, str], ...] = (
         4,
         _A.TEXTURE,
         r"\b(texture|textured|feel|feels|surface|smooth|rough|soft|glossy|pattern|patterned"
-        r"|finish)\b",
+        r"|finish|striped|stripes|spotted|checkered|floral|shiny|matte)\b",
     ),
+    (3, _A.DESCRIPTION, r"^(does|do) (it|they|the \w+) have\b"),
+    (2, _A.CATEGORY, r"\b(is|are) (it|they|the \w+) (a|an) "),
     (4, _A.SHAPE, r"\b(shape|shaped|form|round|square|rectangular|oval|circular)\b"),
     (5, _A.SIZE, r"\bhow (big|large|small|tall|high|wide|long|heavy)\b"),
     (
@@ -232,13 +245,15 @@ _RULES: tuple[tuple[float, _Topic, str], ...] = (
         r"\b(size|sized|dimensions|height|width|bigger|larger|smaller|big|large|small|tall)\b",
     ),
     (4, _A.ROOM, r"\b(which|what) (room|part of the house|area|region)\b|\bsame room\b"),
-    (3, _A.ROOM, rf"\bin (the|a|an|this|my|our|that|same) ({_ROOMS})\b"),
+    (3, _A.ROOM, rf"\bin (the|a|an|this|my|our|that|same) (\w+ )?({_ROOMS})\b"),
+    (7, _A.ROOM, r"^(is|are) (it|they|the \w+) in (the|this|my|our|the same|same) room\b"),
     (
         3,
         _A.LOCATION,
         r"^(so |and )?where (\w+ )?(is|are|was) (it|the|they|this|that|your|target)\b",
     ),
     (1, _A.LOCATION, r"^where\b"),
+    (3, _A.LOCATION, r"\bwhere (it|they|the \w+) (is|are|hangs|sits|stands|lies|hang|sit|stand)\b"),
     (5, _A.LOCATION, r"\bwhere (can|could|do|would|might|will|should) (i|we) find\b"),
     (3, _A.LOCATION, r"\b(can|could|do|would|might|will|should) (i|we) find (it|the|them)\b"),
     (3, _A.LOCATION, r"\b(located|location|placed|kept|stored|situated|position)\b"),
@@ -267,23 +282,41 @@ _RULES: tuple[tuple[float, _Topic, str], ...] = (
         r"^(is|are) (it|they|the \w+) (on|sitting on|standing on|resting on|lying on|placed on"
         r"|hanging on|mounted on|on top of) (the|a|an|some|top of) (?!(left|right|way|other)\b)",
     ),
-    (5, _A.CATEGORY, r"\bwhat (kind|type|sort|style|model|brand)\b|\b(category|categories)\b"),
-    (3, _A.CATEGORY, r"^what is (it|the target|the goal|the object)$|\bwhat exactly\b"),
+    (
+        5,
+        _A.CATEGORY,
+        r"\b(what|which) (kind|type|sort|style|model|brand)\b|\b(category|categories)\b",
+    ),
+    (
+        3,
+        _A.CATEGORY,
+        r"^what (is|are) (it|they|the (target|goal)( object)?|the object)$|\bwhat exactly\b",
+    ),
     (
         4,
         _A.DESCRIPTION,
         r"\b(describe|description|appearance|details|detail|features|characteristics"
         r"|distinctive|distinguishing|special|unique|identify|recognize|distinguish)\b",
     ),
-    (4, _A.DESCRIPTION, r"\blooks? like\b|\btell me (more )?about\b|\bwhat do you know\b"),
-    (4, _A.DESCRIPTION, r"\bhow (it|they|the \w+) looks?\b"),
+    (
+        4,
+        _A.DESCRIPTION,
+        r"\blooks? like\b|\btell me (more |something |anything |everything )?about\b"
+        r"|\b(what|everything|anything|all) you know\b|\bstands? out\b",
+    ),
+    (4, _A.DESCRIPTION, r"\bhow ((does|do|did) )?(it|they|the \w+) looks?\b"),
+    (5, _A.DESCRIPTION, r"\bwhat (object|thing|item) (am i|are we|should i|do i|must i)\b"),
     (
         4,
         _A.DESCRIPTION,
         r"\b(more|any|some|other|a|another) (info|information|hints?|clues?|details)\b",
     ),
     (5, _A.DESCRIPTION, r"\bwhat (am i|are we|are you) (looking|searching) for\b"),
-    (5, _A.DESCRIPTION, r"\bwhat (should|do|must|shall) (i|we) (look|search) for\b"),
+    (
+        5,
+        _A.DESCRIPTION,
+        r"\bwhat (should|do|must|shall) (i|we) (be )?(look|looking|search|searching) for\b",
+    ),
     (
         4,
         _A.DESCRIPTION,
@@ -295,7 +328,8 @@ _RULES: tuple[tuple[float, _Topic, str], ...] = (
     (
         7,
         _X.AGENT_ROOM,
-        rf"\bwhere am i\b|^(is this|is that|are we in|is here) (the |a )?({_ROOMS})$",
+        rf"\bwhere am i\b|\bwhere are we\b(?! (going|headed|heading))"
+        rf"|^(is this|is that|are we in|is here|is this room|is this place) (the |a )?({_ROOMS})$",
     ),
     (6, _X.AGENT_ROOM, r"\b(am i|are we) in (the|a|an)\b|\b(room|place) (i am|we are) in\b"),
     (
@@ -319,6 +353,7 @@ _RULES: tuple[tuple[float, _Topic, str], ...] = (
     (5, _X.PROGRESS, r"\b(almost|nearly) there\b|\bgetting (closer|warmer|colder|further|near)"),
     (5, _X.PROGRESS, r"\b(right|correct) track\b"),
     (5, _X.VISIBILITY, r"\bcan (i|you) see (it|the|them|this)\b|\bdo you see\b"),
+    (5, _X.VISIBILITY, r"\b(anywhere|somewhere) (i can see|in sight|visible)\b|\bwhat i see\b"),
     (8, _X.UNKNOWN, r"\byour (favorite|name|age|opinion)\b|\bwho are you\b"),
     (5, _X.VISIBILITY, r"\b(visible|in view|in sight|in my view|on screen|in the (picture|image))"),
 )
@@ -344,7 +379,7 @@ def classify_question(text: str) -> QuestionType:
 
 def analyse_question(text: str) -> QuestionAnalysis:
     """Type, topic and mentioned values of a question, by weighted phrase patterns."""
-    normalised = _FILLER.sub("", normalise(text)).strip()
+    normalised = _THE_WANTED.sub(r"the target \1", _FILLER.sub("", normalise(text)).strip())
     type_scores = dict.fromkeys(_TYPE_ORDER, 0.0)
     topic_scores: dict[_Topic, float] = {}
     for pattern, weight, topic in _COMPILED:
@@ -380,6 +415,11 @@ _FILLER = re.compile(
     r"^((so|and|ok|okay|well|then|hmm|um|uh|hey|hi|please|sorry|oh|alright|wait|excuse me"
     r"|quick question|one question|a question|question) )+"
     r"|( (please|thanks|thank you|then|now please))+$"
+)
+# "the chair you want" names the target itself, not an object in view.
+_THE_WANTED = re.compile(
+    r"\bthe (?!one\b)(\w+) (?:that |which )?(?:you want|you mean|i need|i want|i am looking for"
+    r"|we are looking for|you are looking for|i need to find)\b"
 )
 _THIS_ROOM = re.compile(r"\b(this|same|current) room\b|\broom (i am|we are) in\b")
 _TopicT = TypeVar("_TopicT", RouteKind, AttributeTopic, OtherTopic)

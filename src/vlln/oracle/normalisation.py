@@ -41,6 +41,8 @@ _CONTRACTIONS: dict[str, str] = {
     "shouldn't": "should not",
     "let's": "let us",
     "whats": "what is",
+    "way's": "way is",
+    "one's": "one is",
     "infront": "in front",
     "wheres": "where is",
     "thats": "that is",
@@ -69,6 +71,8 @@ _CHAT_SPELLINGS: dict[str, str] = {
     "thx": "thanks",
     "tat": "that",
     "colour": "color",
+    "recognise": "recognize",
+    "whereabouts": "where",
     "colours": "colors",
     "coloured": "colored",
     "grey": "gray",
@@ -132,7 +136,7 @@ _KNOWN_WORDS: frozenset[str] = _KEYWORDS | frozenset(
     want need know think see saw seen looked find finding give tell told say said mean
     meant wait stay take come came try again ok okay hi hello hey thanks thank sorry
     good great fine well bad best better need help sure last first second third side sides
-    described describing describes question quick
+    described describing describes question quick roughly reached
     book books look lamp lamps lamp cup cups bed beds chair chairs sofa sofas desk desks
     rug rugs tv plant plants vase vases bowl bowls plate plates towel towels mirror mirrors
     picture pictures clock clocks pillow pillows stool stools bench benches couch couches

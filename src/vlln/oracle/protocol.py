@@ -40,8 +40,16 @@ class Question:
 
 @dataclass(frozen=True)
 class Reply:
+    """An answer and how it was made: by which backend, how long the model took, the tokens
+    it spent, and whether offline logic stood in for a model call that failed."""
+
     answer: str
     question_type: QuestionType
+    backend: str = "rules"
+    latency_ms: float = 0.0
+    prompt_tokens: int = 0
+    completion_tokens: int = 0
+    fallback: bool = False
 
 
 class Oracle(Protocol):

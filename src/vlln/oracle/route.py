@@ -128,10 +128,15 @@ def answer_path(knowledge: EpisodeKnowledge, state: AgentState) -> str:
 def describe_path(knowledge: EpisodeKnowledge, state: AgentState) -> PathDescription:
     """The turns and room entries of the first :data:`ROUTE_HORIZON` metres of the path."""
     x, _, z = state.position
-    path = np.asarray(knowledge.field.shortest_path(x, z), np.float64)
+    path = np.asarray(knowledge.field.shortest_path(x, z, ROUTE_HORIZON), np.float64)
     legs = np.linalg.norm(np.diff(path, axis=0), axis=1)
     arc = np.concatenate([[0.0], np.cumsum(legs)])
-    total = float(arc[-1])
+    # A prefix was traced when the way is long: the rest is the geodesic distance left.
+    total = (
+        float(arc[-1])
+        if arc[-1] <= ROUTE_HORIZON
+        else max(float(arc[-1]), knowledge.geodesic(x, z))
+    )
     cut = _cut(path, arc, ROUTE_HORIZON)
     arc_cut = [*arc[: len(cut) - 1].tolist(), min(total, ROUTE_HORIZON)]
     waypoints, where = _waypoints(cut, arc_cut)

@@ -26,6 +26,8 @@ from vlln.sim.navgrid import NavGrid, Point2
 # Round-up that covers floating-point summation error along a path (< 1e-13 relative for
 # paths of thousands of edges), so distances never fall below the straight line by rounding.
 _ROUND_UP = 1.0 + 1e-9
+# A traced prefix is this much longer than asked (plus 1 m) before string pulling.
+_PREFIX_MARGIN = 1.2
 
 
 class GeodesicField:
@@ -87,11 +89,13 @@ class GeodesicField:
     def is_reachable(self, x: float, z: float) -> bool:
         return self.distance(x, z) < math.inf
 
-    def shortest_path(self, x: float, z: float) -> list[Point2]:
+    def shortest_path(self, x: float, z: float, max_length: float | None = None) -> list[Point2]:
         """Polyline from the point to the nearest goal along navigable cells.
 
         The cell path from Dijkstra is shortened by line of sight (string pulling): a corner
-        is kept only where the straight segment past it would leave the navigable area.
+        is kept only where the straight segment past it would leave the navigable area. With
+        ``max_length`` only a prefix at least that long is traced (the whole path when it is
+        shorter), for callers that describe the first metres of a long way.
         """
         if not self.is_reachable(x, z):
             raise NavigationError(
@@ -101,9 +105,14 @@ class GeodesicField:
         node = _node(self.grid, x, z)
         chain = [node]
         predecessors = self._predecessors
-        while predecessors[node] >= 0:
-            node = int(predecessors[node])
+        # String pulling shortens a cell chain by a few per cent: trace a safe margin more.
+        limit = math.inf if max_length is None else max_length * _PREFIX_MARGIN + 1.0
+        cols, size, travelled = self._cols, self._size, 0.0
+        while predecessors[node] >= 0 and travelled < limit:
+            previous, node = node, int(predecessors[node])
             chain.append(node)
+            dr, dc = node // cols - previous // cols, node % cols - previous % cols
+            travelled += size * math.hypot(dr, dc)
         points = [(x, z), *(self._centre(n) for n in _turning_nodes(chain, self._cols))]
         return _pull_string(self.grid, points)
 

@@ -220,13 +220,24 @@ class NavigationEnv:
         self._actions.append("TALK")
         budget = self.config.dialog_budget if self.config.dialog_enabled else 0
         if self._questions_answered >= budget or self.oracle is None:
-            reply_text, kind, answered = REFUSAL_MESSAGE, "refused", False
+            turn = DialogTurn(self._steps, text, REFUSAL_MESSAGE, "refused", False, backend="none")
         else:
             reply = self.oracle.answer(Question(text, self.sim.state, self._frame))
-            reply_text, kind, answered = reply.answer, reply.question_type.value, True
+            turn = DialogTurn(
+                self._steps,
+                text,
+                reply.answer,
+                reply.question_type.value,
+                True,
+                backend=reply.backend,
+                latency_ms=reply.latency_ms,
+                prompt_tokens=reply.prompt_tokens,
+                completion_tokens=reply.completion_tokens,
+                fallback=reply.fallback,
+            )
             self._questions_answered += 1
-        self._answer = reply_text
-        self._dialog.append(DialogTurn(self._steps, text, reply_text, kind, answered))
+        self._answer = turn.answer
+        self._dialog.append(turn)
 
     def _check_caps(self) -> None:
         if self._end is not None:

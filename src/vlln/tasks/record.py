@@ -34,6 +34,12 @@ class DialogTurn:
     answer: str
     question_type: str  # attribute | route | disambiguation | other | refused
     answered: bool  # False once the dialog budget is spent
+    # How the oracle answered (records written before these fields read as the rule oracle):
+    backend: str = "rules"  # "rules", "offline", "openai:<model>@<host>"; "none" when refused
+    latency_ms: float = 0.0  # time the oracle's language model took
+    prompt_tokens: int = 0
+    completion_tokens: int = 0
+    fallback: bool = False  # offline logic stood in for a failed model call
 
 
 @dataclass(frozen=True)

@@ -11,8 +11,9 @@ five failures partition all episodes:
 3. **stop_failure** (ST) as well -- stopped farther away while the object it stopped at is a
    goal instance (``stop_instance_id in target_ids``; the environment records a visible goal
    within 1.5 m first, then a same-category instance, then the nearest visible object): the
-   right object was found and the agent stopped too early. For ObjectNav every instance of the category is a goal,
-   so a stop at any instance of the category lands here or in rules 1-2, never in rule 4.
+   right object was found and the agent stopped too early. For ObjectNav every instance of
+   the category is a goal, so a stop at any instance of the category lands here or in rules
+   1-2, never in rule 4.
 4. **ambiguous_detection** (AD) -- stopped facing an instance of the target category that is
    not a goal: a same-category distractor (IIGN/IGN only, see rule 3).
 5. **wrong_detection** (WD) -- stopped otherwise: facing an object of another category, or

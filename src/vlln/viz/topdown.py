@@ -9,14 +9,14 @@ from pathlib import Path
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-from matplotlib.axes import Axes  # noqa: E402
-from matplotlib.figure import Figure  # noqa: E402
-from matplotlib.patches import Polygon, Rectangle  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.axes import Axes
+from matplotlib.figure import Figure
+from matplotlib.patches import Polygon, Rectangle
 
-from vlln.sim.navgrid import NavGrid  # noqa: E402
-from vlln.world.model import House  # noqa: E402
+from vlln.sim.navgrid import NavGrid
+from vlln.world.model import House
 
 ROOM_COLORS = {
     "living room": "#f6e7c8",

@@ -57,9 +57,7 @@ class Box3:
 
     def distance_to(self, other: Box3) -> float:
         """Euclidean gap between the two boxes (0 when they touch or overlap)."""
-        gap = [
-            max(0.0, other.min[i] - self.max[i], self.min[i] - other.max[i]) for i in range(3)
-        ]
+        gap = [max(0.0, other.min[i] - self.max[i], self.min[i] - other.max[i]) for i in range(3)]
         return float(sum(g * g for g in gap) ** 0.5)
 
 

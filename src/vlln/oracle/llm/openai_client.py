@@ -1,0 +1,286 @@
+"""A client for any server speaking OpenAI's chat-completions format: GPT-4o, vLLM, Ollama.
+
+``POST {base_url}/chat/completions`` with the model, the messages, ``max_tokens`` and
+``temperature``; nothing vendor-specific beyond that format. The API key comes from an
+environment variable (its name is a setting) and travels only as a Bearer header over HTTPS;
+plain HTTP is accepted for loopback hosts alone (a local vLLM or Ollama), so a key never
+crosses a network in clear. The key is never logged and is masked in error messages.
+
+Timeouts, connection errors, 429 and 5xx answers are retried with exponential back-off and
+jitter drawn from the caller's generator; a 429's ``Retry-After`` is waited out (up to the
+back-off cap, so a server cannot stall a run). Other 4xx answers are not retried. Replies
+that are not chat completions raise :class:`LanguageModelReplyError`. Completions are cached
+on disk when a cache folder is set, and every request is added to a :class:`UsageLedger`.
+"""
+
+from __future__ import annotations
+
+import email.utils
+import ipaddress
+import logging
+import math
+import os
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import httpx
+import numpy as np
+
+from vlln.errors import ConfigError
+from vlln.oracle.llm.accounting import Pricing, UsageLedger
+from vlln.oracle.llm.cache import ResponseCache, cache_key
+from vlln.oracle.llm.protocol import (
+    Completion,
+    LanguageModelError,
+    LanguageModelReplyError,
+    LanguageModelRequestError,
+    LanguageModelUnavailableError,
+    Message,
+    Usage,
+)
+
+logger = logging.getLogger(__name__)
+
+_LOOPBACK_NAMES = ("localhost",)
+_ERROR_EXCERPT = 300  # characters of a server's error body quoted in an exception
+
+
+@dataclass(frozen=True)
+class OpenAISettings:
+    """Where the model is served and how patiently to talk to it."""
+
+    model: str
+    base_url: str = "https://api.openai.com/v1"
+    api_key_env: str = "OPENAI_API_KEY"  # unset or empty: no Authorization header
+    timeout_s: float = 30.0
+    max_retries: int = 4  # retries after the first attempt
+    backoff_base_s: float = 0.5  # first back-off; doubles on each retry
+    backoff_max_s: float = 30.0  # cap of one wait, Retry-After included
+    pricing: Pricing = field(default_factory=Pricing)
+    cache_dir: Path | None = None  # None: no disk cache
+
+    def __post_init__(self) -> None:
+        if not self.model.strip():
+            raise ConfigError("model must name the served model, e.g. 'gpt-4o'")
+        check_base_url(self.base_url)
+        if not self.api_key_env.isidentifier():
+            raise ConfigError(
+                f"api_key_env must be an environment variable name, got {self.api_key_env!r}"
+            )
+        if not (math.isfinite(self.timeout_s) and self.timeout_s > 0.0):
+            raise ConfigError(f"timeout_s must be positive seconds, got {self.timeout_s!r}")
+        if isinstance(self.max_retries, bool) or self.max_retries < 0:
+            raise ConfigError(f"max_retries must be a whole number >= 0, got {self.max_retries!r}")
+        if not (0.0 <= self.backoff_base_s <= self.backoff_max_s < math.inf):
+            raise ConfigError(
+                "back-off needs 0 <= backoff_base_s <= backoff_max_s (finite seconds), got "
+                f"{self.backoff_base_s!r} and {self.backoff_max_s!r}"
+            )
+
+
+def check_base_url(base_url: str) -> None:
+    """Raise :class:`ConfigError` unless the URL is HTTPS, or HTTP to a loopback host."""
+    try:
+        url = httpx.URL(base_url)
+    except (httpx.InvalidURL, TypeError) as error:
+        raise ConfigError(f"base_url {base_url!r} is not a URL: {error}") from None
+    if url.scheme == "https" and url.host:
+        return
+    if url.scheme == "http" and _is_loopback(url.host):
+        return
+    raise ConfigError(
+        f"base_url {base_url!r} must use https:// (plain http:// is only allowed for "
+        "localhost, 127.0.0.0/8 and ::1, where the key never leaves the machine)"
+    )
+
+
+def _is_loopback(host: str) -> bool:
+    if host.lower() in _LOOPBACK_NAMES:
+        return True
+    try:
+        return ipaddress.ip_address(host.strip("[]")).is_loopback
+    except ValueError:
+        return False
+
+
+class OpenAIChatClient:
+    """Chat completions over HTTP; one connection pool, reused across requests.
+
+    ``rng`` draws the back-off jitter, so retry timing is reproducible given the seed.
+    """
+
+    def __init__(
+        self,
+        settings: OpenAISettings,
+        *,
+        rng: np.random.Generator,
+        ledger: UsageLedger | None = None,
+    ) -> None:
+        self.settings = settings
+        self.rng = rng
+        self.ledger = ledger if ledger is not None else UsageLedger()
+        self.cache = ResponseCache(settings.cache_dir) if settings.cache_dir is not None else None
+        self.backend = f"openai:{settings.model}@{httpx.URL(settings.base_url).host}"
+        self._url = settings.base_url.rstrip("/") + "/chat/completions"
+        self._api_key = os.environ.get(settings.api_key_env, "")
+        headers = {"Content-Type": "application/json"}
+        if self._api_key:
+            headers["Authorization"] = f"Bearer {self._api_key}"
+        self._http = httpx.Client(headers=headers, timeout=settings.timeout_s)
+
+    def __repr__(self) -> str:
+        key = "set" if self._api_key else "not set"
+        return f"OpenAIChatClient({self.backend!r}, key from ${self.settings.api_key_env}: {key})"
+
+    def close(self) -> None:
+        self._http.close()
+
+    def __enter__(self) -> OpenAIChatClient:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    def complete(
+        self, messages: list[Message], *, max_tokens: int, temperature: float
+    ) -> Completion:
+        """The model's reply to ``messages``, from the cache when it was asked before."""
+        if isinstance(max_tokens, bool) or max_tokens < 1:
+            raise ConfigError(f"max_tokens must be a whole number >= 1, got {max_tokens!r}")
+        if not (0.0 <= temperature <= 2.0):
+            raise ConfigError(f"temperature must be in [0, 2], got {temperature!r}")
+        params = {"max_tokens": max_tokens, "temperature": temperature}
+        key = cache_key(self.settings.base_url, self.settings.model, messages, params)
+        if self.cache is not None:
+            text = self.cache.get(key)
+            if text is not None:
+                self.ledger.record_cached()
+                return Completion(text, Usage(), self.backend, cached=True)
+        body = {"model": self.settings.model, "messages": [m.to_json() for m in messages]}
+        start = time.perf_counter()
+        try:
+            text, usage = self._request({**body, **params})
+        except LanguageModelError as error:
+            self.ledger.record_failure()
+            error.latency_ms = (time.perf_counter() - start) * 1000.0
+            raise
+        latency_ms = (time.perf_counter() - start) * 1000.0
+        self.ledger.record(usage, self.settings.pricing.cost(usage))
+        if self.cache is not None:
+            self.cache.put(key, text)
+        return Completion(text, usage, self.backend, cached=False, latency_ms=latency_ms)
+
+    def _request(self, body: dict[str, Any]) -> tuple[str, Usage]:
+        """One request with its retries."""
+        attempts = self.settings.max_retries + 1
+        problem = ""
+        retry_after: float | None = None
+        for attempt in range(attempts):
+            if attempt:
+                self._wait(attempt - 1, retry_after, problem)
+            try:
+                response = self._http.post(self._url, json=body)
+            except httpx.TransportError as error:  # timeouts and connection errors
+                problem = f"{type(error).__name__}: {self._masked(str(error))}"
+                retry_after = None
+                continue
+            status = response.status_code
+            if status == 429 or status >= 500:
+                problem = f"HTTP {status}: {self._excerpt(response)}"
+                retry_after = _retry_after_s(response) if status == 429 else None
+                continue
+            if status >= 400:
+                key_env = self.settings.api_key_env
+                hint = f"; check the key in ${key_env}" if status in (401, 403) else ""
+                raise LanguageModelRequestError(
+                    f"{self.backend} refused the request with HTTP {status}{hint}: "
+                    f"{self._excerpt(response)}",
+                    status,
+                )
+            return _parse_completion(response, self.backend)
+        raise LanguageModelUnavailableError(
+            f"{self.backend} gave no completion in {attempts} attempts (last: {problem}); check "
+            "that the server is up and base_url is right, or raise timeout_s or max_retries"
+        )
+
+    def _wait(self, attempt: int, retry_after: float | None, problem: str) -> None:
+        settings = self.settings
+        cap = min(settings.backoff_max_s, settings.backoff_base_s * 2.0**attempt)
+        delay = cap * (0.5 + 0.5 * float(self.rng.random()))  # "equal jitter"
+        if retry_after is not None:
+            delay = max(delay, min(retry_after, settings.backoff_max_s))
+        logger.info(
+            "%s: %s; retry %d of %d in %.3f s",
+            self.backend,
+            problem,
+            attempt + 1,
+            settings.max_retries,
+            delay,
+        )
+        time.sleep(delay)
+
+    def _masked(self, text: str) -> str:
+        return text.replace(self._api_key, "***") if self._api_key else text
+
+    def _excerpt(self, response: httpx.Response) -> str:
+        return self._masked(response.text[:_ERROR_EXCERPT]) or "(empty body)"
+
+
+def _retry_after_s(response: httpx.Response) -> float | None:
+    """Seconds from a ``Retry-After`` header (delta-seconds or an HTTP date), if any."""
+    value = response.headers.get("Retry-After")
+    if value is None:
+        return None
+    try:
+        seconds = float(value)
+    except ValueError:
+        try:
+            when = email.utils.parsedate_to_datetime(value)
+        except (TypeError, ValueError):
+            return None
+        seconds = when.timestamp() - time.time()
+    return max(0.0, seconds) if math.isfinite(seconds) else None
+
+
+def _parse_completion(response: httpx.Response, backend: str) -> tuple[str, Usage]:
+    """The first choice's text and the usage, or :class:`LanguageModelReplyError`."""
+    try:
+        data = response.json()
+    except ValueError:
+        raise LanguageModelReplyError(
+            f"{backend} answered HTTP {response.status_code} with a body that is not JSON: "
+            f"{response.text[:_ERROR_EXCERPT]!r}"
+        ) from None
+    if not isinstance(data, dict):
+        raise LanguageModelReplyError(f"{backend} answered JSON that is not an object")
+    choices = data.get("choices")
+    if not isinstance(choices, list) or not choices:
+        raise LanguageModelReplyError(
+            f"{backend} answered without 'choices'; is base_url a chat-completions server?"
+        )
+    first = choices[0]
+    message = first.get("message") if isinstance(first, dict) else None
+    text = message.get("content") if isinstance(message, dict) else None
+    if not isinstance(text, str):
+        raise LanguageModelReplyError(
+            f"{backend} answered a choice without text in message.content: {str(first)[:200]}"
+        )
+    return text, _parse_usage(data.get("usage"), backend)
+
+
+def _parse_usage(usage: object, backend: str) -> Usage:
+    if usage is None:
+        return Usage()
+    if not isinstance(usage, dict):
+        raise LanguageModelReplyError(f"{backend} answered a 'usage' that is not an object")
+    counts = []
+    for name in ("prompt_tokens", "completion_tokens"):
+        value = usage.get(name, 0)
+        if isinstance(value, bool) or not isinstance(value, int) or value < 0:
+            raise LanguageModelReplyError(
+                f"{backend} answered usage.{name} = {value!r}; expected a whole number >= 0"
+            )
+        counts.append(value)
+    return Usage(counts[0], counts[1])

@@ -1,0 +1,208 @@
+"""The paper's oracle with a language model: the model classifies and words, rules ground.
+
+Per question the model is called at most twice: once with the paper's prompt 1 to classify
+it, and once with prompt 2, 3 or 4 to word the answer from ground-truth facts that the rule
+oracle's logic computes (the target's metadata, the heading, the next 4 m of path, the next
+step, whether the target is in view), together with the rule oracle's own answer to reword.
+Disambiguation stays deterministic and needs no second call, as in the paper.
+
+Failures never stop an episode: a classification reply that names no type is replaced by the
+offline classifier's type, and a call that fails after the client's retries is replaced by
+the rule oracle's answer (when the server cannot be reached at all, the second call is not
+tried); the reply then says ``fallback=True``. With the
+:class:`~vlln.oracle.llm.offline.OfflineLanguageModel` the answers are the rule oracle's, word
+for word.
+"""
+
+from __future__ import annotations
+
+import logging
+import zlib
+from dataclasses import dataclass
+
+import numpy as np
+
+from vlln.errors import ConfigError
+from vlln.oracle.disambiguation import answer_disambiguation
+from vlln.oracle.knowledge import EpisodeKnowledge, HouseIndex
+from vlln.oracle.llm.facts import all_facts, goal_information, route_facts
+from vlln.oracle.llm.prompts import (
+    ATTRIBUTE_PROMPT,
+    OTHER_PROMPT,
+    ROUTE_PROMPT,
+    answer_messages,
+    classification_messages,
+    parse_question_type,
+    strip_thinking,
+)
+from vlln.oracle.llm.protocol import (
+    Completion,
+    LanguageModel,
+    LanguageModelError,
+    LanguageModelUnavailableError,
+    Message,
+)
+from vlln.oracle.protocol import EpisodeContext, Question, QuestionType, Reply
+from vlln.oracle.rule_oracle import RuleOracle
+from vlln.sim.follower import GreedyFollower
+
+logger = logging.getLogger(__name__)
+
+
+@dataclass
+class _Spend:
+    """What the model calls for one question cost, and whether offline logic stood in."""
+
+    latency_ms: float = 0.0
+    prompt_tokens: int = 0
+    completion_tokens: int = 0
+    fallback: bool = False
+    unavailable: bool = False  # a call failed for want of a server, not for a bad reply
+
+    def add(self, completion: Completion) -> None:
+        self.latency_ms += completion.latency_ms
+        self.prompt_tokens += completion.usage.prompt_tokens
+        self.completion_tokens += completion.usage.completion_tokens
+
+    def failed(self, error: LanguageModelError) -> None:
+        self.latency_ms += error.latency_ms
+        self.fallback = True
+        self.unavailable |= isinstance(error, LanguageModelUnavailableError)
+
+
+class LLMOracle:
+    """An :class:`~vlln.oracle.protocol.Oracle` that asks ``model`` to classify and word.
+
+    ``fallback`` is the rule oracle that grounds every answer and stands in for failed calls
+    (default: ``RuleOracle(seed)``); ``seed`` must match its seed when both are given.
+    """
+
+    def __init__(
+        self,
+        model: LanguageModel,
+        seed: int = 0,
+        fallback: RuleOracle | None = None,
+        *,
+        max_tokens: int = 256,
+        temperature: float = 0.0,
+    ) -> None:
+        if fallback is None:
+            fallback = RuleOracle(seed)
+        elif fallback.seed != seed:
+            raise ConfigError(
+                f"seed {seed!r} differs from the fallback oracle's seed {fallback.seed!r}; "
+                "pass the same seed or leave fallback out"
+            )
+        if isinstance(max_tokens, bool) or not isinstance(max_tokens, int) or max_tokens < 1:
+            raise ConfigError(f"max_tokens must be a whole number >= 1, got {max_tokens!r}")
+        if not 0.0 <= temperature <= 2.0:
+            raise ConfigError(f"temperature must be in [0, 2], got {temperature!r}")
+        self.model = model
+        self.seed = seed
+        self.fallback = fallback
+        self.max_tokens = max_tokens
+        self.temperature = float(temperature)
+        self._index: HouseIndex | None = None
+        self._knowledge: EpisodeKnowledge | None = None
+
+    def start(self, context: EpisodeContext) -> None:
+        """Start the rule oracle's episode and the look-ups that the prompts' facts read."""
+        self.fallback.start(context)
+        simulator = context.simulator
+        house = simulator.house
+        if self._index is None or self._index.house is not house:
+            self._index = HouseIndex.build(house)
+        field = simulator.geodesic_field(context.view_points)
+        follower = GreedyFollower(
+            simulator.grid, field, self.fallback.goal_radius, simulator.config.motion
+        )
+        entropy = [self.seed, zlib.crc32(house.name.encode("utf-8")), context.target.id]
+        self._knowledge = EpisodeKnowledge(
+            index=self._index,
+            target=context.target,
+            field=field,
+            follower=follower,
+            rng=np.random.default_rng(np.random.SeedSequence(entropy)),
+        )
+
+    def answer(self, question: Question) -> Reply:
+        """Classify with the model, answer from the facts, fall back where a call fails."""
+        knowledge = self._knowledge
+        if knowledge is None:
+            raise ConfigError("the oracle has no episode; call start(context) before answer()")
+        offline = self.fallback.answer(question)
+        spend = _Spend()
+        kind = self._classify(question.text, offline.question_type, spend)
+        if spend.unavailable:  # the server is down: do not wait out its retries twice
+            kind, text = offline.question_type, offline.answer
+        elif kind == QuestionType.DISAMBIGUATION:
+            if offline.question_type == kind:
+                text = offline.answer
+            else:
+                text = answer_disambiguation(knowledge, question.state, question.frame)
+        else:
+            reference = offline.answer if offline.question_type == kind else None
+            messages = _answer_messages(knowledge, kind, question, reference)
+            worded = self._call(messages, spend)
+            if worded is None:
+                kind, text = offline.question_type, offline.answer
+            else:
+                text = worded
+        return Reply(
+            text,
+            kind,
+            backend=self.model.backend,
+            latency_ms=round(spend.latency_ms, 3),
+            prompt_tokens=spend.prompt_tokens,
+            completion_tokens=spend.completion_tokens,
+            fallback=spend.fallback,
+        )
+
+    def _classify(self, text: str, offline: QuestionType, spend: _Spend) -> QuestionType:
+        reply = self._call(classification_messages(text), spend)
+        if reply is None:
+            return offline
+        kind = parse_question_type(reply)
+        if kind is None:
+            logger.warning(
+                "%s named no question type (%r); using the offline classifier's %s",
+                self.model.backend,
+                reply[:80],
+                offline.value,
+            )
+            spend.fallback = True
+            return offline
+        return kind
+
+    def _call(self, messages: list[Message], spend: _Spend) -> str | None:
+        """The model's text, or None when the call failed (the failure is logged)."""
+        try:
+            completion = self.model.complete(
+                messages, max_tokens=self.max_tokens, temperature=self.temperature
+            )
+        except LanguageModelError as error:
+            logger.warning("%s failed, answering offline: %s", self.model.backend, error)
+            spend.failed(error)
+            return None
+        spend.add(completion)
+        text = strip_thinking(completion.text)
+        if not text:
+            logger.warning("%s answered an empty text, answering offline", self.model.backend)
+            spend.fallback = True
+            return None
+        return text
+
+
+def _answer_messages(
+    knowledge: EpisodeKnowledge, kind: QuestionType, question: Question, reference: str | None
+) -> list[Message]:
+    """Prompt 2 (Attribute), 3 (Route) or 4 (Other) with the facts it asks for."""
+    state = question.state
+    if kind == QuestionType.ATTRIBUTE:
+        facts = {"goal_information": goal_information(knowledge, state)}
+        return answer_messages(ATTRIBUTE_PROMPT, facts, question.text, reference)
+    if kind == QuestionType.ROUTE:
+        facts = route_facts(knowledge, state)
+        return answer_messages(ROUTE_PROMPT, facts, question.text, reference)
+    facts = all_facts(knowledge, state, question.frame)
+    return answer_messages(OTHER_PROMPT, facts, question.text, reference)

@@ -1,0 +1,30 @@
+"""The oracle benchmark prints one well-formed figure per line for every promised metric."""
+
+import json
+
+import pytest
+
+from vlln.bench.oracle import run_oracle_benchmark
+from vlln.errors import ConfigError
+
+REQUIRED = {"answer_p50_ms", "answer_p99_ms", "classify_us", "oracle_start_ms"}
+
+
+def test_oracle_benchmark_prints_json_lines(capsys: pytest.CaptureFixture[str]) -> None:
+    figures = run_oracle_benchmark(seed=1, questions=60, as_json=True)
+    lines = [json.loads(line) for line in capsys.readouterr().out.splitlines()]
+    assert all(set(line) == {"metric", "value", "unit"} for line in lines)
+    values = {line["metric"]: line["value"] for line in lines}
+    assert [f.metric for f in figures] == [line["metric"] for line in lines]
+    assert set(values) >= REQUIRED
+    per_type = {m for m in values if m.endswith("_p50_ms") and m != "answer_p50_ms"}
+    assert len(per_type) >= 3  # 60 questions from the held-out mix reach several types
+    for metric in per_type:
+        assert metric.replace("_p50_", "_p99_") in values
+    assert all(values[name] > 0 for name in REQUIRED)
+    assert values["answer_p50_ms"] <= values["answer_p99_ms"]
+
+
+def test_a_non_positive_question_count_is_refused() -> None:
+    with pytest.raises(ConfigError, match="questions"):
+        run_oracle_benchmark(seed=1, questions=0, as_json=True)
