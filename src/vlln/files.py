@@ -18,6 +18,8 @@ def write_bytes_atomic(path: Path, data: bytes) -> None:
     try:
         with os.fdopen(fd, "wb") as handle:
             handle.write(data)
+            handle.flush()
+            os.fsync(handle.fileno())  # on disk before the rename makes it visible
         os.chmod(temp, _MODE)
         os.replace(temp, path)
     except BaseException:

@@ -17,8 +17,9 @@ from vlln.errors import ConfigError
 from vlln.eval.document import Block, Heading, Image, Paragraph, Table, to_html, to_markdown
 from vlln.eval.episode_map import draw_episode_map
 from vlln.eval.figures import plot_failure_taxonomy, plot_sr_by_budget
-from vlln.eval.results import RunDirectory, load_run_records, write_text_atomic
+from vlln.eval.results import RunDirectory, load_run_records
 from vlln.eval.summary import GroupSummary, budget_table, summarize_run
+from vlln.files import write_text_atomic
 from vlln.tasks.aggregate import BudgetSweep, MetricSummary, format_table
 from vlln.tasks.metrics import ORACLE_SUCCESS_RADIUS, SUCCESS_RADIUS
 from vlln.tasks.record import EpisodeRecord

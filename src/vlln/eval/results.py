@@ -19,7 +19,6 @@ from __future__ import annotations
 import fcntl
 import json
 import os
-import tempfile
 from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
@@ -27,6 +26,7 @@ from typing import IO, Any
 
 from vlln.errors import ConfigError, DataFormatError
 from vlln.eval.config import EvalConfig, describe_differences
+from vlln.files import write_text_atomic
 from vlln.tasks.record import EpisodeRecord
 
 RUN_FILE = "run.json"
@@ -199,21 +199,3 @@ def load_run_records(paths: Iterable[Path]) -> list[EpisodeRecord]:
             origin[key] = file
             merged.append(record)
     return merged
-
-
-def write_text_atomic(path: Path, text: str) -> None:
-    """Write via a temporary file and rename, so readers never see half a file."""
-    temporary: Path | None = None
-    try:
-        with tempfile.NamedTemporaryFile(
-            "w", encoding="utf-8", dir=path.parent, prefix=f".{path.name}.", delete=False
-        ) as handle:
-            temporary = Path(handle.name)
-            handle.write(text)
-            handle.flush()
-            os.fsync(handle.fileno())
-        os.replace(temporary, path)
-    except BaseException:
-        if temporary is not None:
-            temporary.unlink(missing_ok=True)
-        raise

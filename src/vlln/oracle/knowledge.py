@@ -10,11 +10,13 @@ from __future__ import annotations
 
 import math
 import re
+import zlib
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
 
+from vlln.oracle.protocol import EpisodeContext
 from vlln.sim.follower import GreedyFollower
 from vlln.sim.geodesic import GeodesicField
 from vlln.world.model import House, ObjectInstance, Relation, Room
@@ -162,6 +164,24 @@ class EpisodeKnowledge:
     field: GeodesicField
     follower: GreedyFollower
     rng: np.random.Generator
+
+    @staticmethod
+    def for_episode(
+        context: EpisodeContext, index: HouseIndex, seed: int, goal_radius: float
+    ) -> EpisodeKnowledge:
+        """Build the episode's look-ups once; paraphrases are seeded by (seed, house, target)
+        so the same seed and episode give the same words."""
+        simulator = context.simulator
+        field = simulator.geodesic_field(context.view_points)
+        follower = GreedyFollower(simulator.grid, field, goal_radius, simulator.config.motion)
+        entropy = [seed, zlib.crc32(index.house.name.encode("utf-8")), context.target.id]
+        return EpisodeKnowledge(
+            index=index,
+            target=context.target,
+            field=field,
+            follower=follower,
+            rng=np.random.default_rng(np.random.SeedSequence(entropy)),
+        )
 
     @property
     def target_room(self) -> Room | None:

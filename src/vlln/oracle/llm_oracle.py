@@ -17,10 +17,7 @@ for word.
 from __future__ import annotations
 
 import logging
-import zlib
 from dataclasses import dataclass
-
-import numpy as np
 
 from vlln.errors import ConfigError
 from vlln.oracle.disambiguation import answer_disambiguation
@@ -44,7 +41,6 @@ from vlln.oracle.llm.protocol import (
 )
 from vlln.oracle.protocol import EpisodeContext, Question, QuestionType, Reply
 from vlln.oracle.rule_oracle import RuleOracle
-from vlln.sim.follower import GreedyFollower
 
 logger = logging.getLogger(__name__)
 
@@ -112,17 +108,8 @@ class LLMOracle:
         house = simulator.house
         if self._index is None or self._index.house is not house:
             self._index = HouseIndex.build(house)
-        field = simulator.geodesic_field(context.view_points)
-        follower = GreedyFollower(
-            simulator.grid, field, self.fallback.goal_radius, simulator.config.motion
-        )
-        entropy = [self.seed, zlib.crc32(house.name.encode("utf-8")), context.target.id]
-        self._knowledge = EpisodeKnowledge(
-            index=self._index,
-            target=context.target,
-            field=field,
-            follower=follower,
-            rng=np.random.default_rng(np.random.SeedSequence(entropy)),
+        self._knowledge = EpisodeKnowledge.for_episode(
+            context, self._index, self.seed, self.fallback.goal_radius
         )
 
     def answer(self, question: Question) -> Reply:

@@ -13,10 +13,6 @@ dialog budget is not the oracle's business: the environment refuses questions pa
 
 from __future__ import annotations
 
-import zlib
-
-import numpy as np
-
 from vlln.errors import ConfigError
 from vlln.oracle.answers import answer_attribute, answer_other
 from vlln.oracle.classify import RouteKind, analyse_question
@@ -24,7 +20,6 @@ from vlln.oracle.disambiguation import answer_disambiguation
 from vlln.oracle.knowledge import EpisodeKnowledge, HouseIndex
 from vlln.oracle.protocol import EpisodeContext, Question, QuestionType, Reply
 from vlln.oracle.route import answer_orientation, answer_path, answer_step
-from vlln.sim.follower import GreedyFollower
 
 
 class RuleOracle:
@@ -55,15 +50,8 @@ class RuleOracle:
         house = simulator.house
         if self._index is None or self._index.house is not house:
             self._index = HouseIndex.build(house)
-        field = simulator.geodesic_field(context.view_points)
-        follower = GreedyFollower(simulator.grid, field, self.goal_radius, simulator.config.motion)
-        entropy = [self.seed, zlib.crc32(house.name.encode("utf-8")), context.target.id]
-        self._knowledge = EpisodeKnowledge(
-            index=self._index,
-            target=context.target,
-            field=field,
-            follower=follower,
-            rng=np.random.default_rng(np.random.SeedSequence(entropy)),
+        self._knowledge = EpisodeKnowledge.for_episode(
+            context, self._index, self.seed, self.goal_radius
         )
 
     def answer(self, question: Question) -> Reply:
