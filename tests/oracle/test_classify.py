@@ -14,7 +14,7 @@ from vlln.oracle.classify import (
     analyse_question,
     classify_question,
 )
-from vlln.oracle.normalisation import normalise
+from vlln.oracle.normalisation import normalise, rephrase
 from vlln.oracle.protocol import QuestionType
 from vlln.oracle.question_set import (
     LabelledQuestion,
@@ -28,10 +28,15 @@ R = QuestionType.ROUTE
 X = QuestionType.OTHER
 STEP = RouteKind.STEP
 TRAIN = load_packaged_question_set("train")
-HELDOUT = load_packaged_question_set("heldout")
-# The held-out set is never tuned against; this floor guards against regressions on it.
-# The goal is 0.95.
-HELDOUT_FLOOR = 0.80
+# The held-out set is written separately and never tuned against; the questions in it that
+# also occur in the training set are left out of its measurement. First measurement: 92.2 %
+# (178 of 193 unseen questions); the benchmark's target is 95 %. The floor guards regressions.
+HELDOUT_FLOOR = 0.90
+
+
+def unseen_heldout() -> list[LabelledQuestion]:
+    seen = {normalise(q.question) for q in TRAIN}
+    return [q for q in load_packaged_question_set("heldout") if normalise(q.question) not in seen]
 
 
 def _misclassified(questions: list[LabelledQuestion]) -> list[tuple[str, str, str]]:
@@ -42,14 +47,17 @@ def _misclassified(questions: list[LabelledQuestion]) -> list[tuple[str, str, st
     ]
 
 
-def test_the_packaged_sets_are_large_disjoint_and_cover_every_type() -> None:
+def test_the_training_set_is_large_and_covers_every_type() -> None:
     assert len(TRAIN) >= 500
-    assert len(HELDOUT) >= 150
-    for questions in (TRAIN, HELDOUT):
-        for question_type in QuestionType:
-            assert sum(q.question_type == question_type for q in questions) >= 20
-    seen = {normalise(q.question) for q in TRAIN}
-    assert not [q.question for q in HELDOUT if normalise(q.question) in seen]
+    for question_type in QuestionType:
+        assert sum(q.question_type == question_type for q in TRAIN) >= 20
+
+
+def test_the_unseen_heldout_questions_are_many_and_cover_every_type() -> None:
+    heldout = unseen_heldout()
+    assert len(heldout) >= 150
+    for question_type in QuestionType:
+        assert sum(q.question_type == question_type for q in heldout) >= 20
 
 
 def test_accuracy_on_the_training_set() -> None:
@@ -57,8 +65,8 @@ def test_accuracy_on_the_training_set() -> None:
     assert accuracy >= 0.98, f"accuracy {accuracy:.3f}; misclassified: {_misclassified(TRAIN)}"
 
 
-def test_accuracy_on_the_held_out_set() -> None:
-    accuracy = accuracy_of(evaluate_classifier(HELDOUT))
+def test_accuracy_on_the_heldout_set() -> None:
+    accuracy = accuracy_of(evaluate_classifier(unseen_heldout()))
     assert accuracy >= HELDOUT_FLOOR, f"held-out accuracy {accuracy:.3f}"
 
 
@@ -93,13 +101,26 @@ def test_case_punctuation_and_spacing_do_not_change_the_type(
         ("is ths the one", "is this the one"),
         ("where's the bathrom", "where is the bathroom"),
         ("how do i get thru the hallway", "how do i get through the hallway"),
+        ("is taht the chiar", "is that the chair"),
+        ("how do i gte to the kichen", "how do i get to the kitchen"),
+        ("teh lfet side", "the left side"),
     ],
 )
 def test_normalise_fixes_typos_contractions_and_chat_spellings(typed: str, meant: str) -> None:
     assert normalise(typed) == meant
 
 
-@pytest.mark.parametrize("text", ["is that the book", "let me see that lamp", "weather"])
+@pytest.mark.parametrize(
+    "text",
+    [
+        "is that the book",
+        "let me see that lamp",
+        "weather",
+        "show me over there",
+        "head to my current position",
+        "what time is it",
+    ],
+)
 def test_normalise_leaves_known_words_alone(text: str) -> None:
     assert normalise(text) == text
 
@@ -174,3 +195,44 @@ def test_values_named_in_a_question_are_extracted() -> None:
 def test_empty_and_meaningless_input_is_other() -> None:
     for text in ["", "   ", "?!", "asdf qwer", "12345"]:
         assert classify_question(text) == X
+
+
+@pytest.mark.parametrize(
+    ("question", "question_type"),
+    [
+        # Politeness wrappers and embedded questions keep the inner question's type.
+        ("Could you tell me whether this is the target?", QuestionType.DISAMBIGUATION),
+        ("I would like to know what color it is.", A),
+        ("Please verify if the lamp I am facing is the goal.", QuestionType.DISAMBIGUATION),
+        ("Do you know where I should go?", R),
+        # Subject before auxiliary, as non-native speakers often write it.
+        ("Where I should go now?", R),
+        ("In which room I am?", X),
+        # Declarative word order and bare demonstratives.
+        ("This lamp is the correct one?", QuestionType.DISAMBIGUATION),
+        ("that?", QuestionType.DISAMBIGUATION),
+        # A wh-question about "this" is not a disambiguation question.
+        ("What room is this?", X),
+    ],
+)
+def test_wording_variants_keep_their_type(question: str, question_type: QuestionType) -> None:
+    assert classify_question(question) == question_type
+
+
+def test_the_agent_as_a_reference_point_marks_a_candidate_not_a_neighbour() -> None:
+    assert classify_question("Is the chair next to me the target?") == QuestionType.DISAMBIGUATION
+    analysis = analyse_question("What is next to the chair?")
+    assert analysis.attribute == AttributeTopic.NEARBY
+
+
+@pytest.mark.parametrize(
+    ("typed", "meant"),
+    [
+        ("could you tell me whether this is the target", "is this the target"),
+        ("please confirm whether the red chair is the goal", "confirm is the red chair the goal"),
+        ("how i can go to the kitchen", "how can i go to the kitchen"),
+        ("is this the chair you want", "is this the target chair"),
+    ],
+)
+def test_rephrase_restores_the_question_frame(typed: str, meant: str) -> None:
+    assert rephrase(typed) == meant

@@ -20,6 +20,7 @@ from vlln.oracle.question_set import (
     load_packaged_question_set,
     load_question_set,
     markdown_confusion_table,
+    packaged_question_set_path,
 )
 
 A, R, D, X = (
@@ -81,11 +82,20 @@ def test_missing_and_empty_files_are_format_errors(tmp_path: Path) -> None:
         load_question_set(_write(tmp_path, ["", "  "]))
 
 
-def test_packaged_sets_load_and_unknown_names_are_refused() -> None:
-    for name in PACKAGED_SETS:
-        assert load_packaged_question_set(name)
+def test_the_packaged_train_set_loads_and_unknown_names_are_refused() -> None:
+    assert load_packaged_question_set("train")
     with pytest.raises(ConfigError, match="heldout"):
         load_packaged_question_set("test")
+
+
+def test_each_packaged_set_has_its_own_file() -> None:
+    paths = {packaged_question_set_path(name) for name in PACKAGED_SETS}
+    assert len(paths) == len(PACKAGED_SETS)
+    assert all(path.suffix == ".jsonl" for path in paths)
+
+
+def test_the_packaged_heldout_set_loads() -> None:
+    assert load_packaged_question_set("heldout")
 
 
 def test_confusion_matrix_counts_a_hand_made_example() -> None:
@@ -122,5 +132,8 @@ def test_classifier_report_measures_a_given_file(tmp_path: Path) -> None:
     accuracy, table = classifier_report(path)
     assert accuracy == 0.5
     assert "| attribute | 1 | 0 | 0 | 1 | 0.500 |" in table
+
+
+def test_classifier_report_defaults_to_the_heldout_set() -> None:
     heldout_accuracy, _ = classifier_report(None)
     assert 0.0 < heldout_accuracy <= 1.0

@@ -5,12 +5,16 @@ typos. :func:`normalise` turns them into lower-case words separated by single sp
 contractions ("what's" -> "what is"), maps chat and British spellings ("u" -> "you",
 "colour" -> "color"), drops punctuation, and corrects words that are not known English to a
 pattern keyword within a small edit distance ("colr" -> "color", "rigth" -> "right").
+:func:`rephrase` then undoes what hides a question's frame: politeness wrappers, embedded
+questions ("whether this is the target") and non-native word order ("how I can go").
 """
 
 from __future__ import annotations
 
 import re
 from functools import cache
+
+from vlln.world.catalogue.registry import default_catalogue
 
 _CONTRACTIONS: dict[str, str] = {
     "what's": "what is",
@@ -119,6 +123,7 @@ _KEYWORDS: frozenset[str] = frozenset(
     underneath above below sitting standing placed lying hanging mounted against corner wall
     floor table shelf counter progress track almost nearly getting relative compared pointing
     point orientation angle degrees moving move walk exactly information tell more another
+    instance confirm verify guidance instructions navigation proceed composition position
     """
     )
 )
@@ -148,9 +153,64 @@ _KNOWN_WORDS: frozenset[str] = _KEYWORDS | frozenset(
     bags box boxes lot lots bit set sit sat lie lay hang put gets got hit hot hole
     whole part area space house home place places spot thing things one ones
     left lest lift loft lend led let lot late later ate eat mat map cap tap
+    back pack bank band bath both arm arms pot pots top mug mugs rag cot ask asked lost
+    current currently present
     """
     )
 )
+
+_AUX = r"(can|should|must|could|would|will|shall|do|need to|have to|am|are)"
+
+# (pattern, replacement), applied in order to normalised text.
+_REWRITE_RULES: tuple[tuple[str, str], ...] = (
+    # Fillers and politeness wrappers say nothing about the intent.
+    (
+        r"^((so|and|ok|okay|well|then|hmm|um|uh|hey|hi|please|kindly|sorry|oh|alright|wait"
+        r"|excuse me|dear me|quick question|one question|a question|question) )+",
+        "",
+    ),
+    (
+        r"^((can|could|would|will) you (please |kindly )?)?(tell me|let me know|say)( please)?"
+        r"(?= (whether|if|where|which|what|how|who|when)\b) ?",
+        "",
+    ),
+    (
+        r"^(i (would like|want|wish|need) to know|i (wonder|am wondering|was wondering)"
+        r"|do you know|any idea|i ask you|my question is)( please)? ?",
+        "",
+    ),
+    (r"( (please|thanks|thank you|then|now please|do you think|you think|if you can))+$", ""),
+    # Embedded yes/no question: "whether the lamp i see is the target" -> "is the lamp ...".
+    (r"^(?:whether|if) (this|that|it|they|these|those|the [\w ]+?) (is|are|was) ", r"\2 \1 "),
+    (
+        r"\b(confirm|verify|check)( for me)? (?:whether|if|that) "
+        r"(this|that|it|the [\w ]+?) (is|are|was) ",
+        r"\1 \4 \3 ",
+    ),
+    # Subject before auxiliary: "how i can go" -> "how can i go", "which room i am in".
+    (
+        r"^((?:in |to |from )?(?:how|where|(?:what|which) (?:way|room|side|direction|place"
+        rf"|area)|what|why|when)) (i|we) {_AUX}\b",
+        r"\1 \3 \2",
+    ),
+    # "the chair you want" names the target itself, not an object in view.
+    (
+        r"\bthe (?!one\b)(\w+) (?:that |which )?(?:you want|you mean|i need|i want|i am looking"
+        r" for|we are looking for|you are looking for|i need to find)\b",
+        r"the target \1",
+    ),
+)
+_REWRITES = [(re.compile(pattern), replacement) for pattern, replacement in _REWRITE_RULES]
+
+
+def rephrase(text: str) -> str:
+    """Normalised ``text`` with politeness wrappers and fillers dropped and the question's
+    frame restored: "could you tell me whether this is it" -> "is this it", "how i can go"
+    -> "how can i go", "the chair you want" -> "the target chair"."""
+    for pattern, replacement in _REWRITES:
+        text = pattern.sub(replacement, text).strip()
+    return text
+
 
 _TOKEN = re.compile(r"[a-z0-9]+(?:'[a-z]+)?")
 
@@ -171,15 +231,29 @@ def normalise(text: str) -> str:
 
 
 @cache
-def _corrected(word: str) -> str:
-    """The keyword a typo most likely meant, or the word itself.
+def _vocabulary() -> frozenset[str]:
+    """Every word taken as correctly spelt: keywords, common words and object names."""
+    objects = {word for name in default_catalogue().names for word in name.split()}
+    return _KNOWN_WORDS | frozenset(objects) | frozenset(f"{word}s" for word in objects)
 
-    Only unknown words of three letters or more are corrected, to a keyword one edit away
-    (two for words of seven letters or more) that starts with the same letter (or the same
-    two, swapped); ties keep the word unchanged, so a correction is never a guess.
+
+@cache
+def _corrected(word: str) -> str:
+    """The word a typo most likely meant, or the word itself.
+
+    Only unknown words of three letters or more are corrected: to any known word by a swap of
+    two neighbouring letters ("teh" -> "the", "chiar" -> "chair"), else (four letters or more)
+    to a keyword one edit away (two for words of seven letters or more) that starts with the
+    same letter (or the same two, swapped). Ties keep the word unchanged, so a correction is
+    never a guess; most unknown words are real words that no keyword is close to.
     """
-    if len(word) < 3 or word in _KNOWN_WORDS or word.isdigit():
+    vocabulary = _vocabulary()
+    if len(word) < 3 or word in vocabulary or word.isdigit():
         return word
+    swaps = {word[:i] + word[i + 1] + word[i] + word[i + 2 :] for i in range(len(word) - 1)}
+    swapped = sorted(swaps & vocabulary)
+    if swapped:
+        return swapped[0] if len(swapped) == 1 else word
     limit = 2 if len(word) >= 7 else 1
     best: list[str] = []
     best_distance = limit + 1
