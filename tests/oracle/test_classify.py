@@ -28,9 +28,10 @@ R = QuestionType.ROUTE
 X = QuestionType.OTHER
 STEP = RouteKind.STEP
 TRAIN = load_packaged_question_set("train")
-# The held-out set is written separately and never tuned against; the questions in it that
-# also occur in the training set are left out of its measurement. First measurement: 92.2 %
-# (178 of 193 unseen questions); the benchmark's target is 95 %. The floor guards regressions.
+# The held-out set (v4) is written separately and never tuned against; the questions in it
+# that also occur in the training set are left out of its measurement. First measurement of
+# v4: 92.7 % (202 of 218 unseen questions; 93.3 % of all 240); the benchmark's target is 95 %.
+# The floor guards regressions.
 HELDOUT_FLOOR = 0.90
 
 

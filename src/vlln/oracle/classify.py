@@ -18,11 +18,9 @@ from dataclasses import dataclass, replace
 from enum import StrEnum
 from typing import TypeVar
 
-from vlln.oracle.normalisation import normalise, rephrase
+from vlln.oracle.normalisation import MATERIAL_SYNONYMS, ROOM_SYNONYMS, normalise, rephrase
 from vlln.oracle.protocol import QuestionType
 from vlln.oracle.question_cues import (
-    MATERIAL_SYNONYMS,
-    ROOM_SYNONYMS,
     RULES,
     AttributeTopic,
     OtherTopic,

@@ -14,7 +14,38 @@ from __future__ import annotations
 import re
 from functools import cache
 
-from vlln.world.catalogue.registry import default_catalogue
+from vlln.world.catalogue.registry import ROOM_TYPES, default_catalogue
+
+# Canonical names of the rooms and materials a question may mention.
+ROOM_SYNONYMS: dict[str, str] = {
+    **{room: room for room in ROOM_TYPES},
+    "living": "living room",
+    "lounge": "living room",
+    "hallway": "corridor",
+    "hall": "corridor",
+    "office": "study",
+    "study room": "study",
+    "restroom": "toilet",
+    "washroom": "bathroom",
+    "bath": "bathroom",
+    "dining": "dining room",
+    "storage": "storage room",
+    "pantry": "storage room",
+    "sports room": "gym",
+    "resting room": "bedroom",
+}
+MATERIAL_SYNONYMS: dict[str, str] = {
+    **{m: m for m in ("wood", "metal", "fabric", "leather", "glass", "plastic", "ceramic")},
+    **{m: m for m in ("marble", "tile", "carpet")},
+    "wooden": "wood",
+    "metallic": "metal",
+    "steel": "metal",
+    "iron": "metal",
+    "cloth": "fabric",
+    "porcelain": "ceramic",
+    "stone": "marble",
+    "tiled": "tile",
+}
 
 _CONTRACTIONS: dict[str, str] = {
     "what's": "what is",
@@ -154,7 +185,7 @@ _KNOWN_WORDS: frozenset[str] = _KEYWORDS | frozenset(
     whole part area space house home place places spot thing things one ones
     left lest lift loft lend led let lot late later ate eat mat map cap tap
     back pack bank band bath both arm arms pot pots top mug mugs rag cot ask asked lost
-    current currently present
+    current currently present while painting paintings remind
     """
     )
 )
@@ -164,9 +195,16 @@ _AUX = r"(can|should|must|could|would|will|shall|do|need to|have to|am|are)"
 # (pattern, replacement), applied in order to normalised text.
 _REWRITE_RULES: tuple[tuple[str, str], ...] = (
     # Fillers and politeness wrappers say nothing about the intent.
+    (r"^(sorry|excuse me|pardon me)( if| for)?\b[\w ]*? (question|asking|bothering)( but)? ", ""),
     (
         r"^((so|and|ok|okay|well|then|hmm|um|uh|hey|hi|please|kindly|sorry|oh|alright|wait"
-        r"|excuse me|dear me|quick question|one question|a question|question) )+",
+        r"|excuse me|dear me|quick question|one question|a question|question|query) )+",
+        "",
+    ),
+    # Narrative before an embedded question: "i went through the hall can you tell me ...".
+    (
+        r"^(.*\b(?<!how )(?<!why ))?((can|could) you tell me|i (am|was) wondering|i wonder"
+        r"|do you know)\b ?(?=(whether|if|where|which|what|how)\b)",
         "",
     ),
     (
@@ -181,7 +219,29 @@ _REWRITE_RULES: tuple[tuple[str, str], ...] = (
     ),
     (r"( (please|thanks|thank you|then|now please|do you think|you think|if you can))+$", ""),
     # Embedded yes/no question: "whether the lamp i see is the target" -> "is the lamp ...".
-    (r"^(?:whether|if) (this|that|it|they|these|those|the [\w ]+?) (is|are|was) ", r"\2 \1 "),
+    (
+        r"^(?:whether|if) ((?:this|that|these|those|the)(?: [\w ]+?)?|it|they) (is|are|was) ",
+        r"\2 \1 ",
+    ),
+    # Tag questions: "that is the chair, is not it" -> "is that the chair".
+    (
+        r"^((?:this|that|the)(?: [\w ]+?)?|it) (is|are|was) (.+?) (is not (it|that|this)"
+        r"|is (it|that) not|are not they|yes|no|correct|or not"
+        r"|(?<!the )(?<!my )(?<!your )(?<!its )(?<!to )(?<!on )(?<!at )(?<!turn )right)$",
+        r"\2 \1 \3",
+    ),
+    # A wh-phrase left at the end or after its preposition: "the lamp is on which table",
+    # "on which table the lamp is" -> "on which table is the lamp".
+    (
+        r"^(it|they|the [\w ]+?) (is|are|was) (in|on|near|next to|at|under|inside|beside"
+        r"|on top of) (which|what)( \w+)?$",
+        r"\3 \4\5 \2 \1",
+    ),
+    (
+        r"^((?:in|on|near|next to|at|under|inside|beside|on top of) (?:which|what)(?: \w+)?)"
+        r" (it|they|the [\w ]+?) (is|are)\b",
+        r"\1 \3 \2",
+    ),
     (
         r"\b(confirm|verify|check)( for me)? (?:whether|if|that) "
         r"(this|that|it|the [\w ]+?) (is|are|was) ",

@@ -11,8 +11,8 @@ from __future__ import annotations
 import re
 from enum import StrEnum
 
+from vlln.oracle.normalisation import MATERIAL_SYNONYMS, ROOM_SYNONYMS
 from vlln.oracle.protocol import QuestionType
-from vlln.world.catalogue.registry import ROOM_TYPES
 from vlln.world.materials import COLORS
 
 
@@ -52,36 +52,6 @@ class OtherTopic(StrEnum):
 
 Topic = QuestionType | RouteKind | AttributeTopic | OtherTopic
 
-ROOM_SYNONYMS: dict[str, str] = {
-    **{room: room for room in ROOM_TYPES},
-    "living": "living room",
-    "lounge": "living room",
-    "hallway": "corridor",
-    "hall": "corridor",
-    "office": "study",
-    "study room": "study",
-    "restroom": "toilet",
-    "washroom": "bathroom",
-    "bath": "bathroom",
-    "dining": "dining room",
-    "storage": "storage room",
-    "pantry": "storage room",
-    "sports room": "gym",
-    "resting room": "bedroom",
-}
-MATERIAL_SYNONYMS: dict[str, str] = {
-    **{m: m for m in ("wood", "metal", "fabric", "leather", "glass", "plastic", "ceramic")},
-    **{m: m for m in ("marble", "tile", "carpet")},
-    "wooden": "wood",
-    "metallic": "metal",
-    "steel": "metal",
-    "iron": "metal",
-    "cloth": "fabric",
-    "porcelain": "ceramic",
-    "stone": "marble",
-    "tiled": "tile",
-}
-
 
 def _alternatives(words: list[str]) -> str:
     return "|".join(re.escape(w) for w in sorted(words, key=len, reverse=True))
@@ -91,6 +61,7 @@ _ROOMS = _alternatives([*ROOM_SYNONYMS, "room"])
 _COLORS = _alternatives(list(COLORS))
 _MATERIALS = _alternatives(list(MATERIAL_SYNONYMS))
 _SUPPORTS = r"(floor|ground|wall|table|shelf|counter|desk|cabinet|something)"
+_RESTING_ON = r"(on|(sitting|standing|resting|placed|lying|hanging|mounted) on|on top of)"
 # The agent itself as a reference point: "in front of me", "in my view".
 _DEICTIC = (
     r"(in front of|before|next to|near|beside|close to|by) me\b"
@@ -98,12 +69,22 @@ _DEICTIC = (
     r"|\b(i am looking at|i am facing|i see|i can see|i found|i have found|have i found"
     r"|did i find|i spotted|found it|right here|over here|i got it|i am at|i reached"
     r"|have i reached|did i reach|i detected|detected|spotted|observed|candidate)"
+    r"|\bi am (standing|sitting|pointing|staring|looking|stopped) (next to|at|in front of|near"
+    r"|beside|by)\b"
+)
+# What surrounds the agent, not the target: "the thing on my left", "what is behind me".
+_AROUND_ME = (
+    r"((on|to|at) (my|our) (left|right)|(left|right) of (me|us)|(in front of|behind|beside"
+    r"|next to|near) (me|us))\b"
 )
 _NOT_WH = r"^(?!(what|which|where|how|why|when)\b).*"  # not a wh-question
 _D = QuestionType.DISAMBIGUATION
 _O, _P, _S = RouteKind.ORIENTATION, RouteKind.PATH, RouteKind.STEP
 _A, _X = AttributeTopic, OtherTopic
 _TARGETISH = r"(target|goal|one|object|instance|right one|correct one|same one|thing)"
+_CHOSEN = r"(right|correct|same|intended|target|goal)"  # "the right one", "the goal lamp"
+_THING = r"(one|object|thing|item|instance)"
+_BEARINGS = r"(way|side|direction|turn|track|path|here|now|room)"  # "right way" is no candidate
 
 # (weight, topic, pattern): a match adds the weight to the topic and to the topic's type.
 RULES: tuple[tuple[float, Topic, str], ...] = (
@@ -115,14 +96,9 @@ RULES: tuple[tuple[float, Topic, str], ...] = (
         rf"{_NOT_WH}\b(is|are|was) (this|that|these|those)\b"
         r"(?! (way|room|direction|side|place)\b)",
     ),
-    (2, _D, r"\b(this|that) (one|thing|object|item|instance)\b"),
+    (2, _D, rf"\b(this|that) {_THING}\b"),
     (2, _D, r"\b(the|your) one\b"),
-    (
-        2,
-        _D,
-        r"\b(right|correct|same|intended|target|goal|wanted|proper) (one|object|thing|item"
-        r"|instance)\b",
-    ),
+    (2, _D, rf"\b({_CHOSEN}|wanted|proper) {_THING}\b"),
     (2, _D, _DEICTIC),
     (3, _D, r"\b(confirm|verify)\b|\bcheck (if|whether|this|that|it)\b"),
     (4, _D, r"^is it (this|that|these|the one)\b"),
@@ -159,15 +135,25 @@ RULES: tuple[tuple[float, Topic, str], ...] = (
         r"|talk(ed|ing) about|think(ing)? of|asked (about|for)|have in mind|look(ed|ing) for)\b",
     ),
     (3, _D, r"^(this|that|these|those) (?!(way|room|direction|side)\b)\w+( right| correct| yes)?$"),
-    (3, _D, r"\bam i (looking at|in front of|facing|at|next to) (it|the (right|correct|target))"),
+    (3, _D, rf"\b(am i|i am) (looking( at)?|(in )?front of|facing|at|beside) (it|the {_CHOSEN})\b"),
+    # "is the rug in my view the target rug", "is the target the lamp i am pointing at"
+    (
+        6,
+        _D,
+        rf"^(is|are) (the [\w ]+?|this|that|it) the {_CHOSEN} (?!(color|size|shape|material|room"
+        r"|way|side|direction)$)\w+$|^(is|are) the (target|goal)( object)? (the|this|that) \w+ "
+        r"(i|you|we)\b",
+    ),
+    (4, _D, rf"^(the )?({_CHOSEN}|wanted) (?!{_BEARINGS}\b)\w+$"),
     (3, _D, r"\bdid i (find|get|spot|reach) (it|the (right|correct|target))"),
     # Route, orientation: the direction of the target.
     (4, _O, r"\b(which|what) direction\b"),
     (2, _O, r"\bdirection\b"),
     (3, _O, r"\bwhich (way|side)\b|\bpoint (me|at|to)\b|\b(should i|do i|must i) face\b"),
-    (3, _O, r"\b(on|to|at) (my|the|your) (left|right)( side| hand)?\b"),
+    (3, _O, r"\b(on|to|at) (my|the|your) (left|right)( side| hand)?+(?! of (it|the|them)\b)"),
     (4, _O, r"\b(left|right) (side |hand )?of me\b|\b(left|right) side or\b"),
-    (3, _O, r"\b(left|right) side\b"),
+    (3, _O, r"(?<!its )(?<!their )\b(left|right) side\b(?! of (it|the|them)\b)"),
+    (6, _O, r"\bhow (much|far|many degrees?) (\w+ ){0,3}(turn|rotate)\b|\bturn how much\b"),
     (3, _O, r"\bbehind me\b|\b(in front|ahead) of me or\b|\bwhere to (turn|look|face)\b"),
     (4, _O, r"\b(heading|bearing|angle|orientation|degrees)\b|\bam i facing\b"),
     (2, _O, r"\bface (the|it|them)\b"),
@@ -204,6 +190,7 @@ RULES: tuple[tuple[float, Topic, str], ...] = (
     (2, _P, r"\b(get|go) there\b|\bway (to|there|for|toward)\b"),
     (4, _P, r"\b(the|a|best|quickest|shortest|fastest) way (out|to|toward|into|through)\b"),
     (4, _P, r"\bstep by step\b"),
+    (4, _P, r"\b(go|walk|head|move|turn) (in order )?(to|for) (get to|reach|arrive)\b"),
     (3, _P, r"\b(pass|cut) through\b|\b(leads?|goes) (to|toward)\b"),
     (3, _P, r"\bfrom (my|our) (current |present )?(position|location|place)\b"),
     (2, _P, r"\b(reaching|arriving|getting to|get to|arrive at|arrive to)\b"),
@@ -264,6 +251,9 @@ RULES: tuple[tuple[float, Topic, str], ...] = (
     ),
     (4, _A.ROOM, r"\b(which|what) (room|part of the house|area|region)\b|\bsame room\b"),
     (3, _A.ROOM, rf"\bin (the|a|an|this|my|our|that|same) (\w+ )?({_ROOMS})\b"),
+    (5, _A.ROOM, r"^(in|inside) (which|what)\b(?!.*\b(am i|are we|i am|we are)\b)"),
+    (5, _A.SUPPORT, r"^(on|on top of|under) (which|what)\b(?! (side|way|direction)\b)"),
+    (5, _A.NEARBY, r"^(near|next to|beside|by) (which|what)\b"),
     (4, _A.ROOM, r"\broom (it|they|the \w+( \w+)?) (is|are|sits|stands)( \w+)? in\b"),
     (7, _A.ROOM, r"^(is|are) (it|they|the \w+) in (the|this|my|our|the same|same) room\b"),
     (
@@ -292,26 +282,17 @@ RULES: tuple[tuple[float, Topic, str], ...] = (
         r"\b(are|is) there (a |an |any |some )?\w+ (on|near|next to|around|beside|by|close to"
         r"|under|above)\b",
     ),
-    (
-        6,
-        _A.SUPPORT,
-        r"\bwhat is (it|the \w+) (on|sitting on|standing on|resting on|placed on|lying on"
-        r"|on top of|hanging on|mounted on)\b",
-    ),
-    (
-        4,
-        _A.SUPPORT,
-        rf"\b(on|sitting on|standing on|resting on|placed on|hanging on|mounted on"
-        rf"|lying on) (the|a|top of) {_SUPPORTS}\b",
-    ),
+    (3, _A.NEARBY, r"\b(on|to) (its|their) (left|right)\b|\b(left|right)( side)? of (it|the)\b"),
+    (6, _A.SUPPORT, rf"\bwhat is (it|the \w+) {_RESTING_ON}\b"),
+    (4, _A.SUPPORT, rf"\b{_RESTING_ON} (the|a|top of) {_SUPPORTS}\b"),
     (3, _A.SUPPORT, r"^(is|are) (it|they|the( \w+){1,2}) in (a|an) \w+$"),
     (4, _A.SUPPORT, r"\b(on|in) what$"),
     (2, _A.SUPPORT, r"\b(on top of|under|underneath|below|above|hanging|mounted|against)\b"),
     (
         3,
         _A.SUPPORT,
-        r"^(is|are) (it|they|the \w+) (on|sitting on|standing on|resting on|lying on|placed on"
-        r"|hanging on|mounted on|on top of) (the|a|an|some|top of) (?!(left|right|way|other)\b)",
+        rf"^(is|are) (it|they|the \w+) {_RESTING_ON} (the|a|an|some|top of) "
+        r"(?!(left|right|way|other)\b)",
     ),
     (
         5,
@@ -345,12 +326,9 @@ RULES: tuple[tuple[float, Topic, str], ...] = (
         _A.DESCRIPTION,
         r"\b(more|any|some|other|a|another) (info|information|hints?|clues?|details)\b",
     ),
-    (5, _A.DESCRIPTION, r"\bwhat (am i|are we|are you) (looking|searching) for\b"),
-    (
-        5,
-        _A.DESCRIPTION,
-        r"\bwhat (should|do|must|shall) (i|we) (be )?(look|looking|search|searching) for\b",
-    ),
+    (5, _A.DESCRIPTION, r"\bwhat (am i|are we|are you|\w+ (i|we)( be)?) (look|search)(ing)? for\b"),
+    (6, _A.DESCRIPTION, r"\bwhat (does|do|did) (it|they|the \w+) (show|depict|display|say|read)\b"),
+    (6, _A.DESCRIPTION, r"\b(shown|depicted|displayed|painted|printed|written) (in|on)\b"),
     (
         4,
         _A.DESCRIPTION,
@@ -401,6 +379,24 @@ RULES: tuple[tuple[float, Topic, str], ...] = (
     (5, _X.VISIBILITY, r"\bcan (i|you) see (it|the|them|this)\b|\bdo you see\b"),
     (5, _X.VISIBILITY, r"\b(anywhere|somewhere) (i can see|in sight|visible)\b|\bwhat i see\b"),
     (8, _X.UNKNOWN, r"\byour (favorite|name|age|opinion)\b|\bwho are you\b|\byourself\b"),
+    # The agent's surroundings and past, the house as a whole, the oracle itself.
+    (8, _X.UNKNOWN, rf"^(what|which \w+) (is|are) (\w+ ){{0,3}}{_AROUND_ME}"),
+    (4, _X.UNKNOWN, rf"^(?!(is|are)\b).*\b(thing|object|item|stuff) (\w+ )?{_AROUND_ME}"),
+    (6, _X.UNKNOWN, r"\bwhat (is|are) (this|that|these|those)\b(?! (room|place|\w+ you)\b)"),
+    (
+        8,
+        _X.UNKNOWN,
+        r"\b(which|what) (room|rooms|place|area) ((did|have|had|was|were) (i|we)|(i|we) (came"
+        r"|come|was|were|visited|have))\b|\b(came|come) from\b",
+    ),
+    (
+        9,
+        _X.UNKNOWN,
+        r"^(is|how (big|large|small|old|many \w+) is) (the|this|that|whole|your) (house|home"
+        r"|apartment|flat|building)\b|^(house|home|apartment) \w+$",
+    ),
+    (6, _X.UNKNOWN, r"^why\b|^((can|could|would|will) you )?help( me| us)?( out| please)*$"),
+    (8, _X.UNKNOWN, r"\bhow (do|did|can|could|would) you (know|tell(?! me)|be sure|remember)\b"),
     (6, _X.UNKNOWN, r"^what (is|else is|objects are|things are) in (this|the current|my) room$"),
     (5, _X.VISIBILITY, r"\b(visible|in view|in sight|in my view|on screen|in the (picture|image))"),
 )
