@@ -119,7 +119,8 @@ def _render_fps(sim: Simulator, poses: list[AgentState]) -> float:
 def _raw_raster_fps(sim: Simulator, poses: list[AgentState]) -> float:
     """The renderer's per-frame GL work (uniforms, index list, one draw, three read-backs)
     with every index list and uniform prepared before the clock starts."""
-    mesh: Mesh = sim.house.geometry.mesh  # type: ignore[union-attr]
+    assert sim.house.geometry is not None  # a Simulator refuses houses without geometry
+    mesh: Mesh = sim.house.geometry.mesh
     spec: CameraSpec = sim.config.camera
     draw_list = DrawList.from_vertices(interleave_vertices(mesh))
     ctx = create_headless_context()

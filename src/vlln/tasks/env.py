@@ -122,8 +122,9 @@ class NavigationEnv:
         self.follower = GreedyFollower(
             self.sim.grid, self.field, self.config.success_radius, self.sim.config.motion
         )
+        x0, y0, z0 = episode.start_position
         start = AgentState(
-            tuple(episode.start_position),  # type: ignore[arg-type]
+            (x0, y0, z0),
             quaternion_to_yaw(episode.start_rotation),
             0.0,
         )
