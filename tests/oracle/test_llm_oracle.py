@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterator
-
 import numpy as np
 import pytest
 
@@ -21,12 +19,11 @@ from vlln.sim.viewpoints import view_points
 from vlln.tasks.env import NavigationEnv
 from vlln.tasks.episode import Episode, Goal, Instruction, ViewPoint
 from vlln.tasks.record import DialogTurn, EpisodeRecord
-from vlln.tasks.scenes import SceneCache, procedural_scene_id
+from vlln.tasks.scenes import SceneCache
 from vlln.tasks.spec import Talk, TaskConfig
 from vlln.world.frame import yaw_to_quaternion
 from vlln.world.model import ObjectInstance
 
-HOUSE_SEED = 2
 QUESTIONS = (
     "What color is it?",
     "Which room is it in?",
@@ -37,18 +34,6 @@ QUESTIONS = (
     "How far is it?",
     "What time is it?",
 )
-
-
-@pytest.fixture(scope="module")
-def scenes() -> Iterator[SceneCache]:
-    cache = SceneCache()
-    yield cache
-    cache.close()
-
-
-@pytest.fixture(scope="module")
-def sim(scenes: SceneCache) -> Simulator:
-    return scenes.get(procedural_scene_id(HOUSE_SEED))
 
 
 @pytest.fixture(scope="module")
@@ -224,7 +209,7 @@ def test_the_environment_records_backend_latency_and_tokens(
     qx, qy, qz, qw = yaw_to_quaternion(0.3)
     episode = Episode(
         episode_id="llm-oracle-test",
-        scene_id=procedural_scene_id(HOUSE_SEED),
+        scene_id=f"vlln/{sim.house.name}",
         start_position=(x, 0.0, z),
         start_rotation=(qx, qy, qz, qw),
         object_category=target.category,

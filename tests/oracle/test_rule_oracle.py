@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterator
-
 import numpy as np
 import pytest
 
@@ -16,12 +14,11 @@ from vlln.sim.simulator import Simulator
 from vlln.sim.viewpoints import view_points
 from vlln.tasks.env import NavigationEnv
 from vlln.tasks.episode import Episode, Goal, Instruction, ViewPoint
-from vlln.tasks.scenes import SceneCache, procedural_scene_id
+from vlln.tasks.scenes import SceneCache
 from vlln.tasks.spec import REFUSAL_MESSAGE, Talk, TaskConfig
 from vlln.world.frame import yaw_to_quaternion
 from vlln.world.model import ObjectInstance
 
-HOUSE_SEED = 2
 QUESTIONS = (
     "What color is it?",
     "Which room is it in?",
@@ -34,18 +31,6 @@ QUESTIONS = (
     "Am I close?",
     "What time is it?",
 )
-
-
-@pytest.fixture(scope="module")
-def scenes() -> Iterator[SceneCache]:
-    cache = SceneCache()
-    yield cache
-    cache.close()
-
-
-@pytest.fixture(scope="module")
-def sim(scenes: SceneCache) -> Simulator:
-    return scenes.get(procedural_scene_id(HOUSE_SEED))
 
 
 def _targets(sim: Simulator, count: int) -> list[ObjectInstance]:
@@ -153,11 +138,12 @@ def test_the_environment_asks_the_oracle_and_enforces_the_budget(
     goals = view_points(sim.grid, target.box)
     x, z = sim.grid.sample_navigable_point(np.random.default_rng(5), sim.grid.largest_component())
     box = target.box
+    qx, qy, qz, qw = yaw_to_quaternion(0.3)
     episode = Episode(
         episode_id="oracle-test",
-        scene_id=procedural_scene_id(HOUSE_SEED),
+        scene_id=f"vlln/{sim.house.name}",
         start_position=(x, 0.0, z),
-        start_rotation=tuple(yaw_to_quaternion(0.3)),  # type: ignore[arg-type]
+        start_rotation=(qx, qy, qz, qw),
         object_category=target.category,
         goals=(
             Goal(
