@@ -226,6 +226,82 @@ def _add_oracle_commands(commands: argparse._SubParsersAction[argparse.ArgumentP
     report.set_defaults(handler=_oracle_classify_report)
 
 
+def _data_build(args: argparse.Namespace) -> int:
+    from vlln.datagen.build import BuildConfig, build_dataset
+    from vlln.eval.sharding import Shard
+
+    config = BuildConfig(
+        houses=args.houses, split=args.split, seed=args.seed, per_house=args.per_house
+    )
+    shard = Shard.parse(args.shard) if args.shard else None
+    out = build_dataset(Path(args.out), config, shard=shard, progress=not args.quiet)
+    print(f"dataset in {out} (summarise it with: vlln data stats {out})")
+    return 0
+
+
+def _data_stats(args: argparse.Namespace) -> int:
+    from vlln.datagen.stats.report import write_stats
+
+    paths = write_stats(Path(args.dataset), Path(args.out) if args.out else None)
+    print("wrote " + ", ".join(str(path) for path in paths))
+    return 0
+
+
+def _data_export_sft(args: argparse.Namespace) -> int:
+    from vlln.datagen.sft.config import SftConfig
+    from vlln.datagen.sft.export import export_sft
+
+    config = SftConfig(budget=args.budget, history_frames=args.history)
+    summary = export_sft(Path(args.dataset), Path(args.out), config, progress=not args.quiet)
+    print(
+        f"wrote {summary.samples} conversations from {summary.trajectories} trajectories "
+        f"({summary.images} images) to {args.out}/sft.jsonl"
+    )
+    return 0
+
+
+def _bench_data(args: argparse.Namespace) -> int:
+    from vlln.bench.data import run_data_benchmark
+
+    run_data_benchmark(houses=args.houses, per_house=args.per_house, as_json=args.json)
+    return 0
+
+
+def _add_data_commands(commands: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
+    data = commands.add_parser("data", help="the training-data pipeline").add_subparsers(
+        dest="data_command", required=True
+    )
+    build = data.add_parser(
+        "build", help="scene summaries, episodes and dialog-augmented trajectories"
+    )
+    build.add_argument("--houses", type=int, required=True, help="houses of the split to use")
+    build.add_argument("--out", required=True, help="dataset folder (a rerun resumes it)")
+    build.add_argument(
+        "--per-house",
+        type=int,
+        default=20,
+        help="trajectories tried per house (default 20; 0 = every IIGN episode)",
+    )
+    build.add_argument("--split", default="train", help="house split (default train)")
+    build.add_argument("--seed", type=int, default=0, help="seed of every random choice")
+    build.add_argument("--shard", help="i/n: build every n-th house, starting at the i-th")
+    build.add_argument("--quiet", action="store_true", help="no progress bars")
+    build.set_defaults(handler=_data_build)
+    stats = data.add_parser("stats", help="statistics, figure and report of a built dataset")
+    stats.add_argument("dataset", help="a folder made by vlln data build")
+    stats.add_argument("--out", help="where to write them (default DATASET/stats)")
+    stats.set_defaults(handler=_data_stats)
+    sft = data.add_parser(
+        "export-sft", help="trajectories as multi-image conversations for fine-tuning"
+    )
+    sft.add_argument("dataset", help="a folder made by vlln data build")
+    sft.add_argument("--out", required=True, help="output folder (sft.jsonl and images)")
+    sft.add_argument("--budget", type=int, help="oracle answers per trajectory (default: all)")
+    sft.add_argument("--history", type=int, default=8, help="history frames (default 8)")
+    sft.add_argument("--quiet", action="store_true", help="no progress bar")
+    sft.set_defaults(handler=_data_export_sft)
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="vlln", description=__doc__)
     commands = parser.add_subparsers(dest="command", required=True)
@@ -268,11 +344,20 @@ def build_parser() -> argparse.ArgumentParser:
     bench_oracle.add_argument("--json", action="store_true", help="print one JSON object per line")
     bench_oracle.set_defaults(handler=_bench_oracle)
 
+    bench_data = bench.add_parser("data", help="trajectories per hour of the data pipeline")
+    bench_data.add_argument("--houses", type=int, default=1, help="training houses (default 1)")
+    bench_data.add_argument(
+        "--per-house", type=int, default=6, help="trajectories per house (default 6)"
+    )
+    bench_data.add_argument("--json", action="store_true", help="print one JSON object per line")
+    bench_data.set_defaults(handler=_bench_data)
+
     demo = commands.add_parser("demo", help="the main job on the built-in houses")
     demo.add_argument("--out", default="out/demo", help="output directory (default out/demo)")
     demo.set_defaults(handler=_demo)
     _add_eval_commands(commands)
     _add_oracle_commands(commands)
+    _add_data_commands(commands)
     return parser
 
 

@@ -34,7 +34,7 @@ CENTRED_FRACTION = 0.5  # of the target's visible pixels that lie in the centre
 DISAMBIGUATION_RANGE = 3.0  # m
 
 
-def _centre_counts(instance_ids: np.ndarray) -> dict[int, int]:
+def centre_counts(instance_ids: np.ndarray) -> dict[int, int]:
     """Pixels per object id (ids >= 1) in the central region of an instance-id image."""
     h, w = instance_ids.shape
     centre = instance_ids[h // 4 : 3 * h // 4, w // 4 : 3 * w // 4]
@@ -48,7 +48,7 @@ def answer_disambiguation(knowledge: EpisodeKnowledge, state: AgentState, frame:
     rng = knowledge.rng
     ids = frame.instance_ids
     h, w = ids.shape
-    counts = _centre_counts(ids)
+    counts = centre_counts(ids)
     minimum = CENTRE_MIN_SHARE * (3 * h // 4 - h // 4) * (3 * w // 4 - w // 4)
     same_category = [
         (n, i)
@@ -56,7 +56,7 @@ def answer_disambiguation(knowledge: EpisodeKnowledge, state: AgentState, frame:
         if n >= minimum and i in index.instances and index.instances[i].category == target.category
     ]
     candidate = max(same_category)[1] if same_category else None
-    if candidate == target.id and _centred(counts, target.id, ids):
+    if candidate == target.id and is_centred(counts, target.id, ids):
         x, _, z = state.position
         distance = knowledge.plan_distance(x, z)
         if distance <= DISAMBIGUATION_RANGE:
@@ -72,7 +72,7 @@ def answer_disambiguation(knowledge: EpisodeKnowledge, state: AgentState, frame:
     return choose(rng, ("No.", "No, that is not the one.", "No, it is not this one."))
 
 
-def _centred(counts: dict[int, int], target_id: int, ids: np.ndarray) -> bool:
+def is_centred(counts: dict[int, int], target_id: int, ids: np.ndarray) -> bool:
     if max(counts, key=lambda i: (counts[i], -i)) == target_id:
         return True
     visible = int(np.count_nonzero(ids == target_id))

@@ -1,0 +1,60 @@
+"""`vlln bench data`: how many trajectories per hour one core collects, filters and writes.
+
+The workload is the pipeline's trajectory stage on the first ``houses`` training houses,
+``per_house`` episodes each, in one process (so the rate is per core). Scene summaries, episode
+files and the houses' simulators are made before the clock starts; the timed part is
+collection, filtering, rendering both cameras again and encoding every kept frame.
+"""
+
+from __future__ import annotations
+
+import tempfile
+import time
+from pathlib import Path
+
+from vlln.bench.figures import Figure, emit
+from vlln.datagen.build import BuildConfig, build_house, choose_episodes, prepare_episodes
+from vlln.datagen.layout import HouseDataset, house_folders
+from vlln.tasks.scenes import SceneCache, procedural_scene_id
+from vlln.tasks.splits import house_seeds
+
+
+def run_data_benchmark(houses: int = 1, per_house: int = 6, as_json: bool = False) -> list[Figure]:
+    """Build the fixed workload once in a temporary folder and print its figures."""
+    config = BuildConfig(houses=houses, per_house=per_house)
+    figures: list[Figure] = []
+
+    def note(metric: str, value: float, unit: str) -> None:
+        figure = Figure(metric, value, unit)
+        figures.append(figure)
+        emit(figure, as_json)
+
+    seeds = house_seeds(config.split, config.houses)
+    scenes = SceneCache(capacity=len(seeds))
+    with tempfile.TemporaryDirectory(prefix="vlln-bench-data-") as out:
+        root = Path(out)
+        try:
+            by_house = prepare_episodes(root, config, seeds, scenes, progress=False)
+            work = []
+            for seed in seeds:
+                scene_id = procedural_scene_id(seed)
+                work.append(
+                    (scenes.get(scene_id), choose_episodes(by_house[scene_id], config, seed))
+                )
+            started = time.perf_counter()
+            for sim, episodes in work:
+                build_house(root, sim, episodes, config, progress=False)
+            seconds = time.perf_counter() - started
+        finally:
+            scenes.close()
+        datasets = [HouseDataset(folder) for folder in house_folders(root)]
+        attempted = sum(int(d.info["attempted"]) for d in datasets)
+        kept = sum(int(d.info["total_episodes"]) for d in datasets)
+        frames = sum(int(d.info["total_frames"]) for d in datasets)
+    note("trajectories_attempted", attempted, "count")
+    note("trajectories_per_hour", 3600.0 * attempted / seconds, "trajectories/h/core")
+    note("kept_trajectories_per_hour", 3600.0 * kept / seconds, "trajectories/h/core")
+    note("seconds_per_trajectory", seconds / attempted, "s")
+    note("yield", 100.0 * kept / attempted, "%")
+    note("frames_written_per_second", frames / seconds, "frames/s")
+    return figures

@@ -1,0 +1,182 @@
+"""``vlln data build``: every stage of the pipeline for the first N houses of a split.
+
+::
+
+    <out>/build.json                      the settings (a rerun must use the same ones)
+    <out>/scene_summary/<house>/          stage 1: object_dict.json, region_dict.json
+    <out>/episodes/<split>_*.json.gz      stage 2: IIGN, IGN, ObjectNav episodes and stats
+    <out>/trajectories/<house>/           stages 3-5: collected, filtered, written trajectories
+
+Houses are the unit of sharding (``--shard i/n`` takes every n-th house) and of completion (a
+finished house has ``meta/info.json``); within a house the journal makes a killed build resume
+at the next untried episode. Each trajectory draws its randomness from (seed, episode id) only,
+so a resumed, sharded or uninterrupted build writes the same dataset.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Iterator
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from tqdm import tqdm
+
+from vlln import __version__
+from vlln.datagen.collector.collect import CollectorConfig, collect_trajectory
+from vlln.datagen.collector.visibility import DOWN_TILT
+from vlln.datagen.filtering import FilterConfig, rejection_reason
+from vlln.datagen.layout import HouseWriter
+from vlln.datagen.trajectory import Trajectory
+from vlln.errors import ConfigError
+from vlln.eval.sharding import Shard
+from vlln.files import write_text_atomic
+from vlln.oracle.rule_oracle import RuleOracle
+from vlln.sim.agent import AgentState
+from vlln.sim.renderer import Frame
+from vlln.sim.simulator import Simulator
+from vlln.tasks.episode import Episode, read_episodes
+from vlln.tasks.generation import EpisodeGenConfig, build_split, episode_path
+from vlln.tasks.scenes import SceneCache, procedural_scene_id
+from vlln.tasks.spec import TaskType
+from vlln.tasks.splits import house_seeds
+from vlln.world.scene_summary import export_scene_summary
+
+
+@dataclass(frozen=True)
+class BuildConfig:
+    """What a build makes; recorded in ``build.json`` and in every house's info."""
+
+    houses: int
+    split: str = "train"
+    seed: int = 0
+    per_house: int = 20  # trajectories attempted per house (0 = every IIGN episode)
+    episodes: EpisodeGenConfig = field(default_factory=EpisodeGenConfig)
+    collector: CollectorConfig = field(default_factory=CollectorConfig)
+    filter: FilterConfig = field(default_factory=FilterConfig)
+
+    def __post_init__(self) -> None:
+        for name in ("houses", "seed", "per_house"):
+            value = getattr(self, name)
+            low = 1 if name == "houses" else 0
+            if isinstance(value, bool) or not isinstance(value, int) or value < low:
+                raise ConfigError(f"{name} must be a whole number >= {low}, got {value!r}")
+
+    def settings(self) -> dict[str, Any]:
+        return {**asdict(self), "oracle": "rules", "vlln_version": __version__}
+
+
+def build_dataset(
+    out: str | Path, config: BuildConfig, shard: Shard | None = None, progress: bool = True
+) -> Path:
+    """Run (or resume) every stage into ``out``; returns ``out``."""
+    root = Path(out)
+    _check_settings(root, config)
+    mine = (shard or Shard(0, 1)).take(house_seeds(config.split, config.houses))
+    cache = SceneCache(capacity=1)
+    try:
+        by_house = prepare_episodes(root, config, mine, cache, progress)
+        for seed in mine:
+            scene_id = procedural_scene_id(seed)
+            chosen = choose_episodes(by_house.get(scene_id, []), config, seed)
+            build_house(root, cache.get(scene_id), chosen, config, progress)
+    finally:
+        cache.close()
+    return root
+
+
+def prepare_episodes(
+    root: Path, config: BuildConfig, seeds: list[int], cache: SceneCache, progress: bool
+) -> dict[str, list[Episode]]:
+    """Stages 1 and 2: scene summaries of ``seeds``, the split's episode files (built once;
+    every shard builds the same bytes), and the IIGN episodes grouped by scene."""
+    for seed in seeds:
+        export_scene_summary(cache.get(procedural_scene_id(seed)).house, root / "scene_summary")
+    episodes_dir = root / "episodes"
+    path = episode_path(episodes_dir, config.split, TaskType.IIGN)
+    if not path.exists():
+        build_split(
+            config.split,
+            config.houses,
+            episodes_dir,
+            config.seed,
+            config.episodes,
+            scenes=cache,
+            progress=progress,
+        )
+    return _episodes_by_scene(read_episodes(path))
+
+
+def choose_episodes(episodes: list[Episode], config: BuildConfig, seed: int) -> list[Episode]:
+    """The house's IIGN episodes to attempt, drawn without replacement, in a fixed order."""
+    if config.per_house == 0 or config.per_house >= len(episodes):
+        return list(episodes)
+    rng = np.random.default_rng(np.random.SeedSequence([config.seed, seed, 5]))
+    picked = rng.choice(len(episodes), config.per_house, replace=False)
+    return [episodes[int(i)] for i in sorted(picked)]
+
+
+def build_house(
+    root: Path, sim: Simulator, episodes: list[Episode], config: BuildConfig, progress: bool
+) -> None:
+    """Stages 3-5 for one house: collect, filter and write each episode not yet tried."""
+    if not episodes:
+        return
+    writer = HouseWriter(root / "trajectories", episodes[0].scene_id, sim.config.camera)
+    if writer.finished:
+        return
+    oracle = RuleOracle(seed=config.seed)
+    todo = [e for e in episodes if e.episode_id not in writer.attempts]
+    name = episodes[0].scene_id.rsplit("/", 1)[-1]
+    bar = tqdm(todo, desc=name, unit="traj", disable=not progress, leave=False)
+    for episode in bar:
+        trajectory = collect_trajectory(sim, episode, oracle, config.seed, config.collector)
+        last = trajectory.steps[-1].state
+        finals = tuple(
+            sim.render(AgentState(last.position, last.yaw, tilt)) for tilt in (0.0, DOWN_TILT)
+        )
+        reason = rejection_reason(trajectory, finals, config.filter)
+        if reason is None:
+            writer.write_kept(trajectory, _camera_frames(sim, trajectory))
+        else:
+            writer.write_rejected(episode.episode_id, reason)
+    writer.finish({"generator": config.settings()})
+
+
+def _camera_frames(sim: Simulator, trajectory: Trajectory) -> Iterator[tuple[Frame, Frame]]:
+    """(level, 30°-down) frames of every step, rendered again from the recorded states."""
+    for step in trajectory.steps:
+        state = step.state
+        level = sim.render(AgentState(state.position, state.yaw, 0.0))
+        yield level, sim.render(AgentState(state.position, state.yaw, DOWN_TILT))
+
+
+def _episodes_by_scene(episodes: list[Episode]) -> dict[str, list[Episode]]:
+    grouped: dict[str, list[Episode]] = {}
+    for episode in episodes:
+        grouped.setdefault(episode.scene_id, []).append(episode)
+    return grouped
+
+
+def _check_settings(root: Path, config: BuildConfig) -> None:
+    """Record the settings on the first run; refuse to mix settings in one folder."""
+    path = root / "build.json"
+    wanted = json.loads(json.dumps(config.settings()))
+    if path.exists():
+        try:
+            recorded = json.loads(path.read_text(encoding="utf-8"))
+        except ValueError as error:
+            raise ConfigError(
+                f"{path} is not valid JSON ({error}); delete it to rebuild"
+            ) from error
+        if recorded != wanted:
+            changed = sorted(k for k in wanted if recorded.get(k) != wanted[k])
+            raise ConfigError(
+                f"{root} was built with other settings (differing: {', '.join(changed)}); "
+                "resume with the same options, or build into a new folder"
+            )
+        return
+    root.mkdir(parents=True, exist_ok=True)
+    write_text_atomic(path, json.dumps(wanted, indent=2) + "\n")

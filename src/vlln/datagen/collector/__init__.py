@@ -1,0 +1,1 @@
+"""Trajectory collection: a privileged frontier explorer that asks the oracle as it goes."""

@@ -1,0 +1,75 @@
+"""The data-collection frontier rule, which sometimes knows where the target is.
+
+Reference-facts §5: each time a frontier is chosen, with probability ``p_continue`` it is the
+one nearest the previous choice, otherwise the one with the smallest geodesic distance to the
+target (the very first choice is the nearest one). Choices of the second kind are the moments
+a route question can explain, so the chooser keeps a log of every choice and its rule.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from vlln.agents.frontier.frontiers import ChooserConfig
+from vlln.sim.geodesic import GeodesicField
+
+NEAREST = "nearest"
+CONTINUE = "continue"
+BEST = "best"
+
+
+@dataclass(frozen=True)
+class Choice:
+    rule: str  # NEAREST, CONTINUE or BEST
+    point: tuple[float, float]  # the frontier, in world coordinates
+
+
+class TargetAwareChooser:
+    """A :class:`~vlln.agents.frontier.frontiers.FrontierChooser` with a ground-truth branch.
+
+    ``offset`` turns the map's coordinates (relative to the start) into world coordinates,
+    where ``field`` measures the walk to the target.
+    """
+
+    def __init__(self, field: GeodesicField, offset: tuple[float, float]) -> None:
+        self.field = field
+        self.offset = offset
+        self.choices: list[Choice] = []
+
+    def __call__(
+        self,
+        points: NDArray[np.float64],
+        distances: NDArray[np.float64],
+        agent: tuple[float, float],
+        previous: tuple[float, float] | None,
+        hint: float | None,
+        rng: np.random.Generator,
+        config: ChooserConfig,
+    ) -> int | None:
+        reachable = np.flatnonzero(np.isfinite(distances))
+        if reachable.size == 0:
+            return None
+        rule, index = NEAREST, int(reachable[np.argmin(distances[reachable])])
+        if previous is not None:
+            if rng.random() < config.p_continue:
+                gaps = np.hypot(
+                    points[reachable, 0] - previous[0], points[reachable, 1] - previous[1]
+                )
+                rule, index = CONTINUE, int(reachable[np.argmin(gaps)])
+            else:
+                to_target = np.array([self._to_target(points[i]) for i in reachable])
+                if np.isfinite(to_target).any():
+                    rule, index = BEST, int(reachable[np.argmin(to_target)])
+        ox, oz = self.offset
+        self.choices.append(
+            Choice(rule, (float(points[index, 0]) + ox, float(points[index, 1]) + oz))
+        )
+        return index
+
+    def _to_target(self, point: NDArray[np.float64]) -> float:
+        return self.field.distance(
+            float(point[0]) + self.offset[0], float(point[1]) + self.offset[1]
+        )

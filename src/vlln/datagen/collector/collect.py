@@ -1,0 +1,104 @@
+"""Walking one episode with the collector: the policy acts, the triggers ask, steps are kept."""
+
+from __future__ import annotations
+
+import math
+import zlib
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from vlln.datagen.collector.dialog import DialogConfig, DialogTriggers
+from vlln.datagen.collector.policy import CollectorPolicy, PolicyConfig
+from vlln.datagen.trajectory import Step, Trajectory
+from vlln.errors import ConfigError
+from vlln.oracle.protocol import EpisodeContext, Oracle
+from vlln.sim.agent import Action, AgentState
+from vlln.sim.follower import GreedyFollower
+from vlln.sim.simulator import Simulator
+from vlln.tasks.episode import Episode
+from vlln.world.frame import quaternion_to_yaw
+
+TOO_LONG = "too_long"  # the step limit was reached before STOP
+
+
+@dataclass(frozen=True)
+class CollectorConfig:
+    """Everything that shapes a collected trajectory (recorded in the dataset's info)."""
+
+    policy: PolicyConfig = field(default_factory=PolicyConfig)
+    dialog: DialogConfig = field(default_factory=DialogConfig)
+    goal_radius: float = 0.25  # the follower stops this close to a view point
+    max_steps: int = 500
+
+    def __post_init__(self) -> None:
+        if self.max_steps < 1 or not self.goal_radius > 0.0:
+            raise ConfigError(
+                f"max_steps must be >= 1 and goal_radius > 0, got {self.max_steps}, "
+                f"{self.goal_radius}"
+            )
+
+
+def episode_rng(seed: int, episode_id: str, stream: str) -> np.random.Generator:
+    """A generator for one episode and purpose: independent of what ran before it."""
+    entropy = [seed, zlib.crc32(episode_id.encode("utf-8")), zlib.crc32(stream.encode())]
+    return np.random.default_rng(np.random.SeedSequence(entropy))
+
+
+def collect_trajectory(
+    sim: Simulator,
+    episode: Episode,
+    oracle: Oracle,
+    seed: int = 0,
+    config: CollectorConfig | None = None,
+) -> Trajectory:
+    """Walk ``episode`` in ``sim`` (its house) and return every step and dialog exchange."""
+    config = config or CollectorConfig()
+    house = sim.house
+    target = house.instance(int(episode.instruction.instance_id[0]))
+    points = tuple((vp.position[0], vp.position[2]) for vp in episode.goals[0].view_points)
+    field_ = sim.geodesic_field(points)
+    follower = GreedyFollower(sim.grid, field_, config.goal_radius, sim.config.motion)
+    oracle.start(EpisodeContext(sim, target, points))
+    state = AgentState(episode.start_position, quaternion_to_yaw(episode.start_rotation), 0.0)
+    observation = sim.reset(state)
+    policy = CollectorPolicy(
+        sim,
+        target,
+        points,
+        follower,
+        state,
+        episode_rng(seed, episode.episode_id, "explore"),
+        config.policy,
+    )
+    stated = frozenset(episode.instruction.instruction_info or ())
+    triggers = DialogTriggers(
+        oracle,
+        house,
+        target,
+        stated,
+        episode_rng(seed, episode.episode_id, "dialog"),
+        config.dialog,
+    )
+    trajectory = Trajectory(episode)
+    frame = observation.frame
+    triggers.at_start(state, frame)
+    distance = math.inf
+    for index in range(config.max_steps):
+        x, _, z = state.position
+        distance = field_.distance(x, z)
+        action = policy.act(state, frame)
+        triggers.at_frame(
+            index, state, frame, distance, policy.chooser.choices, policy.seen_at is not None
+        )
+        if action == Action.STOP:
+            trajectory.steps.append(Step(state, action, False, distance))
+            break
+        observation = sim.step(action)
+        trajectory.steps.append(Step(state, action, observation.collided, distance))
+        state, frame = observation.state, observation.frame
+    else:
+        trajectory.failure = TOO_LONG
+    trajectory.failure = trajectory.failure or policy.failure
+    trajectory.dialog = triggers.finish(distance)
+    return trajectory

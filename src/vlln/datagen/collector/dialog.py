@@ -1,0 +1,198 @@
+"""When the collector asks the oracle, and what (reference-facts §5, dialog triggers).
+
+* Attribute, at the first frame: about an attribute the instruction does not state and the
+  target has a value for. The answer becomes a *known* attribute.
+* Route, at a frame where the frontier nearest the target was chosen, once the move that
+  followed proves real progress: more than ``route_progress`` metres walked and the geodesic
+  distance to the target shorter than when the choice was made. The question is asked at the
+  frame of the choice, with the state and view of that frame.
+* Disambiguation, whenever an instance of the target's category that fits the known
+  attributes is centred in the view (the oracle's own rule) within ``ask_range``; once per
+  instance.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from vlln.datagen.collector.chooser import BEST, Choice
+from vlln.datagen.collector.templates import (
+    ATTRIBUTE_TEMPLATES,
+    DISAMBIGUATION_TEMPLATES,
+    ROUTE_TEMPLATES,
+    fill,
+)
+from vlln.datagen.trajectory import Exchange
+from vlln.errors import ConfigError
+from vlln.oracle.disambiguation import CENTRE_MIN_SHARE, centre_counts, is_centred
+from vlln.oracle.protocol import Oracle, Question
+from vlln.sim.agent import AgentState
+from vlln.sim.renderer import Frame
+from vlln.world.model import House, ObjectInstance
+
+ATTRIBUTE, ROUTE, DISAMBIGUATION = "attribute", "route", "disambiguation"
+
+
+@dataclass(frozen=True)
+class DialogConfig:
+    ask_range: float = 3.0  # m, floor-plan distance to a candidate's box
+    route_progress: float = 1.0  # m walked after a best-frontier choice
+
+    def __post_init__(self) -> None:
+        if not (self.ask_range > 0.0 and self.route_progress > 0.0):
+            raise ConfigError("ask_range and route_progress must be positive metres")
+
+
+@dataclass
+class _PendingRoute:
+    frame_index: int
+    state: AgentState
+    frame: Frame
+    distance: float  # geodesic distance to the target at the choice
+    walked: float = 0.0
+
+
+class DialogTriggers:
+    """Watches the walk frame by frame and asks the oracle when a trigger fires."""
+
+    def __init__(
+        self,
+        oracle: Oracle,
+        house: House,
+        target: ObjectInstance,
+        stated: frozenset[str],
+        rng: np.random.Generator,
+        config: DialogConfig | None = None,
+    ) -> None:
+        self.oracle = oracle
+        self.house = house
+        self.target = target
+        self.stated = stated
+        self.rng = rng
+        self.config = config or DialogConfig()
+        self.exchanges: list[Exchange] = []
+        self.known: dict[str, str] = {}
+        self._asked_about: set[int] = set()
+        self._pending: _PendingRoute | None = None
+        self._choices_seen = 0
+        self._last_position: tuple[float, float, float] | None = None
+
+    # ----------------------------------------------------------------- triggers
+    def at_start(self, state: AgentState, frame: Frame) -> None:
+        """The attribute question (skipped when the instruction already states everything)."""
+        values = {
+            name: getattr(self.target.attributes, name)
+            for name in ("color", "material", "texture", "shape", "size")
+        }
+        options = [name for name, value in values.items() if value and name not in self.stated]
+        if "room" not in self.stated:
+            options.append("room")
+        if not options:
+            return
+        name = options[int(self.rng.integers(len(options)))]
+        self._ask(0, ATTRIBUTE, ATTRIBUTE_TEMPLATES[name], state, frame)
+        if name != "room":
+            self.known[name] = values[name]
+
+    def at_frame(
+        self,
+        frame_index: int,
+        state: AgentState,
+        frame: Frame,
+        distance: float,
+        choices: list[Choice],
+        target_seen: bool,
+    ) -> None:
+        """Check the triggers on a new frame; ``choices`` is the chooser's log so far."""
+        self._track_route(frame_index, state, frame, distance, choices, target_seen)
+        self._check_disambiguation(frame_index, state, frame)
+
+    def finish(self, distance: float) -> list[Exchange]:
+        """Settle a pending route question at the end of the walk; the exchanges by frame."""
+        self._settle_route(distance)
+        return sorted(self.exchanges, key=lambda e: e.frame_index)
+
+    # ----------------------------------------------------------------- route
+    def _track_route(
+        self,
+        frame_index: int,
+        state: AgentState,
+        frame: Frame,
+        distance: float,
+        choices: list[Choice],
+        target_seen: bool,
+    ) -> None:
+        pending = self._pending
+        if pending is not None and self._last_position is not None:
+            pending.walked += math.dist(self._last_position, state.position)
+        self._last_position = state.position
+        new = choices[self._choices_seen :]
+        self._choices_seen = len(choices)
+        if new or target_seen:
+            self._settle_route(distance)
+        if new and new[-1].rule == BEST and not target_seen:
+            self._pending = _PendingRoute(frame_index, state, _copy(frame), distance)
+
+    def _settle_route(self, distance: float) -> None:
+        pending = self._pending
+        self._pending = None
+        if pending is None:
+            return
+        if pending.walked > self.config.route_progress and distance < pending.distance:
+            self._ask(pending.frame_index, ROUTE, ROUTE_TEMPLATES, pending.state, pending.frame)
+
+    # ----------------------------------------------------------------- disambiguation
+    def _check_disambiguation(self, frame_index: int, state: AgentState, frame: Frame) -> None:
+        ids = frame.instance_ids
+        h, w = ids.shape
+        counts = centre_counts(ids)
+        minimum = CENTRE_MIN_SHARE * (3 * h // 4 - h // 4) * (3 * w // 4 - w // 4)
+        same = [
+            (n, i)
+            for i, n in counts.items()
+            if n >= minimum and self._instance(i).category == self.target.category
+        ]
+        if not same:
+            return
+        candidate = self._instance(max(same)[1])
+        if candidate.id in self._asked_about or not self._fits_known(candidate):
+            return
+        if not is_centred(counts, candidate.id, ids):
+            return
+        x, _, z = state.position
+        box = candidate.box
+        gap = math.hypot(
+            max(box.min[0] - x, 0.0, x - box.max[0]), max(box.min[2] - z, 0.0, z - box.max[2])
+        )
+        if gap > self.config.ask_range:
+            return
+        self._asked_about.add(candidate.id)
+        self._ask(frame_index, DISAMBIGUATION, DISAMBIGUATION_TEMPLATES, state, frame)
+
+    def _fits_known(self, instance: ObjectInstance) -> bool:
+        return all(getattr(instance.attributes, k) == v for k, v in self.known.items())
+
+    def _instance(self, instance_id: int) -> ObjectInstance:
+        return self.house.instance(instance_id)
+
+    # ----------------------------------------------------------------- asking
+    def _ask(
+        self,
+        frame_index: int,
+        trigger: str,
+        templates: tuple[str, ...],
+        state: AgentState,
+        frame: Frame,
+    ) -> None:
+        text = fill(templates, self.target.category, self.rng)
+        reply = self.oracle.answer(Question(text, state, frame))
+        self.exchanges.append(
+            Exchange(frame_index, trigger, text, reply.answer, str(reply.question_type))
+        )
+
+
+def _copy(frame: Frame) -> Frame:
+    return Frame(frame.rgb.copy(), frame.depth.copy(), frame.instance_ids.copy())

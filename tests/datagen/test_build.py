@@ -1,0 +1,92 @@
+"""The whole pipeline: stages present, resume after a kill, shards, settings guard."""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from tests.datagen.conftest import SMALL, dataset_files
+from vlln.datagen.build import BuildConfig, build_dataset
+from vlln.datagen.layout import HouseDataset, house_folders
+from vlln.errors import ConfigError
+from vlln.eval.sharding import Shard
+from vlln.tasks.episode import read_episodes
+
+
+def test_every_stage_is_written(small_dataset: Path) -> None:
+    houses = list(house_folders(small_dataset))
+    assert [h.name for h in houses] == sorted(
+        p.name for p in (small_dataset / "scene_summary").iterdir()
+    )
+    for folder in houses:
+        data = HouseDataset(folder)
+        assert data.info["attempted"] == SMALL.per_house
+        kept = data.info["total_episodes"]
+        assert kept + sum(data.info["rejections"].values()) == SMALL.per_house
+        assert [row["episode_index"] for row in data.episodes] == list(range(kept))
+        for row in data.episodes:
+            frames = data.frames(row["episode_index"])
+            assert len(frames["action"]) == row["length"]
+            assert frames["action"][-1] == 0  # STOP
+            assert not frames["collided"].any()
+            for camera in ("level", "down"):
+                assert data.rgb(camera, row["episode_index"], row["length"] - 1).shape == (
+                    480,
+                    640,
+                    3,
+                )
+    for task in ("iign", "ign", "objectnav"):
+        assert read_episodes(small_dataset / "episodes" / f"train_{task}.json.gz")
+
+
+def test_a_killed_build_resumes_to_the_same_dataset(small_dataset: Path, tmp_path: Path) -> None:
+    out = tmp_path / "resumed"
+    command = [
+        sys.executable,
+        "-m",
+        "vlln.cli",
+        "data",
+        "build",
+        "--houses",
+        str(SMALL.houses),
+        "--per-house",
+        str(SMALL.per_house),
+        "--out",
+        str(out),
+        "--quiet",
+    ]
+    process = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    journal = out / "trajectories" / "house_00000" / "meta" / "journal.jsonl"
+    deadline = time.monotonic() + 240
+    while not journal.exists() and process.poll() is None and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert process.poll() is None, "the build ended before it could be killed"
+    os.kill(process.pid, signal.SIGKILL)
+    process.wait()
+    assert not (out / "trajectories" / "house_00001" / "meta" / "info.json").exists()
+    build_dataset(out, SMALL, progress=False)
+    assert dataset_files(out) == dataset_files(small_dataset)
+
+
+def test_two_shards_equal_one_build(small_dataset: Path, tmp_path: Path) -> None:
+    out = tmp_path / "sharded"
+    build_dataset(out, SMALL, shard=Shard(1, 2), progress=False)
+    assert [p.name for p in house_folders(out)] == ["house_00001"]
+    build_dataset(out, SMALL, shard=Shard(0, 2), progress=False)
+    assert dataset_files(out) == dataset_files(small_dataset)
+
+
+def test_other_settings_in_the_same_folder_are_refused(small_dataset: Path) -> None:
+    with pytest.raises(ConfigError, match="per_house"):
+        build_dataset(small_dataset, BuildConfig(houses=2, per_house=3), progress=False)
+
+
+def test_bad_settings_are_refused() -> None:
+    with pytest.raises(ConfigError, match="houses"):
+        BuildConfig(houses=0)
