@@ -6,9 +6,11 @@ phrase patterns do the same job deterministically, in microseconds and without a
 
 Text is first normalised (:mod:`vlln.oracle.normalisation`: case, contractions, chat
 spellings, typos, wrappers, embedded questions, word order), so the cues
-(:mod:`vlln.oracle.question_cues`) see clean lower-case words. Every cue that matches adds
-its weight to its topic and to the topic's question type; the highest total wins, ties going
-to the more specific type. A question that matches nothing is Other.
+(:mod:`vlln.oracle.question_cues` for disambiguation and route questions,
+:mod:`vlln.oracle.attribute_cues` and :mod:`vlln.oracle.other_cues` for the rest) see clean
+lower-case words. Every cue that matches adds its weight to its topic and to the topic's
+question type; the highest total wins, ties going to the more specific type. A question that
+matches nothing is Other.
 """
 
 from __future__ import annotations
@@ -18,10 +20,13 @@ from dataclasses import dataclass, replace
 from enum import StrEnum
 from typing import TypeVar
 
+from vlln.oracle.attribute_cues import ATTRIBUTE_RULES
 from vlln.oracle.normalisation import MATERIAL_SYNONYMS, ROOM_SYNONYMS, normalise, rephrase
+from vlln.oracle.other_cues import OTHER_RULES
 from vlln.oracle.protocol import QuestionType
 from vlln.oracle.question_cues import (
-    RULES,
+    DISAMBIGUATION_RULES,
+    ROUTE_RULES,
     AttributeTopic,
     OtherTopic,
     RouteKind,
@@ -74,7 +79,11 @@ def _type_of(topic: Topic) -> QuestionType:
     return QuestionType.ATTRIBUTE if isinstance(topic, AttributeTopic) else QuestionType.OTHER
 
 
-_COMPILED = [(re.compile(pattern), weight, topic) for weight, topic, pattern in RULES]
+_RULES = (*DISAMBIGUATION_RULES, *ROUTE_RULES, *ATTRIBUTE_RULES, *OTHER_RULES)
+# Text holds one sentence a line: "^" and "$" match at each sentence, ".*" stays inside one.
+_COMPILED = [
+    (re.compile(pattern, re.MULTILINE), weight, topic) for weight, topic, pattern in _RULES
+]
 # A tie goes to the earlier type: the more specific intent.
 _TYPE_ORDER = (
     QuestionType.DISAMBIGUATION,
@@ -92,20 +101,21 @@ def classify_question(text: str) -> QuestionType:
 
 def analyse_question(text: str) -> QuestionAnalysis:
     """Type, topic and mentioned values of a question, by weighted phrase patterns."""
-    normalised = rephrase(normalise(text))
+    sentences = rephrase(normalise(text))
+    normalised = sentences.replace("\n", " ")  # object names keep their "_" (no room in them)
     type_scores = dict.fromkeys(_TYPE_ORDER, 0.0)
     topic_scores: dict[Topic, float] = {}
     for pattern, weight, topic in _COMPILED:
-        if pattern.search(normalised):
+        if pattern.search(sentences):
             type_scores[_type_of(topic)] += weight
             topic_scores[topic] = topic_scores.get(topic, 0.0) + weight
     best = max(_TYPE_ORDER, key=lambda t: (type_scores[t], -_TYPE_ORDER.index(t)))
     if type_scores[best] == 0.0:
         best = QuestionType.OTHER
     analysis = QuestionAnalysis(
-        text=normalised,
+        text=normalised.replace("_", " "),
         question_type=best,
-        yes_no=bool(_YES_NO_START.search(normalised)),
+        yes_no=bool(_YES_NO_START.search(sentences.rsplit("\n", 1)[-1])),  # the last sentence
         colors=_mentioned(normalised, list(COLORS)),
         materials=_canonical(_mentioned(normalised, list(MATERIAL_SYNONYMS)), MATERIAL_SYNONYMS),
         rooms=_canonical(_mentioned(normalised, list(ROOM_SYNONYMS)), ROOM_SYNONYMS),

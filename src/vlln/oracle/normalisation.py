@@ -1,12 +1,12 @@
 """Normalising a navigator's question so that simple patterns can read it.
 
 Questions are typed by people and models alike: mixed case, contractions, chat spellings and
-typos. :func:`normalise` turns them into lower-case words separated by single spaces, expands
-contractions ("what's" -> "what is"), maps chat and British spellings ("u" -> "you",
-"colour" -> "color"), drops punctuation, and corrects words that are not known English to a
-pattern keyword within a small edit distance ("colr" -> "color", "rigth" -> "right").
-:func:`rephrase` then undoes what hides a question's frame: politeness wrappers, embedded
-questions ("whether this is the target") and non-native word order ("how I can go").
+typos. :func:`normalise` turns them into lower-case words separated by single spaces, one
+sentence a line, with spelling repaired by :mod:`vlln.oracle.spelling` ("what's" -> "what is",
+"u" -> "you", "colr" -> "color"). :func:`rephrase` then undoes what hides a question's frame:
+politeness, hedges and negation ("isn't it behind me"), embedded questions ("whether this is
+the target"), a subject put first ("the mug, is it on the counter") and non-native word order
+("how I can go").
 """
 
 from __future__ import annotations
@@ -14,6 +14,7 @@ from __future__ import annotations
 import re
 from functools import cache
 
+from vlln.oracle.spelling import CHAT_SPELLINGS, CONTRACTIONS, corrected
 from vlln.world.catalogue.registry import ROOM_TYPES, default_catalogue
 
 # Canonical names of the rooms and materials a question may mention.
@@ -47,169 +48,31 @@ MATERIAL_SYNONYMS: dict[str, str] = {
     "tiled": "tile",
 }
 
-_CONTRACTIONS: dict[str, str] = {
-    "what's": "what is",
-    "where's": "where is",
-    "which's": "which is",
-    "how's": "how is",
-    "it's": "it is",
-    "that's": "that is",
-    "there's": "there is",
-    "here's": "here is",
-    "who's": "who is",
-    "i'm": "i am",
-    "im": "i am",
-    "i've": "i have",
-    "ive": "i have",
-    "i'll": "i will",
-    "you're": "you are",
-    "isn't": "is not",
-    "isnt": "is not",
-    "aren't": "are not",
-    "don't": "do not",
-    "dont": "do not",
-    "doesn't": "does not",
-    "doesnt": "does not",
-    "didn't": "did not",
-    "can't": "cannot",
-    "cant": "cannot",
-    "shouldn't": "should not",
-    "let's": "let us",
-    "whats": "what is",
-    "way's": "way is",
-    "one's": "one is",
-    "infront": "in front",
-    "wheres": "where is",
-    "thats": "that is",
-}
-
-_CHAT_SPELLINGS: dict[str, str] = {
-    "u": "you",
-    "ur": "your",
-    "r": "are",
-    "wat": "what",
-    "ths": "this",
-    "tht": "that",
-    "wht": "what",
-    "wut": "what",
-    "whr": "where",
-    "wher": "where",
-    "wer": "where",
-    "wich": "which",
-    "whch": "which",
-    "shud": "should",
-    "shld": "should",
-    "sould": "should",
-    "hw": "how",
-    "pls": "please",
-    "plz": "please",
-    "thx": "thanks",
-    "tat": "that",
-    "colour": "color",
-    "recognise": "recognize",
-    "whereabouts": "where",
-    "colours": "colors",
-    "coloured": "colored",
-    "grey": "gray",
-    "favourite": "favorite",
-    "metre": "meter",
-    "metres": "meters",
-    "nxt": "next",
-    "fwd": "forward",
-    "lft": "left",
-    "rt": "right",
-    "rm": "room",
-    "tgt": "target",
-    "obj": "object",
-    "neighbour": "neighbor",
-    "neighbours": "neighbors",
-    "neighbouring": "neighboring",
-    "centre": "center",
-    "thru": "through",
-    "towards": "toward",
-}
-
-
-def _words(text: str) -> list[str]:
-    return text.split()
-
-
-# Words the patterns key on: misspellings are corrected toward these.
-_KEYWORDS: frozenset[str] = frozenset(
-    _words(
-        """
-    color colors colored material materials made texture textured shape shaped size sized
-    big bigger large larger small smaller tall height wide width long dimensions look looks
-    like appearance describe description details features characteristics distinctive special
-    kind type sort style room rooms kitchen bedroom bathroom toilet living dining study
-    corridor storage hallway located location where which what should would could direction
-    directions way route path reach arrive there left right turn turning straight forward
-    ahead behind around backward backwards front facing face heading next near nearby next
-    beside close closer closest far distance away meters steps target object goal thing item
-    correct right same found find looking visible view sight see seeing guide lead navigate
-    continue keep going stop upstairs downstairs through toward please answer wooden metal
-    metallic plastic fabric leather glass ceramic marble adjacent neighbor surrounded under
-    soft hard smooth rough shiny glossy striped pattern brown black white green yellow purple
-    orange beige silver leave enter exit
-    underneath above below sitting standing placed lying hanging mounted against corner wall
-    floor table shelf counter progress track almost nearly getting relative compared pointing
-    point orientation angle degrees moving move walk exactly information tell more another
-    instance confirm verify guidance instructions navigation proceed composition position
-    """
-    )
-)
-
-# Common words that are never "corrected" even though they are one edit from a keyword.
-_KNOWN_WORDS: frozenset[str] = _KEYWORDS | frozenset(
-    _words(
-        """
-    a an the is are was were be been being am do does did done have has had having it its
-    this that these those i me my mine you your we us our they them their he she his her
-    to of in on at by for with from up down now here then than so and or not no yes can
-    cannot could would will shall may might must go goes going went gone get got gets let
-    us how why when who whom whose much many some any all one two three four five six
-    seven eight nine ten still yet also too very really just only other else each every
-    want need know think see saw seen looked find finding give tell told say said mean
-    meant wait stay take come came try again ok okay hi hello hey thanks thank sorry
-    good great fine well bad best better need help sure last first second third side sides
-    described describing describes question quick roughly reached
-    book books look lamp lamps lamp cup cups bed beds chair chairs sofa sofas desk desks
-    rug rugs tv plant plants vase vases bowl bowls plate plates towel towels mirror mirrors
-    picture pictures clock clocks pillow pillows stool stools bench benches couch couches
-    bottle bottles basket baskets cabinet cabinets dresser lamp light lights window windows
-    door doors sink sinks oven fridge piano guitar laptop speaker speakers curtain curtains
-    bin trash wardrobe nightstand armchair ottoman radiator fireplace candle candles
-    red blue green black white gray brown beige orange yellow purple pink silver gold cream
-    teal navy dark light wood tile carpet foliage plain fan fans hat rat cat car bar bag
-    bags box boxes lot lots bit set sit sat lie lay hang put gets got hit hot hole
-    whole part area space house home place places spot thing things one ones
-    left lest lift loft lend led let lot late later ate eat mat map cap tap
-    back pack bank band bath both arm arms pot pots top mug mugs rag cot ask asked lost
-    current currently present while painting paintings remind
-    """
-    )
-)
-
 _AUX = r"(can|should|must|could|would|will|shall|do|need to|have to|am|are)"
 
 # (pattern, replacement), applied in order to normalised text.
 _REWRITE_RULES: tuple[tuple[str, str], ...] = (
+    (r"\bnext too\b", "next to"),
+    # Politeness and hedging adverbs say nothing about the intent, wherever they stand.
+    (r" ?\b(?:please|kindly|just|really|actually|basically|simply|literally)\b", ""),
     # Fillers and politeness wrappers say nothing about the intent.
     (r"^(sorry|excuse me|pardon me)( if| for)?\b[\w ]*? (question|asking|bothering)( but)? ", ""),
     (
         r"^((so|and|ok|okay|well|then|hmm|um|uh|hey|hi|please|kindly|sorry|oh|alright|wait"
-        r"|excuse me|dear me|quick question|one question|a question|question|query) )+",
+        r"|excuse me|dear me|pray tell|quick question|one question|a question|question|query) )+",
         "",
     ),
     # Narrative before an embedded question: "i went through the hall can you tell me ...".
     (
         r"^(.*\b(?<!how )(?<!why ))?((can|could) you tell me|i (am|was) wondering|i wonder"
-        r"|do you know)\b ?(?=(whether|if|where|which|what|how)\b)",
+        r"|do you know)\b ?(?=(whether|if|where|which|what|how|is|are|am|does|do|did|should|can"
+        r"|could|would|will|has|have)\b)",
         "",
     ),
     (
         r"^((can|could|would|will) you (please |kindly )?)?(tell me|let me know|say)( please)?"
-        r"(?= (whether|if|where|which|what|how|who|when)\b) ?",
+        r"(?= (whether|if|where|which|what|how|who|when|is|are|am|does|did|should|can|could"
+        r"|would|will|has|have|on|in)\b) ?",
         "",
     ),
     (
@@ -218,10 +81,74 @@ _REWRITE_RULES: tuple[tuple[str, str], ...] = (
         "",
     ),
     (r"( (please|thanks|thank you|then|now please|do you think|you think|if you can))+$", ""),
-    # Embedded yes/no question: "whether the lamp i see is the target" -> "is the lamp ...".
+    # A negated question asks what the plain one asks: "is not it behind me", "am i not
+    # close", "are not i in the kitchen" -> "is it behind me", "am i close", "am i in ...".
+    (
+        r"^((?:is|are|am|was|were|do|does|did|should|shall|can|could|would|will|have|has|must)"
+        r"(?: (?:i|it|this|that|we|you|they|the \w+))?) not\b",
+        r"\1",
+    ),
+    (r"^are i\b", "am i"),
+    # A negated statement with a tag: "you do not mean this chair, do you" -> "do you mean
+    # this chair".
+    (
+        r"^(you|i|we|they|it) (do|does|did|can|will|should|would)(?: not)? (.+?) (?:do|does|did"
+        r"|can|will|should|would|is|are) (?:you|i|we|they|it)(?: not)?$",
+        r"\2 \1 \3",
+    ),
+    # Embedded yes/no question: "whether the lamp i see is the target" -> "is the lamp ...",
+    # "whether i should go through it" -> "should i go through it".
+    (r"^(?:whether|if) (i|we) (should|can|must|could|would|will|shall|am|are) ", r"\2 \1 "),
     (
         r"^(?:whether|if) ((?:this|that|these|those|the)(?: [\w ]+?)?|it|they) (is|are|was) ",
         r"\2 \1 ",
+    ),
+    # Hedges before a statement offered for confirmation: "i think this is the lamp, yes".
+    (r"^(i think|i guess|i believe|i suppose|maybe|perhaps) (?=(this|that|it|here)\b)", ""),
+    (
+        r"^(i forgot|i do not remember|i cannot remember|i am not sure|to be sure|checking"
+        r"|remind me|i am (pretty |quite |fairly )?sure)( again)? "
+        r"(?=(the|this|that|it|is|are|what|which|where|how)\b)",
+        "",
+    ),
+    # A subject put first and taken up by a pronoun: "the mug, is it on the counter" -> "is
+    # the mug on the counter", "the chair, does it have arms" -> "does the chair have arms".
+    (
+        r"^((?:the|this|that|these|those)(?: (?!(?:what|which|where|how|is|are|was)\b)\w+)+?)"
+        r" (is|are|was|does|do|did|has|have) (?:it|they) ",
+        r"\2 \1 ",
+    ),
+    # The navigator named in the third person: "should the agent move" -> "should i move".
+    (
+        r"\b(should|can|could|must|do|did|will|would|shall) (?:the )?(?:agent|robot|navigator)\b",
+        r"\1 i",
+    ),
+    (r"\bdoes (?:the )?(?:agent|robot|navigator)\b", "do i"),
+    (r"\b(?:is|was) the (?:agent|robot|navigator)\b", "am i"),
+    (r"\bthe (?:agent|robot|navigator) is\b", "i am"),
+    (r"\b(?:the )?(?:agents|robots|navigators)\b", "my"),
+    (r"\b(?:the )?agent (?=(?:pose|position|location|heading|room|state|coordinates)\b)", "my "),
+    (r"\bthe (?:agent|robot|navigator)\b", "me"),
+    # An object named by where the navigator is: "the stool i am near" -> "the stool in front
+    # of me", so it reads as a candidate, not as the navigator's progress.
+    (
+        r"\b(the|this|that) (?!(?:way|direction|side|room)\b)(\w+) (?:that |which )?i am (?:now "
+        r"|currently )?(?:(?:standing|sitting|stopped) )?(?:near|next to|at|beside|by|facing"
+        r"|looking at|pointing at|in front of|close to)\b",
+        r"\1 \2 in front of me",
+    ),
+    (
+        r"\b(the|this|that) (\w+) (?:that |which )?i am (?:now |currently )?(?:(?:standing|sitting"
+        r"|lying) )?on\b",
+        r"\1 \2 under me",
+    ),
+    # A subject put first and asked about after: "the basket, what is inside it" -> "what is
+    # inside the basket", "the bath mat, what colour" -> "what colour the bath mat".
+    (
+        r"^((?:the|this|that)(?: (?!(?:what|which|where|how|is|are|has|have|does|do|can)\b)\w+)"
+        r"{1,4}?) "
+        r"((?:what|which|where|how)\b.*?)(?: (?:it|they|them))?$",
+        r"\2 \1",
     ),
     # Tag questions: "that is the chair, is not it" -> "is that the chair".
     (
@@ -242,12 +169,25 @@ _REWRITE_RULES: tuple[tuple[str, str], ...] = (
         r" (it|they|the [\w ]+?) (is|are)\b",
         r"\1 \3 \2",
     ),
+    # A statement asked as a question: "the guitar is acoustic or electric" -> "is the guitar
+    # acoustic or electric".
+    (
+        r"^((?:the|this|that|these|those)(?: (?!(?:what|which|where|how|is|are|was|i|you|we)\b)"
+        r"\w+){1,4}) (is|are|was) (?!(?:it|not|that|this)\b)",
+        r"\2 \1 ",
+    ),
     (
         r"\b(confirm|verify|check)( for me)? (?:whether|if|that) "
         r"(this|that|it|the [\w ]+?) (is|are|was) ",
         r"\1 \4 \3 ",
     ),
-    # Subject before auxiliary: "how i can go" -> "how can i go", "which room i am in".
+    # Subject before auxiliary: "how i can go" -> "how can i go", "which room i am in",
+    # "where i have to go" -> "where do i have to go".
+    (
+        r"^((?:in |to |from )?(?:how|where|(?:what|which) (?:way|room|side|direction|place"
+        r"|area)|what|why|when)) (i|we) (need to|have to|want to)\b",
+        r"\1 do \2 \3",
+    ),
     (
         r"^((?:in |to |from )?(?:how|where|(?:what|which) (?:way|room|side|direction|place"
         rf"|area)|what|why|when)) (i|we) {_AUX}\b",
@@ -266,84 +206,62 @@ _REWRITES = [(re.compile(pattern), replacement) for pattern, replacement in _REW
 def rephrase(text: str) -> str:
     """Normalised ``text`` with politeness wrappers and fillers dropped and the question's
     frame restored: "could you tell me whether this is it" -> "is this it", "how i can go"
-    -> "how can i go", "the chair you want" -> "the target chair"."""
-    for pattern, replacement in _REWRITES:
-        text = pattern.sub(replacement, text).strip()
-    return text
+    -> "how can i go", "the chair you want" -> "the target chair". Each sentence (line) is
+    rephrased on its own; sentences left empty are dropped."""
+    sentences = []
+    for sentence in text.split("\n"):
+        for pattern, replacement in _REWRITES:
+            sentence = pattern.sub(replacement, sentence).strip()
+        if sentence:
+            sentences.append(sentence)
+    return "\n".join(sentences)
 
 
 _TOKEN = re.compile(r"[a-z0-9]+(?:'[a-z]+)?")
+# After a noun, "'s" before a determiner is "is" ("which room's the desk in"), not a possessive.
+_IS_AFTER = frozenset(("the", "a", "an", "it", "this", "that", "my", "your", "there", "not"))
+_HAS_AFTER = frozenset(("got", "been"))  # "which room's got the piano"
 
 
 def normalise(text: str) -> str:
-    """Lower-case words separated by single spaces, with spelling and typos fixed."""
+    """Lower-case words separated by single spaces, with spelling and typos fixed, one
+    sentence a line: "I'm at the fridge. Is it the one?" -> "i am at the fridge\nis it the
+    one". A question's frame ("is it ...") is then at the start of its own line. Object
+    names of several words are joined into one ("floor_lamp")."""
     lowered = text.lower().replace("\u2019", "'").replace("`", "'")
-    words: list[str] = []
-    for token in _TOKEN.findall(lowered):
-        token = _CONTRACTIONS.get(token, token)
-        if " " in token:
-            words.extend(token.split())
-            continue
-        token = token.replace("'", "")
-        token = _CHAT_SPELLINGS.get(token, token)
-        words.append(_corrected(token))
+    sentences = (_sentence_words(sentence) for sentence in _SENTENCE_END.split(lowered))
+    joined = "\n".join(sentence for sentence in sentences if sentence)
+    return _object_names().sub(lambda name: name.group().replace(" ", "_"), joined)
+
+
+@cache
+def _object_names() -> re.Pattern[str]:
+    """Object names of several words, which :func:`normalise` joins with "_" into one word
+    ("the floor_lamp"), so that a pattern for "the" and a noun takes the whole name and the
+    "kitchen" of a "kitchen_island" is no room."""
+    names = sorted((n for n in default_catalogue().names if " " in n), key=len, reverse=True)
+    return re.compile(r"\b(" + "|".join(re.escape(n) for n in names) + r")(s|es)?\b")
+
+
+# A full stop, question or exclamation mark or semicolon ends a sentence when a space or the
+# end of the text follows it and a single letter does not precede it ("3.5 m" and "e.g. the
+# bed" do not end one).
+_SENTENCE_END = re.compile(r"(?<!\b[a-z])[.!?;]+(?=\s|$)")
+
+
+def _sentence_words(sentence: str) -> str:
+    expanded: list[str] = []
+    tokens = _TOKEN.findall(sentence)
+    for position, token in enumerate(tokens):
+        following = tokens[position + 1] if position + 1 < len(tokens) else ""
+        if token.endswith("'s") and token not in CONTRACTIONS:
+            if following in _HAS_AFTER:
+                token = f"{token[:-2]} has"
+            elif following in _IS_AFTER:
+                token = f"{token[:-2]} is"
+        expanded.extend(CONTRACTIONS.get(token, token).split())
+    words = []
+    for word in expanded:
+        fixed = corrected(CHAT_SPELLINGS.get(word.replace("'", ""), word.replace("'", "")))
+        words.append(CHAT_SPELLINGS.get(fixed, fixed))  # a typo of "colour" was corrected to it
     return " ".join(words)
-
-
-@cache
-def _vocabulary() -> frozenset[str]:
-    """Every word taken as correctly spelt: keywords, common words and object names."""
-    objects = {word for name in default_catalogue().names for word in name.split()}
-    return _KNOWN_WORDS | frozenset(objects) | frozenset(f"{word}s" for word in objects)
-
-
-@cache
-def _corrected(word: str) -> str:
-    """The word a typo most likely meant, or the word itself.
-
-    Only unknown words of three letters or more are corrected: to any known word by a swap of
-    two neighbouring letters ("teh" -> "the", "chiar" -> "chair"), else (four letters or more)
-    to a keyword one edit away (two for words of seven letters or more) that starts with the
-    same letter (or the same two, swapped). Ties keep the word unchanged, so a correction is
-    never a guess; most unknown words are real words that no keyword is close to.
-    """
-    vocabulary = _vocabulary()
-    if len(word) < 3 or word in vocabulary or word.isdigit():
-        return word
-    swaps = {word[:i] + word[i + 1] + word[i] + word[i + 2 :] for i in range(len(word) - 1)}
-    swapped = sorted(swaps & vocabulary)
-    if swapped:
-        return swapped[0] if len(swapped) == 1 else word
-    limit = 2 if len(word) >= 7 else 1
-    best: list[str] = []
-    best_distance = limit + 1
-    for keyword in _KEYWORDS:
-        if abs(len(keyword) - len(word)) > limit or len(keyword) < 4:
-            continue
-        if keyword[0] != word[0] and keyword[:2] != word[1::-1]:
-            continue
-        distance = _edit_distance(word, keyword, limit)
-        if distance > limit:
-            continue
-        if distance < best_distance:
-            best, best_distance = [keyword], distance
-        elif distance == best_distance:
-            best.append(keyword)
-    return best[0] if len(best) == 1 else word
-
-
-def _edit_distance(a: str, b: str, limit: int) -> int:
-    """Optimal-string-alignment distance (a swap of neighbours is one edit), capped."""
-    previous2: list[int] = []
-    previous = list(range(len(b) + 1))
-    for i in range(1, len(a) + 1):
-        current = [i] + [0] * len(b)
-        for j in range(1, len(b) + 1):
-            cost = 0 if a[i - 1] == b[j - 1] else 1
-            current[j] = min(previous[j] + 1, current[j - 1] + 1, previous[j - 1] + cost)
-            if i > 1 and j > 1 and a[i - 1] == b[j - 2] and a[i - 2] == b[j - 1]:
-                current[j] = min(current[j], previous2[j - 2] + 1)
-        if min(current) > limit:
-            return limit + 1
-        previous2, previous = previous, current
-    return previous[-1]
