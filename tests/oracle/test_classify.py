@@ -30,9 +30,9 @@ X = QuestionType.OTHER
 STEP = RouteKind.STEP
 TRAIN = load_packaged_question_set("train")
 # The held-out set is written separately and measured before any tuning; the questions in it
-# that also occur in the training set are left out of its measurement. First measurement of
-# v4: 92.7 % (202 of 218 unseen questions; 93.3 % of all 240); the benchmark's target is 95 %.
-# v4 has since joined the training set, so until a fresh set replaces it no question of it is
+# that also occur in the training set are left out of its measurement. First measurements:
+# v4 92.7 % (202 of 218 unseen questions), v5 94.0 % (of 400); the benchmark's target is 95 %.
+# v5 has since joined the training set, so until a fresh set replaces it no question of it is
 # unseen and the whole file is measured. The floor guards regressions.
 HELDOUT_FLOOR = 0.90
 
@@ -322,4 +322,71 @@ def test_object_names_of_several_words_read_as_one_noun() -> None:
     assert classify_question("Is this the floor lamp you want?") == QuestionType.DISAMBIGUATION
     assert classify_question("Am I looking at the right side table?") == (
         QuestionType.DISAMBIGUATION
+    )
+
+
+@pytest.mark.parametrize(
+    ("question", "question_type"),
+    [
+        # Distance words ask about the navigator's situation, not the target or the way.
+        ("Is the fridge a short walk from here?", X),
+        ("Is the desk near or far?", X),
+        ("Is the shower quite far from me?", X),
+        # A choice between two things of one kind is a candidate check ...
+        ("The round mirror or the square one?", QuestionType.DISAMBIGUATION),
+        ("Is it the lamp by the bed or the lamp by the desk?", QuestionType.DISAMBIGUATION),
+        ("There are three mugs here; which one is the target?", QuestionType.DISAMBIGUATION),
+        # ... a choice between two values is a property, a choice between ways a route.
+        ("The cabinet, oak or pine?", A),
+        ("Go through the hallway or through the kitchen, which is better?", R),
+        # What to do, and yes/no about one move through a door, are steps.
+        ("Tell me what to do here.", R),
+        ("Do I push this door open?", R),
+        ("Next I should go through, shouldn't I?", R),
+        ("I'm at the landing. Down?", R),
+        # Parts and contents of the target are attributes, in any word order.
+        ("Are there candles on it?", A),
+        ("Are there cushions in the armchair?", A),
+        ("Has handles the drawer?", A),
+        ("How many shelves has the bookcase?", A),
+        # The navigator's own room, the house, the oracle itself and mishaps are other.
+        ("We are now in the study?", X),
+        ("How many toilets does the house have?", X),
+        ("May I ask you something personal?", X),
+        ("I tripped over the rug, is that ok?", X),
+        # Non-native orders: the verdict first, the subject last, the direction after "of".
+        ("Is right this sofa?", QuestionType.DISAMBIGUATION),
+        ("The bed stays in front of me?", R),
+        ("Toward where must I turn?", R),
+    ],
+)
+def test_cues_generalise_to_unseen_styles(question: str, question_type: QuestionType) -> None:
+    assert classify_question(question) == question_type
+
+
+@pytest.mark.parametrize(
+    ("typed", "meant"),
+    [
+        ("what i do next", "what do i do next"),
+        ("where i go now", "where do i go now"),
+        (
+            "is the mirror in the bathroom i am in the target",
+            "is the mirror in this bathroom the target",
+        ),
+        # A scene-setting clause keeps its order when a question follows it.
+        ("from where i am now where is the lamp", "from where i am now where is the lamp"),
+        ("mate this the one", "this the one"),
+    ],
+)
+def test_rephrase_restores_word_order_and_drops_address(typed: str, meant: str) -> None:
+    assert rephrase(typed) == meant
+
+
+def test_step_and_distance_analyses_of_new_cues() -> None:
+    assert analyse_question("Do I open this door?").route_kind == STEP
+    assert analyse_question("Next I must do what?").route_kind == STEP
+    assert analyse_question("Is it a long way?").other == OtherTopic.DISTANCE
+    assert analyse_question("Which rooms should I explore?").route_kind == RouteKind.PATH
+    assert analyse_question("Where is the sink with respect to me?").route_kind == (
+        RouteKind.ORIENTATION
     )

@@ -98,6 +98,11 @@ def test_the_packaged_heldout_set_loads() -> None:
     assert load_packaged_question_set("heldout")
 
 
+def test_the_packaged_train_set_repeats_no_row() -> None:
+    rows = load_packaged_question_set("train")
+    assert len(set(rows)) == len(rows)
+
+
 def test_confusion_matrix_counts_a_hand_made_example() -> None:
     truth = [A, A, A, R, R, D, X]
     predicted = [A, A, X, R, D, D, X]

@@ -14,7 +14,8 @@ _COLORS = alternatives(list(COLORS))
 _MATERIALS = alternatives(list(MATERIAL_SYNONYMS))
 # What an object can stand, lie or hang on.
 _SUPPORTS = (  # also the last word of a joined name: "coffee_table"
-    r"(\w+_)?(floor|ground|wall|table|shelf|counter|desk|cabinet|something|bed|sofa|couch|chair|stool"
+    r"(\w+_)?(floor|ground|wall|table|shelf|counter|desk|cabinet|something|bed|sofa|couch|chair"
+    r"|stool"
     r"|dresser|nightstand|windowsill|sill|ledge|stand|rack|bench|mantel|mantelpiece|island"
     r"|carpet|rug|tray|wardrobe|bookshelf|armchair|ottoman|fireplace)"
 )
@@ -27,6 +28,15 @@ _STOREY = (
     r"(same|this|current|ground|upper|lower|top|first|second|other|another|next) floor\b"
     r"(?! (lamp|lamps|mat|rug|cushion|tiles?|boards?)\b)"  # "this floor lamp" is an object
 )
+# Words that make "x or y" a choice of way, distance or candidate, not of a property.
+_NOT_PROPERTIES = (
+    r"(left|right|straight|forward|backward|backwards|back|behind|ahead|front|near|far|close"
+    r"|closer|farther|further|up|down|upstairs|downstairs|in|on|out|inside|outside|here|there"
+    r"|elsewhere|stop|turn|go|wait|continue|keep|now|later|not|no|yes|either|neither|both|and"
+    r"|this|that|the|a|an|it|one|ones|other|another|else|something|anything|nothing|i|me|you"
+    r"|we|us|what|which|where|how|is|are|am|should|do|did|can|must|floor|room|door|doorway"
+    rf"|\w+_(room|door)|{ROOM_WORDS})"
+)
 _A = AttributeTopic
 
 # Attribute: facts about the target.
@@ -36,7 +46,8 @@ ATTRIBUTE_RULES: tuple[Rule, ...] = (
     (
         4,
         _A.MATERIAL,
-        r"\b(materials?|composition)\b|\b(made|built|constructed) (of|from|out|with)\b",
+        r"\b(materials?|composition|upholstery|upholstered)\b|\b(made|built|constructed) (of|from"
+        r"|out|with)\b",
     ),
     (4, _A.MATERIAL, r"\bwhat (is|are) (it|they|the (\w+ )?\w+) made\b"),
     (1, _A.MATERIAL, rf"\b({_MATERIALS})\b"),
@@ -58,7 +69,8 @@ ATTRIBUTE_RULES: tuple[Rule, ...] = (
     (
         3,
         _A.SIZE,
-        r"\b(size|sized|dimensions|height|width|bigger|larger|smaller|big|large|small|tall)\b"
+        r"\b(size|sized|dimensions|height|width|bigger|larger|smaller|big|large|small|tall|heavy"
+        r"|weigh|weighs|weight)\b"
         r"|\b(taller|shorter|wider|higher|longer|heavier|lower|thicker|thinner) than\b",
     ),
     (
@@ -76,13 +88,19 @@ ATTRIBUTE_RULES: tuple[Rule, ...] = (
     (3, _A.ROOM, rf"\bin (the|a|an|this|my|our|that|same) (\w+ )?({ROOM_WORDS})\b"),
     (5, _A.ROOM, r"^(in|inside) (which|what)\b(?!.*\b(am i|are we|i am|we are)\b)"),
     (5, _A.SUPPORT, r"^(on|on top of|under) (which|what)\b(?! (side|way|direction)\b)"),
+    (5, _A.ROOM, r"^(the )?(room|location|position|place|whereabouts) of (the|it|this|that)\b"),
     (5, _A.NEARBY, r"^(near|next to|beside|by) (which|what)\b"),
     (4, _A.ROOM, r"\broom (it|they|the \w+( \w+)?) (is|are|sits|stands)( \w+)? in\b"),
-    (7, _A.ROOM, r"^(is|are) (it|they|the (\w+ )?\w+) in (the|this|my|our|the same|same) room\b"),
+    (
+        7,
+        _A.ROOM,
+        r"^(is|are) (it|they|the (\w+ )?(?!(on|off|open|closed|still)\b)\w+) in (the|this|my|our"
+        r"|the same|same) room\b",
+    ),
     (
         3,
         _A.LOCATION,
-        r"^(so |and )?where (\w+ )?(is|are|was) (it|the|they|this|that|your|target)\b",
+        r"\bwhere (\w+ )?(is|are|was) (it|the|they|this|that|your|target)\b",
     ),
     (1, _A.LOCATION, r"^where\b"),
     (
@@ -91,6 +109,7 @@ ATTRIBUTE_RULES: tuple[Rule, ...] = (
         r"\bwhere (it|they|the \w+( \w+)?) (is|are|hangs|sits|stands|lies|hang|sit|stand)\b",
     ),
     (5, _A.LOCATION, r"\bwhere (can|could|do|would|might|will|should) (i|we) find\b"),
+    (7, _A.LOCATION, r"\b(which|what) floor (is|are) (it|they|the (\w+ )?\w+) (on|located)\b"),
     (3, _A.LOCATION, r"\b(can|could|do|would|might|will|should) (i|we) find (it|the|them)\b"),
     (
         3,
@@ -122,11 +141,12 @@ ATTRIBUTE_RULES: tuple[Rule, ...] = (
         r"|under|above|in front of|behind|against|opposite)\b",
     ),
     (3, _A.NEARBY, r"\b(on|to) (its|their) (left|right)\b"),
-    (10, _A.NEARBY, r"\b(left|right)( side| hand side)? of (it|its|the|a|an|their)\b"),
+    (10, _A.NEARBY, r"\b(left|right)( side| hand side)? of (it|its|the (?!room\b)|a|an|their)\b"),
     (
         6,
         _A.DESCRIPTION,
-        r"\bhow many \w+ (does|do|did) (it|they|the (\w+ )?\w+) have\b"
+        r"\bhow many \w+ ((does|do|did) (it|they|the (\w+ )?\w+) have|(has|have) (it|they|the"
+        r" (\w+ )?\w+))\b"
         r"|(?<!view )(?<!image )(?<!camera )(?<!frame )\bcontain(s|ing)?\b"
         r"|\bwhat (it|they|the (\w+ )?\w+) (contains|holds|shows|says|depicts|displays"
         r"|represents)\b",
@@ -189,7 +209,11 @@ ATTRIBUTE_RULES: tuple[Rule, ...] = (
         _A.CATEGORY,
         r"\b(what|which) (kind|type|sort|style|model|brand)\b|\b(category|categories)\b",
     ),
-    (3, _A.CATEGORY, r"\b(style|design|model|brand|kind|type)\b|\bone of (those|these|the)\b"),
+    (
+        3,
+        _A.CATEGORY,
+        r"\b(style|design|model|brand|kind|type)\b|\bone of (those|these|the)\b|\bsort of \w+",
+    ),
     # A yes/no question about a named object, with no other cue, is most likely about the
     # target's properties ("is the candle lit", "is the kettle electric or not").
     (
@@ -242,7 +266,7 @@ ATTRIBUTE_RULES: tuple[Rule, ...] = (
     ),
     (3, _A.DESCRIPTION, r"\b(anything|something|what) else\b|\babout (it|the (target|goal))\b"),
     (4, _A.DESCRIPTION, r"^what (is|are) (it|they|the (\w+ ){0,3}?\w+) like$"),
-    (3, _A.DESCRIPTION, r"\bthe (\w+ )?one with\b|\b(full|empty|filled) (of|with)\b"),
+    (3, _A.DESCRIPTION, r"\bthe (\w+ )?one with\b|\b(full|empty|filled)\b"),
     (4, _A.LOCATION, r"\b(holds|contains|has) the (target|goal)\b"),
     (
         5,
@@ -250,7 +274,54 @@ ATTRIBUTE_RULES: tuple[Rule, ...] = (
         r"\b(which|what) (corner|part|side|end|area|wall|spot) of the (room|house|\w+)\b"
         r"(?!.*\b(am i|are we)\b)",
     ),
-    (3, _A.NEARBY, r"\b(spatial|relation|relationship)\b"),
+    (
+        3,
+        _A.NEARBY,
+        r"\b(spatial|relationship)\b|\brelation\b(?!( to (me|us|where i am|my \w+))?$)",
+    ),
+    # Parts and contents: "are there flowers in the vase", "has frame the picture".
+    (
+        4,
+        _A.DESCRIPTION,
+        r"^(are|is) there (a |an |any |some )?(\w+ )?\w+ (in|inside|within) (it|them|the "
+        rf"(?!(house|home|{ROOM_WORDS})\b)(\w+ )?\w+)$|^what (is|are) (it|they|the (\w+ )?\w+)"
+        r" (of|about)$",
+    ),
+    (
+        4,
+        _A.DESCRIPTION,
+        r"^(has|have) (a |an |any |some )?\w+ (the|it|this|that)\b|^(has|have) (it|they|the (\w+"
+        r" )?\w+) (got )?(a|an|any|some)\b",
+    ),
+    # A part stated for confirmation: "wardrobe has mirror on the door?"
+    (
+        3,
+        _A.DESCRIPTION,
+        r"^(?!(i|you|we|he|she|who|what|which|where|how|there|here|do|does|did)\b)(the |this "
+        r"|that )?(\w+ )?"
+        r"\w+ (has|have) (a |an |any |some |no )?(?!(been|to|got to)\b)\w+",
+    ),
+    # What the target itself does: "does it stand on four legs", "does the chair swivel".
+    (
+        2,
+        _A.DESCRIPTION,
+        r"^(does|do|did) (it|they|the (\w+ )?\w+) (?!(matter|mean|count|match|help|make"
+        r"|look)\b)\w+",
+    ),
+    # A bare noun stated with a property: "candle is lit?", "sofa is red?"
+    (
+        2,
+        _A.DESCRIPTION,
+        r"^(?!(i|you|we|it|this|that|there|here|which|what|where|how|who|one|everything|still|now"
+        r"|so|then|also|maybe)\b)(the )?\w+ (is|are) (?!(it|the|a|an|this|that|there|here|on|in|at"
+        r"|to|my|your|far|near|close|nearby)\b)\w+$",
+    ),
+    # A choice between two values of a property: "digital or analog", "single or double".
+    (
+        2,
+        _A.DESCRIPTION,
+        rf"\b(?!{_NOT_PROPERTIES}\b)\w+ or (a |an )?(?!{_NOT_PROPERTIES}\b)\w+\b",
+    ),
     (
         4,
         _A.DESCRIPTION,
@@ -274,7 +345,8 @@ ATTRIBUTE_RULES: tuple[Rule, ...] = (
     (
         4,
         _A.DESCRIPTION,
-        r"\bwhich (one|\w+)(?<!side)(?<!way)(?<!direction) (is it|is the (target|goal|one)"
+        r"\bwhich (one|\w+)(?<!side)(?<!way)(?<!direction) (?!.* or\b)(is it|is the (target|goal"
+        r"|one)"
         r"|do you mean|are you looking for|should i find|am i looking)\b",
     ),
 )

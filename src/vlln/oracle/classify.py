@@ -6,7 +6,7 @@ phrase patterns do the same job deterministically, in microseconds and without a
 
 Text is first normalised (:mod:`vlln.oracle.normalisation`: case, contractions, chat
 spellings, typos, wrappers, embedded questions, word order), so the cues
-(:mod:`vlln.oracle.question_cues` for disambiguation and route questions,
+(:mod:`vlln.oracle.question_cues` for disambiguation questions, :mod:`vlln.oracle.route_cues`,
 :mod:`vlln.oracle.attribute_cues` and :mod:`vlln.oracle.other_cues` for the rest) see clean
 lower-case words. Every cue that matches adds its weight to its topic and to the topic's
 question type; the highest total wins, ties going to the more specific type. A question that
@@ -26,12 +26,12 @@ from vlln.oracle.other_cues import OTHER_RULES
 from vlln.oracle.protocol import QuestionType
 from vlln.oracle.question_cues import (
     DISAMBIGUATION_RULES,
-    ROUTE_RULES,
     AttributeTopic,
     OtherTopic,
     RouteKind,
     Topic,
 )
+from vlln.oracle.route_cues import ROUTE_RULES
 from vlln.world.materials import COLORS
 
 __all__ = [

@@ -58,7 +58,8 @@ _REWRITE_RULES: tuple[tuple[str, str], ...] = (
     # Fillers and politeness wrappers say nothing about the intent.
     (r"^(sorry|excuse me|pardon me)( if| for)?\b[\w ]*? (question|asking|bothering)( but)? ", ""),
     (
-        r"^((so|and|ok|okay|well|then|hmm|um|uh|hey|hi|please|kindly|sorry|oh|alright|wait"
+        r"^((so|and|ok|okay|well|then|hmm|um|uh|erm|hey|hi|yo|mate|dude|bro|buddy|pal|please"
+        r"|kindly|sorry|oh|alright|wait"
         r"|excuse me|dear me|pray tell|quick question|one question|a question|question|query) )+",
         "",
     ),
@@ -142,6 +143,12 @@ _REWRITE_RULES: tuple[tuple[str, str], ...] = (
         r"|lying) )?on\b",
         r"\1 \2 under me",
     ),
+    # The room the navigator stands in is "this" room: "is the mirror in the bathroom i am in
+    # the target" -> "is the mirror in this bathroom the target".
+    (
+        r"\b(?:the|this|that) (\w+) (?:that |which )?(?:i am|we are) (?:now |currently )?in\b",
+        r"this \1",
+    ),
     # A subject put first and asked about after: "the basket, what is inside it" -> "what is
     # inside the basket", "the bath mat, what colour" -> "what colour the bath mat".
     (
@@ -182,15 +189,17 @@ _REWRITE_RULES: tuple[tuple[str, str], ...] = (
         r"\1 \4 \3 ",
     ),
     # Subject before auxiliary: "how i can go" -> "how can i go", "which room i am in",
-    # "where i have to go" -> "where do i have to go".
+    # "where i have to go" -> "where do i have to go", "what i do next" -> "what do i do
+    # next"; but "from where i am, where is it" sets the scene for the question after it.
     (
-        r"^((?:in |to |from )?(?:how|where|(?:what|which) (?:way|room|side|direction|place"
-        r"|area)|what|why|when)) (i|we) (need to|have to|want to)\b",
+        r"^((?:in |to |from |toward |towards )?(?:how|where|(?:what|which) (?:way|room|side"
+        r"|direction|place|area)|what|why|when)) (i|we) (need to|have to|want to|do|go|get|turn"
+        r"|find|look|search|reach|walk|head|move)\b",
         r"\1 do \2 \3",
     ),
     (
-        r"^((?:in |to |from )?(?:how|where|(?:what|which) (?:way|room|side|direction|place"
-        rf"|area)|what|why|when)) (i|we) {_AUX}\b",
+        r"^((?:in |to |from |toward |towards )?(?:how|where|(?:what|which) (?:way|room|side"
+        rf"|direction|place|area)|what|why|when)) (i|we) {_AUX}\b(?!.*\b(where|which|what|how)\b)",
         r"\1 \3 \2",
     ),
     # "the chair you want" names the target itself, not an object in view.

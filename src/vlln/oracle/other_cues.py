@@ -33,6 +33,14 @@ OTHER_RULES: tuple[Rule, ...] = (
         rf"({ROOM_WORDS})$",
     ),
     (6, _X.AGENT_ROOM, r"\b(am i|are we) ((standing|currently|now|still) )?in (the|a|an)\b"),
+    # The navigator's room stated for confirmation, as the last sentence: "i am in a bedroom?"
+    (
+        7,
+        _X.AGENT_ROOM,
+        r"^(i am|we are) ((now|currently|still|already|standing|right|finally) )*in (the|a|an"
+        rf"|this|my|our) (\w+ )?({ROOM_WORDS})( now| right| yes| correct| right now| no| or not"
+        r"| then)?\Z",
+    ),
     (8, _X.AGENT_ROOM, r"\b(room|place) (i|we) (am|are) (\w+ ){0,2}in\b"),
     (
         8,
@@ -43,10 +51,11 @@ OTHER_RULES: tuple[Rule, ...] = (
     (
         7,
         _X.DISTANCE,
-        r"\bhow (far|close|near|long|many (steps?|meters?|feet|moves?|more)|much (further"
+        r"(?<!turn )(?<!rotate )\bhow (far|close|near|long|many (rooms|doors|turns|corridors|steps?"
+        r"|meters?|feet|moves?|more)|much (further"
         r"|farther|longer|more|far))\b",
     ),
-    (4, _X.DISTANCE, r"\b(distance|far away|how far)\b|^far$"),
+    (4, _X.DISTANCE, r"\b(distance|far away)\b|(?<!turn )(?<!rotate )\bhow far\b|^far$"),
     (
         5,
         _X.DISTANCE,
@@ -61,7 +70,16 @@ OTHER_RULES: tuple[Rule, ...] = (
     (
         7,
         _X.DISTANCE,
-        r"\bis (it|the \w+) (still |very )?(far|close|near|nearby)( from here| away)?$",
+        r"^(is|are) (it|they|this|that|the (\w+ )?\w+) ((still|very|quite|too|really|pretty|so"
+        r"|that) )?(far|close|near|nearby|distant|far off)( or (far|close|near|not))?( (from|to)"
+        r" (here|me|us|where i am|my position)| away| by)?$|\b(far|near|close) or (far|near"
+        r"|close)\b|^(near|close|far|far away)( or not)?$",
+    ),
+    # A walk described: "is it a long way", "is the sink a short walk from here".
+    (
+        8,
+        _X.DISTANCE,
+        r"\b(a|the) (long|short|little|quick) (walk|way|trip|distance|journey|ride|hike)\b",
     ),
     (
         7,
@@ -76,7 +94,7 @@ OTHER_RULES: tuple[Rule, ...] = (
         6,
         _X.PROGRESS,
         r"\b(have|did) (i|we) (already |not |not yet |yet )?(been|visit|visited|search|searched"
-        r"|check)",
+        r"|check|seen|passed|missed)",
     ),
     (5, _X.VISIBILITY, r"\bcan (i|you) see (it|the|them|this)\b|\bdo you see\b"),
     (5, _X.VISIBILITY, r"\bwhat (can|do|could) (i|you|we) see\b"),
@@ -142,12 +160,55 @@ OTHER_RULES: tuple[Rule, ...] = (
         r"\b(view|image|camera|frame|picture) (contain|contains|show|shows|include|includes)\b",
     ),
     (6, _X.UNKNOWN, r"\bwhat can you (do|help)\b|^what do you mean\b"),
+    # A storey named for the navigator: "is this the ground floor".
+    (
+        8,
+        _X.UNKNOWN,
+        r"^(is|are) (this|that|here|it|we|i) (on )?(the )?(ground|upper|lower|top|first|second"
+        r"|basement|main|bottom|right|same|correct) (floor|storey|level)$",
+    ),
+    # The oracle itself: what may be asked, what it knows, whether it hears.
+    (
+        8,
+        _X.UNKNOWN,
+        r"\b(can|may|could|should|am i allowed to) (i|we) ask\b|\b(kind|type|sort) of questions"
+        r"\b|^where (are|were) you\b|\bwhere everything is\b|\b(know|knows|knowledge of) (this|the"
+        r"|the whole|the entire)"
+        r" (house|home|apartment|place|layout|map)( well| by heart| at all)?$|\b(can|do) you (hear"
+        r"|understand) (me|us)\b|\b(have|got|use|see) (access to )?(a|the|any) (map|floor plan"
+        r"|layout|blueprint)\b",
+    ),
+    (
+        6,
+        _X.UNKNOWN,
+        r"^(are|were) you\b(?! (\w+ )?(looking|talking|describing|referring|meaning|thinking"
+        r"|asking|searching))(?! sure (that|this|it|the|about)\b)",
+    ),
+    # Mishaps of the navigator: "i bumped into something, is that a problem?"
+    (
+        8,
+        _X.UNKNOWN,
+        r"\b(is|was) (that|this|it) (a problem|an issue|a mistake|bad|allowed|dangerous|ok|okay"
+        r"|a bad thing|fine|normal)$|\b(bumped|crashed|collided|fell|tripped|hit the wall"
+        r"|hit a wall|knocked"
+        r" over)\b",
+    ),
+    # What the house has: "the house has how many floors", "does the flat have a garden".
+    (
+        9,
+        _X.UNKNOWN,
+        r"^(the|this|your|whole|entire) (house|home|apartment|flat|building) (has|have|got"
+        r"|contains?)\b|\b(does|do|has) (the|this|your) (house|home|apartment|flat|building)"
+        r"\b",
+    ),
     (6, _X.UNKNOWN, r"\bfor me to use\b|\bcan i use\b"),
     # Doors and lights, the room the navigator stands in, what comes after finding the target.
     (
         5,
         _X.UNKNOWN,
-        r"^(is|are) the (door|doors|window|windows|light|lights|gate) (open|closed|locked|shut"
+        r"^(is|are) the (\w+ )?(door|doors|window|windows|light|lights|gate)( (to|of|into) the"
+        r" \w+)? (open|closed|locked"
+        r"|shut"
         r"|unlocked|on|off)\b|\b(when|once|after|if) (i|we) find (it|the)\b",
     ),
     (5, _X.UNKNOWN, r"^(is|are) (this|that) (room|place|area|hallway|corridor|house|space)\b"),
@@ -159,6 +220,11 @@ OTHER_RULES: tuple[Rule, ...] = (
         r"|hallway)\b",
     ),
     (4, _X.PROGRESS, r"\b(soon|eventually)\b"),
+    (
+        6,
+        _X.UNKNOWN,
+        r"\b(morning|evening|afternoon|night|daytime|today|tomorrow|yesterday|raining|sunny)\b",
+    ),
     (6, _X.UNKNOWN, r"\bwhat (time|day|date)\b|\b(biggest|largest|smallest|bigger|main) room\b"),
     (
         5,
@@ -172,14 +238,25 @@ OTHER_RULES: tuple[Rule, ...] = (
         r"^(is|are) (this|that|it|the) (\w+ ){0,2}(house|home|apartment|flat|building)$"
         r"|^what (is|are) (the|this|your) (house|home|apartment|place|building) like$",
     ),
-    (4, _X.UNKNOWN, r"^(is|are)\b.*\b(in|inside) (the|this) (house|home|apartment|building)$"),
+    (
+        6,
+        _X.UNKNOWN,
+        r"^(is|are)\b.*\b(in|inside) (the|this) (house|home|apartment|building)( at all| even)?$",
+    ),
+    # Chores for the house, not the search: "can i turn on the light", "help me find something".
+    (
+        8,
+        _X.UNKNOWN,
+        r"\b(turn|switch) (on|off) (the |a )?(light|lights|lamp|tv|television|radio|music)\b"
+        r"|\bhelp (me|us) (find|with|look for) (something|anything|stuff)\b",
+    ),
     # A room described, not the target placed in it: "is the kitchen big".
     (
         4,
         _X.UNKNOWN,
         rf"^(is|are) the ({ROOM_WORDS}) (big|small|large|huge|tiny|far|close|near|nearby"
         r"|upstairs|downstairs|open|empty|dark|bright|clean|messy|locked|occupied|free"
-        r"|spacious|cold|warm)$",
+        r"|spacious|cold|warm|long|short|wide|narrow)$",
     ),
     (
         4,

@@ -1,10 +1,11 @@
-"""The topics of a navigator's questions, and the cues for disambiguation and route ones.
+"""The topics of a navigator's questions, and the cues for disambiguation ones.
 
 Each cue is a general phrase pattern (a question word with a verb frame, a demonstrative, an
 attribute noun, the agent's own state), never a copy of a particular question, so that new
 phrasings still meet the cues they share with old ones. The cues read text that
-:mod:`vlln.oracle.normalisation` has already cleaned and rephrased; the cues for attribute
-questions are in :mod:`vlln.oracle.attribute_cues`, those for other questions in
+:mod:`vlln.oracle.normalisation` has already cleaned and rephrased; the cues for route
+questions are in :mod:`vlln.oracle.route_cues`, those for attribute questions in
+:mod:`vlln.oracle.attribute_cues` and those for other questions in
 :mod:`vlln.oracle.other_cues`.
 """
 
@@ -73,13 +74,12 @@ _DEICTIC = (
     r"|i (just |have just |have )?(found|spotted|detected)|have i found"
     r"|did i find|i spotted|found it|right here|over here|i got it|i am at|i reached"
     r"|have i reached|did i reach|i detected|detected|spotted|observed|candidate|centred"
-    r"|centered|in the (center|middle) of (my|the) (view|image|camera|screen|frame))"
+    r"|centered|in the (center|middle) of (my|the) (view|image|camera|screen|frame))\b"
     r"|\bi am (standing|sitting|pointing|staring|looking|stopped) ((right|just) )?(next to|at"
     r"|in front of|near|beside|by)\b|\bthe \w+ (right )?(here|there)\b"
 )
 _NOT_WH = r"^(?!(what|which|where|how|why|when)\b).*"  # not a wh-question
 _D = QuestionType.DISAMBIGUATION
-_O, _P, _S = RouteKind.ORIENTATION, RouteKind.PATH, RouteKind.STEP
 _TARGETISH = r"(target|goal|one|object|instance|right one|correct one|same one|thing)"
 # "the right one", "the goal lamp", "the requested object"
 _CHOSEN = (
@@ -88,10 +88,13 @@ _CHOSEN = (
 )
 _THING = r"(one|object|thing|item|instance)"
 _BEARINGS = r"(way|side|direction|turn|track|path|here|now|room)"  # "right way" is no candidate
-# "the right side table" names a thing, not a side.
-_SIDE_THINGS = r"(side )?(table|tables|board|boards|door|doors|drawer|lamp|cabinet)\b"
 # "the left branch or the right one" offers two sides, not a candidate.
 _NOT_SIDES = r"(?!.*\b(left|right) (\w+ )?or the (left|right) one$)"
+# Parts of the way: "the left corridor or the right one" offers two ways, not two candidates.
+WAY_PARTS = (
+    r"(branch|corridor|hallway|hall|path|way|door|doorway|passage|side|direction|route|turn"
+    r"|room|staircase|stairs|exit|opening|fork|gate|entrance|arch|archway|floor)"
+)
 # "target colour" asks about the target, not whether a candidate is it.
 _FACETS = r"(color|material|size|shape|texture|room|location|position|type|category|kind|name)"
 
@@ -111,6 +114,16 @@ DISAMBIGUATION_RULES: tuple[Rule, ...] = (
     (2, _D, rf"\b(?!(target|goal)\b)({_CHOSEN}|wanted|proper) {_THING}\b"),
     (4, _D, r"\bcandidates?\b|\bbeen (found|located|reached|spotted)\b"),
     (5, _D, r"\bthis (\w+ )?or (that|the other|another|a different|some other)\b"),
+    # A choice between two things of one kind: "the red one or the blue one", "this lamp or
+    # the one next to it", "the sofa here or the sofa over there"; "is the fridge the silver
+    # one or the white one" asks a property of the named target instead.
+    (
+        6,
+        _D,
+        rf"^(?!(is|are) the (\w+ )?\w+ the\b)(?!.*\b{WAY_PARTS}\b).*\b(this|that|the) "
+        r"((\w+ ){0,3}or (the|that|this) (\w+ )?ones?|(\w+ )?one\b(?! of\b)( \w+){0,4} or"
+        r"|(\w+ )?(?P<kind>\w+)\b( \w+){0,3} or (the|that|this) (\w+ )?(?P=kind))\b",
+    ),
     (4, _D, r"^(do|did) you mean (this|that|the one|it)\b"),
     # Telegraphic checks and claims: "target?", "is it?", "can i say i found it?"
     (
@@ -123,7 +136,17 @@ DISAMBIGUATION_RULES: tuple[Rule, ...] = (
         5,
         _D,
         r"\b(say|declare|claim|call it|report|mark)( that)? (i (have )?found|this (is|as)|it as"
-        r"|this one)\b",
+        r"|this one)\b|\b(report|mark|declare|call|count|submit|choose|select|pick|take) (this|that"
+        r"|it)( \w+)? as (the |my )?(target|goal|answer|one|right one)\b",
+    ),
+    # A candidate named and judged in few words: "this chair, target or not?"
+    (
+        6,
+        _D,
+        r"^(this|that)( \w+)?( here| there)? (the )?(target|goal|one|correct|right)( one)?( or not"
+        r"| yes or no)?$|\b(is|are) (it|this|that) one of the (two|three|several) \w+"
+        r"|\b(is|are) (it|this|that) one of (these|those|the) (\w+ )?\w+ (here|there"
+        r"|in front of me)$",
     ),
     (4, _D, r"\bthe (\w+ )?one (here|there|right here|over there|in front of me)\b"),
     (4, _D, rf"\b(is|are) (this|that|it) the {_CHOSEN}\b(?! {_BEARINGS}\b)"),
@@ -131,9 +154,26 @@ DISAMBIGUATION_RULES: tuple[Rule, ...] = (
         5,
         _D,
         r"^(could|can|might|would) (this|that|it|the [\w ]+?) be (it|the (one|target|goal|right"
-        r"|correct)|the \w+ you)\b",
+        r"|correct)|the \w+ you)\b"
+        r"|^(this|that|it|the)( \w+)*? (could|can|might|may|would|must) be (it|the (one|target"
+        r"|goal|right|correct))\b",
+    ),
+    # "it" as the predicate: "is the thing on the counter it" (not "is the lamp on it").
+    (
+        8,
+        _D,
+        r"^(is|are) (the|this|that)( \w+)*?(?<! on)(?<! in)(?<! near)(?<! to)(?<! by)(?<! under)"
+        r"(?<! of)(?<! with)(?<! above)(?<! from)(?<! inside)(?<! against)(?<! behind)(?<! beside)"
+        r"(?<! below)(?<! at) it$",
     ),
     (2, _D, _DEICTIC),
+    # A check after another clause: "should i stop, is this the sofa"
+    (
+        4,
+        _D,
+        r"\b(is|are) (this|that|these|those) the (?!.*\b(way|room|direction|side|place|floor"
+        rf"|storey|level|house|{ROOM_WORDS})$)(\w+ )?\w+$",
+    ),
     (3, _D, r"\b(confirm|verify)\b|\bcheck (if|whether|this|that|it)\b"),
     (4, _D, r"^is it (this|that|these|the one)\b"),
     (
@@ -186,19 +226,44 @@ DISAMBIGUATION_RULES: tuple[Rule, ...] = (
         3,
         _D,
         r"\b(am i|i am) (now |currently |already )?((standing|sitting|stopped|right) )?(looking"
-        rf"( at)?|(in )?front of|facing|at|beside) (it|the {_CHOSEN})\b",
+        rf"( at)?|(in )?front of|facing|at|beside|next to|by) (it|the {_CHOSEN})\b",
     ),
     # "is the rug in my view the target rug", "is the target the lamp i am pointing at"
     (
-        6,
+        8,
         _D,
         rf"^{_NOT_SIDES}(is|are) (the [\w ]+?|this|that|it) the {_CHOSEN} (?!(color|size|shape"
         r"|material|room"
         r"|way|side|direction)$)\w+$|^(is|are) the (target|goal)( object)? (the|this|that) \w+ "
-        r"(i|you|we)\b",
+        r"(i|you|we|on|in|at|by|near|next to|to|here|there|over)\b",
     ),
     (4, _D, rf"^(the )?({_CHOSEN}|wanted) (?!({_BEARINGS}|{_FACETS})\b)\w+$"),
+    # The verdict put first: "is correct this lamp", "correct lamp, this?"
+    (
+        6,
+        _D,
+        r"^(is|are) (correct|right|the (right|correct|target|same) one) (this|that|it)\b"
+        r"|^(the )?(correct|right|target|goal) \w+ (this|that|here)( one)?$",
+    ),
     (5, _D, r"^which (one |\w+ )?of (these|those|them|the two|both)\b"),
+    # Several candidates in view, then "which one": "i see two chairs, which one is it"
+    (
+        6,
+        _D,
+        r"\b(two|three|four|several|multiple|a few|couple of|many|both) (\w+ )?\w+\b[\s\S]*\bwhich"
+        r" (one|\w+)( of (them|these|those))? (is|was) (it|the (target|goal|one|right one))\b",
+    ),
+    # Choosing a candidate: "should i select this lamp", "shall i pick that one".
+    (5, _D, r"\b(select|pick|choose|grab|mark|report|settle on) (this|that)( one| \w+)?$"),
+    # "which of the plants is the target", "which one is it, the tall lamp or the short lamp"
+    (
+        6,
+        _D,
+        r"^which (one )?of (the|these|those|all|both|my) (\w+ )?\w+ (is|are|was) (it|the (target"
+        r"|goal|one|right one|correct one))\b|^which (one|\w+) (is it|is the (target"
+        r"|goal))\b.* or\b",
+    ),
+    (5, _D, rf"^which (one )?(is|was) (the )?{_CHOSEN} (one|{_THING})\b"),
     (
         3,
         _D,
@@ -221,169 +286,5 @@ DISAMBIGUATION_RULES: tuple[Rule, ...] = (
         _D,
         r"^(is|are|was) (?!.*\b(near|to|from|of|with|by|than|toward|beside|behind|under|on|in|at"
         r"|as) the (target|goal)\b)(this|that|the|it)\b.* the (target|goal)\b",
-    ),
-)
-ROUTE_RULES: tuple[Rule, ...] = (
-    # Route, orientation: the direction of the target.
-    (4, _O, r"\b(which|what) direction\b"),
-    (2, _O, r"\bdirection\b"),
-    (
-        3,
-        _O,
-        r"\bwhich (way|side)\b|\bwhat side\b|\bpoint (me|at|to)\b"
-        r"|\b(should i|do i|must i) (be )?(face|facing)\b|\b(north|south|east|west)\b",
-    ),
-    (
-        3,
-        _O,
-        r"\b(on|to|at) (my|the|your) (left|right)( side| hand)?+(?! of (it|the|them)\b)"
-        rf"(?! {_SIDE_THINGS})",
-    ),
-    (4, _O, r"\b(left|right) (side |hand )?of me\b|\b(left|right) side or\b"),
-    (
-        3,
-        _O,
-        r"^(?!.*\b(left|right) side of (it|the|a|an|them)\b).*(?<!its )(?<!their )"
-        rf"\b(left|right) side\b(?! of (it|the|them)\b)(?! {_SIDE_THINGS})",
-    ),
-    (2, _O, r"\bmy (left|right)\b"),
-    (
-        3,
-        _O,
-        r"\b(more|further|slightly|bit|little) ((to|toward) )?((the|my) )?(left|right)\b",
-    ),
-    (6, _O, r"\b(left|right) (\w+ )?or the (left|right) one\b"),
-    (
-        3,
-        _O,
-        r"^(is|are) (it|they|the (\w+ )?\w+) ((straight|right|directly|somewhere) )?(in front of"
-        r"|behind|ahead of|to the (left|right) of|on the (left|right) of) (me|us)"
-        r"( right now| now| currently)?$",
-    ),
-    (6, _O, r"\bhow (much|far|many degrees?) (\w+ ){0,4}(turn|rotate)\b|\bturn how much\b"),
-    (
-        3,
-        _O,
-        r"\bbehind me\b|\b(in front|ahead) of me or\b|\bwhere to (turn|look|face)\b"
-        r"|\b(behind|in|at) my back\b|\bto the front of me\b",
-    ),
-    (
-        4,
-        _O,
-        r"\b(heading|bearing|angle|orientation|degrees|azimuth|clockwise|counterclockwise"
-        r"|anticlockwise|egocentric)\b|\bam i facing\b"
-        r"|\b(am i|i am) (turned|pointed|pointing|oriented|aligned|facing) (toward|to|at)\b",
-    ),
-    (
-        4,
-        _O,
-        r"\b(to|on) the (left|right) or (to |on )?(the )?(left|right)\b"
-        r"(?!( side| hand side)? of (it|its|the|a|an|their)\b)",
-    ),
-    (2, _O, r"\bface (the|it|them)\b"),
-    (4, _O, r"\b(yaw|rotation)\b"),
-    (5, _O, r"\b(relative|compared) to (me|where i am|my)\b"),
-    (4, _O, r"\b(in front|ahead) (of me )?or behind\b|\bbehind (me )?or (in front|ahead)\b"),
-    (3, _O, r"^to where\b"),
-    (3, _O, r"\b(to|for) see (it|them|the)\b"),
-    (3, _O, r"\bin the direction (i am|of)\b|\bwhere (lies|lie)\b|\bin which direction\b"),
-    (
-        5,
-        _O,
-        r"\bwhere is (it|the \w+) (from here|from me|from my|relative|compared|in relation)"
-        r"|\bfrom my (point of view|perspective|viewpoint|position)\b|\bo ?clock\b",
-    ),
-    (
-        2,
-        _O,
-        r"\b(is|are) (it|they|the \w+) ((somewhere|maybe|probably|still) )?"
-        r"(ahead|behind|in front|straight|left|right"
-        r"|(to|on|at) (the|my|your) (left|right))\b(?!( side| hand)? of (it|the|a|an|them)\b)",
-    ),
-    # Route, path: a way through the house.
-    (
-        4,
-        _P,
-        r"\bhow (do |does |can |should |would |could |shall |must |to |will |might |may )?"
-        r"(i |we |one )?(to )?"
-        r"(get|reach|go"
-        r"|find|navigate|walk|arrive|head|make it|travel|come|proceed)\b",
-    ),
-    (4, _P, r"\b(route|path|directions|guidance|instructions|navigation|itinerary)\b"),
-    (3, _P, r"\bthe (road|way) to\b|\b(go|get|reach|walk|head) (to|there)\b.*\bhow$"),
-    (3, _P, r"\bwhere (to|next|now)\b"),
-    (
-        4,
-        _P,
-        r"\bwhere (should|do|must|can|shall|could|would|will|to)( (i|we|you))? (need to |have to "
-        r"|want to )?(go|going|head|heading|walk|walking|move|moving|proceed|search|look|explore"
-        r"|turn)\b",
-    ),
-    (3, _P, r"\b(guide|lead|take|show|direct|bring|help|navigate|walk|steer) (me|us)\b"),
-    (2, _P, r"\b(get|go) there\b|\bway (to|there|for|toward)\b"),
-    (4, _P, r"\b(the|a|best|quickest|shortest|fastest) way (out|to|toward|into|through)\b"),
-    (4, _P, r"\bstep by step\b"),
-    (4, _P, r"\bwhich way (do i go |should i go |to go )?(to|toward|into) (the|a|my)\b"),
-    (4, _P, r"\bbetween (me|here|us) and\b|\brooms? (\w+ )?(lie|lies|are|is) between\b"),
-    (3, _P, r"\bfrom (the |my |this |here )(\w+ ){0,3}to (the|my|your|its|a|that) "),
-    (4, _P, r"\b(which|what) (room|door|hallway|corridor) (next|now|first|then)\b|\bthen where\b"),
-    (4, _P, r"\b(tell|show|give|explain|describe)( me| us)? (the|a) way\b"),
-    (3, _P, r"\b(plan|planning|chart|map out)\b"),
-    (4, _P, r"\b(go|walk|head|move|turn) (in order )?(to|for) (get to|reach|arrive)\b"),
-    (3, _P, r"\b(pass|cut) through\b|\b(leads?|goes) (to|toward)\b|\btraverse\b"),
-    (4, _P, r"\b(which|what) rooms?\b.*\b(through|pass|cross|traverse)\b"),
-    (2, _P, r"\bto reach (it|the|that|my)\b"),
-    (3, _P, r"\bfrom (my|our) (current |present )?(position|location|place)\b"),
-    (2, _P, r"\b(reaching|arriving|getting to|get to|arrive at|arrive to)\b"),
-    (
-        5,
-        _P,
-        rf"\bwhich (room|door|doorway|hallway|corridor|exit|{ROOM_WORDS}) (should|do|must|can)"
-        r" (i|we)\b(?! find)",
-    ),
-    # Route, step: the next action.
-    (
-        3,
-        _S,
-        r"\b(should|do|must|shall|can|need) (i|we|to) (need to |have to )?(turn|go|keep|continue"
-        r"|stop|move|leave|enter|exit|take|cross|follow|walk|head|proceed|step|approach|advance"
-        r"|back up|back off|rotate|climb|wait|stay|carry on)\b"
-        r"(?! (a|an|some) (break|rest|nap|pause|breather)\b)",
-    ),
-    (
-        3,
-        _S,
-        r"\b(left or right|right or left|forward or|or forward|straight or|or straight|or back"
-        r"|or turn|or stop|or i go)\b",
-    ),
-    (
-        5,
-        _S,
-        r"\bwhat (\w+ ){0,4}?((should|do|shall|must|can|would) (i|we|you)|(i|we) (should|must"
-        r"|can|need to|have to)) do\b(?!.*\b(when|once|after|if) (i|we) find\b)",
-    ),
-    (4, _S, r"\b(up|down|in|out|forward|ahead|straight|back|upstairs|downstairs) or not\b"),
-    (4, _S, r"\btime to (stop|turn|go|move|leave|enter|head)\b"),
-    (5, _S, r"\b(what now|now what|what next|what is next)\b(?! to)"),
-    (4, _S, r"\bnext (step|move|movement|action|turn|maneuver)\b|\b(which|what) action\b"),
-    (
-        3,
-        _S,
-        r"\b(turn|turning|go|going|move|moving|head|heading|walk|walking|proceed|step|keep|continue"
-        r"|carry on) (to the )?(left|right|forward|straight|back|backward|backwards|ahead|around"
-        r"|(?<!turn )(?<!turning )on)\b",
-    ),
-    (3, _S, r"\b(go|walk|step|head|move) (in|inside|into|out|up|down)\b"),
-    (2, _S, r"\b(keep going|stop here|go on|continue|turn around|go back)\b"),
-    (3, _S, r"\b(right|correct|best|next|good) (move|action|choice|maneuver)\b"),
-    (2, _S, r"^(should|do|shall|must|can) (i|we) .*\b(left|right)\b"),
-    (2, _S, r"\b(upstairs|downstairs)\b"),
-    # Bare actions: "turn?", "straight on?", "forward, left, right or stop?"
-    (
-        4,
-        _S,
-        r"^((turn|go|keep) )?(left|right|straight|forward|back|stop|turn|next|action|move|continue"
-        r"|carry on|proceed|straight on|keep going)$|\b(forward|straight|ahead)\b.*\b(left|right)"
-        r"\b.*\b(stop|left|right)\b",
     ),
 )

@@ -177,7 +177,8 @@ _KNOWN_WORDS: frozenset[str] = _KEYWORDS | frozenset(
     want need know think see saw seen looked find finding give tell told say said mean
     meant wait stay take come came try again ok okay hi hello hey thanks thank sorry
     good great fine well bad best better need help sure last first second third side sides
-    described describing describes question quick roughly reached
+    described describing describes question quick roughly reached mate dude bro buddy pal
+    lol heavy weigh weighs weight
     book books look lamp lamps lamp cup cups bed beds chair chairs sofa sofas desk desks
     rug rugs tv plant plants vase vases bowl bowls plate plates towel towels mirror mirrors
     picture pictures clock clocks pillow pillows stool stools bench benches couch couches

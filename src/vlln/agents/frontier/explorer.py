@@ -16,12 +16,7 @@ from numpy.typing import NDArray
 from scipy import ndimage
 
 from vlln.agents.frontier.detector import Candidate
-from vlln.agents.frontier.frontiers import (
-    ChooserConfig,
-    FrontierChooser,
-    choose_frontier,
-    find_frontiers,
-)
+from vlln.agents.frontier.frontiers import ChooserConfig, choose_frontier, find_frontiers
 from vlln.agents.frontier.mapping import ObstacleMap, Pose
 from vlln.agents.frontier.planner import (
     DistanceField,
@@ -65,10 +60,8 @@ class Explorer:
         turn: float,
         rng: np.random.Generator,
         config: ExplorerConfig | None = None,
-        chooser: FrontierChooser = choose_frontier,
     ) -> None:
         self.map = obstacle_map
-        self.chooser = chooser
         self.turn = turn
         self.rng = rng
         self.config = config or ExplorerConfig()
@@ -190,7 +183,7 @@ class Explorer:
         cells = [(box.r0 + f.row, box.c0 + f.col) for f in frontiers]
         points = np.array([self.map.cell_centre(r, c) for r, c in cells])
         reach = np.array([distances.distance(r, c) for r, c in cells])
-        index = self.chooser(
+        index = choose_frontier(
             points, reach, (pose.x, pose.z), self._previous_frontier, hint, self.rng, cfg.chooser
         )
         if index is None:

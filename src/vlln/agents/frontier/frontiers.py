@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Protocol
 
 import numpy as np
 from numpy.typing import NDArray
@@ -96,22 +95,6 @@ class ChooserConfig:
             raise ConfigError(f"p_continue must be in [0, 1], got {self.p_continue}")
         if not 0.0 < self.hint_cone_deg <= 180.0:
             raise ConfigError(f"hint_cone_deg must be in (0, 180], got {self.hint_cone_deg}")
-
-
-class FrontierChooser(Protocol):
-    """The rule that picks a frontier; :func:`choose_frontier` unless a caller brings its own
-    (data collection adds a choice that knows where the target is)."""
-
-    def __call__(
-        self,
-        points: NDArray[np.float64],
-        distances: NDArray[np.float64],
-        agent: tuple[float, float],
-        previous: tuple[float, float] | None,
-        hint: float | None,
-        rng: np.random.Generator,
-        config: ChooserConfig,
-    ) -> int | None: ...
 
 
 def choose_frontier(
