@@ -123,12 +123,12 @@ def test_chooser_rules() -> None:
     always_best = ChooserConfig(p_continue=0.0)
     never_best = ChooserConfig(p_continue=1.0)
     rng = np.random.default_rng(0)
-    assert chooser(points, reach, (0.0, 0.0), None, None, rng, always_best) == 0
-    assert chooser(points, reach, (0.0, 0.0), (4.0, 0.0), None, rng, always_best) == 2
-    assert chooser(points, reach, (0.0, 0.0), (4.0, 0.0), None, rng, never_best) == 1
+    assert chooser(points, reach, None, rng, always_best) == 0
+    assert chooser(points, reach, (4.0, 0.0), rng, always_best) == 2
+    assert chooser(points, reach, (4.0, 0.0), rng, never_best) == 1
     assert [c.rule for c in chooser.choices] == [NEAREST, BEST, CONTINUE]
     unreachable = np.array([np.inf, np.inf, np.inf])
-    assert chooser(points, unreachable, (0.0, 0.0), None, None, rng, always_best) is None
+    assert chooser(points, unreachable, None, rng, always_best) is None
 
 
 def _trajectory(

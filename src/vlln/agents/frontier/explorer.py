@@ -138,27 +138,7 @@ class Explorer:
         return None
 
     def _unexplored_direction(self, pose: Pose, point: tuple[float, float]) -> float | None:
-        """The whole-turn heading from the agent that faces the most unexplored cells within
-        1 m of a point that border explored free space (cells behind walls do not count).
-        The most common heading, not the mean: in a doorway to a corridor the unexplored lies
-        both left and right, and their mean would face the wall opposite."""
-        row, col = self.map.cell_of(*point)
-        k = math.ceil(1.0 / self.map.cell_size)
-        r0, c0 = max(row - k, 0), max(col - k, 0)
-        explored = self.map.explored[r0 : row + k + 1, c0 : col + k + 1]
-        free = explored & ~self.map.obstacle[r0 : row + k + 1, c0 : col + k + 1]
-        open_edge = ~explored & ndimage.binary_dilation(free, structure=_FOUR)
-        rows, cols = np.nonzero(open_edge)
-        if rows.size == 0:
-            return None
-        s, (ox, oz) = self.map.cell_size, self.map.origin
-        x = ox + (c0 + cols + 0.5) * s - pose.x
-        z = oz + (r0 + rows + 0.5) * s - pose.z
-        turns = np.round((np.arctan2(-x, -z) - pose.yaw) / self.turn).astype(int)
-        headings = round(2.0 * math.pi / self.turn)
-        counts = np.bincount(turns % headings, minlength=headings)
-        best = int(np.argmax(counts))
-        return pose.yaw + best * self.turn
+        return unexplored_heading(self.map, pose, point, self.turn)
 
     def _needs_frontier(self) -> bool:
         point = self._frontier
@@ -272,3 +252,29 @@ class Explorer:
         self._frontier = self._candidate = None
         self._since_plan = 0
         return self._follower
+
+
+def unexplored_heading(
+    obstacle_map: ObstacleMap, pose: Pose, point: tuple[float, float], turn: float
+) -> float | None:
+    """The whole-turn heading from the agent that faces the most unexplored cells within
+    1 m of a point that border explored free space (cells behind walls do not count).
+    The most common heading, not the mean: in a doorway to a corridor the unexplored lies
+    both left and right, and their mean would face the wall opposite."""
+    row, col = obstacle_map.cell_of(*point)
+    k = math.ceil(1.0 / obstacle_map.cell_size)
+    r0, c0 = max(row - k, 0), max(col - k, 0)
+    explored = obstacle_map.explored[r0 : row + k + 1, c0 : col + k + 1]
+    free = explored & ~obstacle_map.obstacle[r0 : row + k + 1, c0 : col + k + 1]
+    open_edge = ~explored & ndimage.binary_dilation(free, structure=_FOUR)
+    rows, cols = np.nonzero(open_edge)
+    if rows.size == 0:
+        return None
+    s, (ox, oz) = obstacle_map.cell_size, obstacle_map.origin
+    x = ox + (c0 + cols + 0.5) * s - pose.x
+    z = oz + (r0 + rows + 0.5) * s - pose.z
+    turns = np.round((np.arctan2(-x, -z) - pose.yaw) / turn).astype(int)
+    headings = round(2.0 * math.pi / turn)
+    counts = np.bincount(turns % headings, minlength=headings)
+    best = int(np.argmax(counts))
+    return pose.yaw + best * turn

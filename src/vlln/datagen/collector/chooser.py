@@ -28,7 +28,7 @@ class Choice:
 
 
 class TargetAwareChooser:
-    """A :class:`~vlln.agents.frontier.frontiers.FrontierChooser` with a ground-truth branch.
+    """The frontier rule of data collection, with a ground-truth branch.
 
     ``offset`` turns the map's coordinates (relative to the start) into world coordinates,
     where ``field`` measures the walk to the target.
@@ -43,9 +43,7 @@ class TargetAwareChooser:
         self,
         points: NDArray[np.float64],
         distances: NDArray[np.float64],
-        agent: tuple[float, float],
         previous: tuple[float, float] | None,
-        hint: float | None,
         rng: np.random.Generator,
         config: ChooserConfig,
     ) -> int | None:

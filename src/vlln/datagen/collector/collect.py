@@ -9,12 +9,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from vlln.datagen.collector.dialog import DialogConfig, DialogTriggers
+from vlln.datagen.collector.lattice import LatticeFollower
 from vlln.datagen.collector.policy import CollectorPolicy, PolicyConfig
 from vlln.datagen.trajectory import Step, Trajectory
 from vlln.errors import ConfigError
 from vlln.oracle.protocol import EpisodeContext, Oracle
 from vlln.sim.agent import Action, AgentState
-from vlln.sim.follower import GreedyFollower
 from vlln.sim.simulator import Simulator
 from vlln.tasks.episode import Episode
 from vlln.world.frame import quaternion_to_yaw
@@ -58,7 +58,9 @@ def collect_trajectory(
     target = house.instance(int(episode.instruction.instance_id[0]))
     points = tuple((vp.position[0], vp.position[2]) for vp in episode.goals[0].view_points)
     field_ = sim.geodesic_field(points)
-    follower = GreedyFollower(sim.grid, field_, config.goal_radius, sim.config.motion)
+    follower = LatticeFollower(
+        sim.grid, field_, config.goal_radius, sim.config.motion, max_expansions=30000
+    )
     oracle.start(EpisodeContext(sim, target, points))
     state = AgentState(episode.start_position, quaternion_to_yaw(episode.start_rotation), 0.0)
     observation = sim.reset(state)

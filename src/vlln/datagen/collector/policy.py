@@ -16,14 +16,17 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
+from vlln.agents.frontier.explorer import unexplored_heading
 from vlln.agents.frontier.frontiers import ChooserConfig, find_frontiers
 from vlln.agents.frontier.mapping import MapConfig, ObstacleMap, Pose
 from vlln.agents.frontier.planner import turn_toward
 from vlln.datagen.collector.chooser import TargetAwareChooser
+from vlln.datagen.collector.lattice import LatticeFollower
 from vlln.datagen.collector.visibility import DOWN_TILT, best_central_pixels
 from vlln.errors import ConfigError
 from vlln.sim.agent import Action, AgentState
 from vlln.sim.follower import GreedyFollower
+from vlln.sim.geodesic import GeodesicField
 from vlln.sim.renderer import Frame
 from vlln.sim.simulator import Simulator
 from vlln.world.frame import wrap_angle, yaw_of
@@ -44,12 +47,14 @@ class PolicyConfig:
     min_pocket_area: float = 1.5  # m²; smaller unexplored pockets are not frontiers
     frontier_reached: float = 0.3  # m; a frontier goal counts as reached this close
     visited_radius: float = 0.5  # m; frontiers this close to a reached goal are not chosen
+    frontier_clear_radius: float = 0.25  # m; a frontier is cleared when all around is seen
     goal_timeout: int = 80  # steps after which a frontier goal is chosen afresh
+    goal_attempts: int = 8  # frontiers tried in one step before exploration gives up
     seen_pixels: int = 200  # target pixels (640x480) that count as having seen it ...
     seen_range: float = 5.0  # ... when its nearest seen point is this close
     final_pixels: int = 300  # target pixels wanted in the middle of the last frame ...
     relocations: int = 3  # ... else up to this many moves to a view point that shows it
-    stand_candidates: int = 12  # view points tried (nearest first) when looking for one
+    stand_candidates: int = 40  # view points tried (nearest first) when looking for one
 
     def __post_init__(self) -> None:
         if self.scan_turns < 0 or self.seen_pixels < 1 or not self.seen_range > 0.0:
@@ -67,7 +72,7 @@ class CollectorPolicy:
         sim: Simulator,
         target: ObjectInstance,
         view_points: tuple[tuple[float, float], ...],
-        follower: GreedyFollower,
+        follower: LatticeFollower,
         start: AgentState,
         rng: np.random.Generator,
         config: PolicyConfig | None = None,
@@ -87,8 +92,11 @@ class CollectorPolicy:
         self.seen_at: int | None = None  # the frame at which the target was first seen
         self.failure: str | None = None
         self._frames = 0
-        self._goal: tuple[float, float] | None = None  # the frontier walked to, world (x, z)
-        self._goal_follower: GreedyFollower | None = None
+        self._goal: tuple[float, float] | None = None  # where the frontier is walked to
+        self._goal_frontier: tuple[float, float] | None = None  # the frontier itself, world
+        self._look_yaw: float | None = None  # heading to face at a reached frontier
+        self._looked = False
+        self._goal_follower: LatticeFollower | None = None
         self._goal_age = 0
         self._visited: list[tuple[float, float]] = []
         self._previous: tuple[float, float] | None = None  # last choice, map coordinates
@@ -115,8 +123,11 @@ class CollectorPolicy:
     # ----------------------------------------------------------------- phases
     def _approach(self, state: AgentState, frame: Frame) -> Action:
         """Walk to a view point, face the target, and stop if the view shows it well; else
-        move to the nearest view point from which it would be seen in the middle."""
+        move to the nearest view point from which it would be seen in the middle. Where no
+        collision-free walk is found, a greedy step (the trajectory is then likely dropped)."""
         action = self.follower.next_action(state)
+        if action is None:
+            action = self._greedy(self.follower.field).next_action(state)
         if action != Action.STOP:
             return action
         turn = turn_toward(self._facing_error(state.position, state.yaw), self.turn)
@@ -134,9 +145,11 @@ class CollectorPolicy:
         self._relocations += 1
         field_ = self.sim.geodesic_field([stand])
         radius = self.follower.goal_radius
-        self.follower = GreedyFollower(self.sim.grid, field_, radius, self.sim.config.motion)
+        self.follower = LatticeFollower(self.sim.grid, field_, radius, self.sim.config.motion)
         action = self.follower.next_action(state)
-        return action if action != Action.STOP else Action.STOP
+        if action is None:
+            action = self._greedy(field_).next_action(state)
+        return action
 
     def _better_stand(self, state: AgentState) -> tuple[float, float] | None:
         """The nearest untried view point, away from here, whose rendered views (from the
@@ -159,7 +172,7 @@ class CollectorPolicy:
     def _shows_target_around(self, point: tuple[float, float], state: AgentState) -> bool:
         floor_y = state.position[1]
         d = _STAND_SPREAD / 2.0
-        for dx, dz in ((0.0, 0.0), (d, 0.0), (-d, 0.0), (0.0, d), (0.0, -d)):
+        for dx, dz in ((0.0, 0.0), (d, 0.0), (-d, 0.0), (0.0, d), (0.0, -d)):  # centre first
             position = (point[0] + dx, floor_y, point[1] + dz)
             yaw = state.yaw
             yaw += self.turn * round(self._facing_error(position, yaw) / self.turn)
@@ -175,37 +188,58 @@ class CollectorPolicy:
     def _explore(self, state: AgentState) -> Action | None:
         """The next step toward the current frontier; a new frontier when it is reached, no
         longer a frontier, or taking too long; None when no frontier is left."""
-        for _ in range(3):
+        for _ in range(self.config.goal_attempts):
             needs_goal = self._goal_follower is None or self._goal_done()
             if needs_goal and not self._choose_goal(state):
                 return None
             follower = self._goal_follower
             if follower is None:
                 return None
-            if follower.field.distance(state.position[0], state.position[2]) < math.inf:
-                action = follower.next_action(state)
-                if action != Action.STOP:
-                    self._goal_age += 1
-                    return action
-            self._drop_goal()
+            action = follower.next_action(state)
+            if action == Action.STOP:
+                action = self._look_at_frontier(state)
+            if action is not None and action != Action.STOP:
+                self._goal_age += 1
+                return action
+            self._drop_goal()  # reached and looked at, or no collision-free walk to it
+        return None
+
+    def _look_at_frontier(self, state: AgentState) -> Action | None:
+        """At a reached frontier, turn toward the unexplored cells beside it (walking up to a
+        doorway sideways does not show what is behind it); None once facing them."""
+        if self._look_yaw is None and not self._looked and self._goal_frontier is not None:
+            gx, gz = self._goal_frontier
+            point = (gx - self.origin[0], gz - self.origin[1])
+            self._look_yaw = unexplored_heading(self.map, self._pose(state), point, self.turn)
+            self._looked = True
+        if self._look_yaw is not None:
+            turn = turn_toward(wrap_angle(self._look_yaw - state.yaw), self.turn)
+            if turn is not None:
+                return turn
+            self._look_yaw = None
         return None
 
     # ----------------------------------------------------------------- frontiers
     def _goal_done(self) -> bool:
-        if self._goal is None or self._goal_age >= self.config.goal_timeout:
+        """Time to choose again: no goal, too long on it, or its frontier has been cleared
+        (no unexplored cell left within ``frontier_clear_radius`` of the frontier point)."""
+        if self._goal_frontier is None or self._goal_age >= self.config.goal_timeout:
             self._drop_goal()
             return True
-        gx, gz = self._goal
+        gx, gz = self._goal_frontier
         row, col = self.map.cell_of(gx - self.origin[0], gz - self.origin[1])
-        window = self.map.explored[max(row - 1, 0) : row + 2, max(col - 1, 0) : col + 2]
+        k = math.ceil(self.config.frontier_clear_radius / self.map.cell_size)
+        window = self.map.explored[max(row - k, 0) : row + k + 1, max(col - k, 0) : col + k + 1]
         if window.all():
             self._drop_goal()
             return True
         return False
 
     def _drop_goal(self) -> None:
-        if self._goal is not None:
-            self._visited.append(self._goal)
+        """Forget the goal; it and its frontier are not chosen again."""
+        self._look_yaw, self._looked = None, False
+        if self._goal is not None and self._goal_frontier is not None:
+            self._visited += [self._goal, self._goal_frontier]
         self._goal = self._goal_follower = None
 
     def _choose_goal(self, state: AgentState) -> bool:
@@ -218,17 +252,21 @@ class CollectorPolicy:
         world = points + np.array(self.origin)
         snapped = [grid.snap_point(float(px), float(pz)) for px, pz in world]
         reach = np.array([here.distance(px, pz) for px, pz in snapped])
-        pose = self._pose(state)
-        index = self.chooser(
-            points, reach, (pose.x, pose.z), self._previous, None, self.rng, self.config.chooser
-        )
+        # A frontier whose walkable point is already underfoot cannot be cleared by walking.
+        underfoot = reach < self.config.frontier_reached
+        for raw, goal, under in zip(world, snapped, underfoot, strict=True):
+            if under:
+                self._visited += [(float(raw[0]), float(raw[1])), goal]
+        reach[underfoot] = np.inf
+        index = self.chooser(points, reach, self._previous, self.rng, self.config.chooser)
         if index is None:
             return False
         self._previous = (float(points[index, 0]), float(points[index, 1]))
         self._goal = snapped[index]
+        self._goal_frontier = (float(world[index, 0]), float(world[index, 1]))
         field_ = self.sim.geodesic_field([self._goal])
         radius = self.config.frontier_reached
-        self._goal_follower = GreedyFollower(grid, field_, radius, self.sim.config.motion)
+        self._goal_follower = LatticeFollower(grid, field_, radius, self.sim.config.motion)
         self._goal_age = 0
         return True
 
@@ -259,6 +297,10 @@ class CollectorPolicy:
             return False
         depth = frame.depth[mine]
         return bool(depth[depth > 0.0].min(initial=math.inf) <= self.config.seen_range)
+
+    def _greedy(self, field_: GeodesicField) -> GreedyFollower:
+        radius = self.follower.goal_radius
+        return GreedyFollower(self.sim.grid, field_, radius, self.sim.config.motion)
 
     def _pose(self, state: AgentState) -> Pose:
         x, _, z = state.position
