@@ -345,7 +345,7 @@ def build_parser() -> argparse.ArgumentParser:
     bench_oracle.set_defaults(handler=_bench_oracle)
 
     bench_data = bench.add_parser("data", help="trajectories per hour of the data pipeline")
-    bench_data.add_argument("--houses", type=int, default=1, help="training houses (default 1)")
+    bench_data.add_argument("--houses", type=int, default=2, help="training houses (default 2)")
     bench_data.add_argument(
         "--per-house", type=int, default=6, help="trajectories per house (default 6)"
     )

@@ -19,7 +19,7 @@ from vlln.tasks.scenes import SceneCache, procedural_scene_id
 from vlln.tasks.splits import house_seeds
 
 
-def run_data_benchmark(houses: int = 1, per_house: int = 6, as_json: bool = False) -> list[Figure]:
+def run_data_benchmark(houses: int = 2, per_house: int = 6, as_json: bool = False) -> list[Figure]:
     """Build the fixed workload once in a temporary folder and print its figures."""
     config = BuildConfig(houses=houses, per_house=per_house)
     figures: list[Figure] = []

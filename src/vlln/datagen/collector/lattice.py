@@ -16,9 +16,11 @@ import math
 from vlln.sim.agent import Action, AgentState, MotionConfig, step
 from vlln.sim.geodesic import GeodesicField
 from vlln.sim.navgrid import NavGrid
+from vlln.world.frame import wrap_angle
 
 _KEY_CELL = 0.05  # m; states closer than this (same heading) count as one
 _WEIGHT = 1.5  # weighted A*: a little longer than optimal, far fewer expansions
+_RETRY_AFTER = 8  # steps taken by other means before a failed search is tried again
 
 
 def plan_walk(
@@ -32,6 +34,7 @@ def plan_walk(
     """Actions from ``start`` to a state nearer than ``goal_radius`` to the field's goals,
     never colliding; None when the search finds none within ``max_expansions``."""
     forward = motion.forward_step
+    turn = motion.turn
     turns = max(1, round(360.0 / motion.turn_deg))
 
     def estimate(state: AgentState) -> float:
@@ -58,23 +61,27 @@ def plan_walk(
         if estimate(state) * forward < goal_radius:
             return _actions(parents, here)
         expansions += 1
-        for action in (Action.MOVE_FORWARD, Action.TURN_LEFT, Action.TURN_RIGHT):
-            result = step(state, action, grid, motion)
-            if result.collided:
-                continue
-            next_heading = heading
-            if action == Action.TURN_LEFT:
-                next_heading = (heading + 1) % turns
-            elif action == Action.TURN_RIGHT:
-                next_heading = (heading - 1) % turns
-            there = key(result.state, next_heading)
+        moved = step(state, Action.MOVE_FORWARD, grid, motion)
+        successors = [
+            (Action.TURN_LEFT, _turned(state, turn), (heading + 1) % turns),
+            (Action.TURN_RIGHT, _turned(state, -turn), (heading - 1) % turns),
+        ]
+        if not moved.collided:
+            successors.insert(0, (Action.MOVE_FORWARD, moved.state, heading))
+        for action, next_state, next_heading in successors:
+            there = key(next_state, next_heading)
             if there == here or cost + 1 >= costs.get(there, math.inf):
                 continue
             costs[there] = cost + 1
             parents[there] = (here, action)
-            priority = cost + 1 + _WEIGHT * estimate(result.state)
-            heapq.heappush(frontier, (priority, next(order), cost + 1, result.state, next_heading))
+            priority = cost + 1 + _WEIGHT * estimate(next_state)
+            heapq.heappush(frontier, (priority, next(order), cost + 1, next_state, next_heading))
     return None
+
+
+def _turned(state: AgentState, angle: float) -> AgentState:
+    """A turn in place (turns never collide; same result as :func:`step`)."""
+    return AgentState(state.position, wrap_angle(state.yaw + angle), state.tilt)
 
 
 def _actions(
@@ -98,7 +105,8 @@ class LatticeFollower:
     Each planned action is checked against the current state before it is taken, and the walk
     is planned again when it would collide (states merged by the search differ by a few
     centimetres) or when it has run out. :meth:`next_action` is None when no collision-free
-    walk is found; the caller decides what then (another goal, or a greedy step).
+    walk is found (and for the next few steps, which the caller takes by other means, so that
+    a hopeless search is not repeated every step); the caller decides what then.
     """
 
     def __init__(
@@ -115,15 +123,20 @@ class LatticeFollower:
         self.motion = motion
         self.max_expansions = max_expansions
         self._plan: list[Action] = []
+        self._cooldown = 0  # steps left before searching again after a failed search
 
     def next_action(self, state: AgentState) -> Action | None:
         if self.field.distance(state.position[0], state.position[2]) < self.goal_radius:
             return Action.STOP
         if not self._plan or step(state, self._plan[0], self.grid, self.motion).collided:
+            if self._cooldown > 0:
+                self._cooldown -= 1
+                return None
             plan = plan_walk(
                 self.grid, self.field, self.motion, state, self.goal_radius, self.max_expansions
             )
             self._plan = plan or []
             if not plan:
+                self._cooldown = _RETRY_AFTER
                 return None
         return self._plan.pop(0)

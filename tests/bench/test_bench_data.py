@@ -1,0 +1,27 @@
+"""The data benchmark prints one well-formed figure per line, consistent with each other."""
+
+import json
+
+import pytest
+
+from vlln.bench.data import run_data_benchmark
+from vlln.errors import ConfigError
+
+
+def test_data_benchmark_prints_json_lines(capsys: pytest.CaptureFixture[str]) -> None:
+    figures = run_data_benchmark(houses=1, per_house=1, as_json=True)
+    lines = [json.loads(line) for line in capsys.readouterr().out.splitlines()]
+    assert all(set(line) == {"metric", "value", "unit"} for line in lines)
+    assert [f.metric for f in figures] == [line["metric"] for line in lines]
+    values = {line["metric"]: line["value"] for line in lines}
+    assert values["trajectories_attempted"] == 1
+    assert values["trajectories_per_hour"] == pytest.approx(
+        3600.0 / values["seconds_per_trajectory"], rel=1e-3
+    )
+    kept = values["kept_trajectories_per_hour"]
+    assert kept == pytest.approx(values["trajectories_per_hour"] * values["yield"] / 100, rel=1e-3)
+
+
+def test_a_bad_workload_is_refused() -> None:
+    with pytest.raises(ConfigError, match="houses"):
+        run_data_benchmark(houses=0, per_house=1)
