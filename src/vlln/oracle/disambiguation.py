@@ -22,6 +22,8 @@ agent walks closer instead of turning away.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
 import numpy as np
 
 from vlln.oracle.knowledge import EpisodeKnowledge, choose, object_phrase, room_name
@@ -47,15 +49,9 @@ def answer_disambiguation(knowledge: EpisodeKnowledge, state: AgentState, frame:
     index = knowledge.index
     rng = knowledge.rng
     ids = frame.instance_ids
-    h, w = ids.shape
     counts = centre_counts(ids)
-    minimum = CENTRE_MIN_SHARE * (3 * h // 4 - h // 4) * (3 * w // 4 - w // 4)
-    same_category = [
-        (n, i)
-        for i, n in counts.items()
-        if n >= minimum and i in index.instances and index.instances[i].category == target.category
-    ]
-    candidate = max(same_category)[1] if same_category else None
+    categories = {i: inst.category for i, inst in index.instances.items()}
+    candidate = most_visible_of(counts, ids.shape, categories, target.category)
     if candidate == target.id and is_centred(counts, target.id, ids):
         x, _, z = state.position
         distance = knowledge.plan_distance(x, z)
@@ -70,6 +66,17 @@ def answer_disambiguation(knowledge: EpisodeKnowledge, state: AgentState, frame:
                 (f"No, the one I mean {predicate}.", f"No. The one I am thinking of {predicate}."),
             )
     return choose(rng, ("No.", "No, that is not the one.", "No, it is not this one."))
+
+
+def most_visible_of(
+    counts: dict[int, int], shape: tuple[int, ...], categories: Mapping[int, str], category: str
+) -> int | None:
+    """The instance of ``category`` with most pixels in the centre (at least
+    :data:`CENTRE_MIN_SHARE` of it), the one an asker looking there means; None if none."""
+    h, w = shape[0], shape[1]
+    minimum = CENTRE_MIN_SHARE * (3 * h // 4 - h // 4) * (3 * w // 4 - w // 4)
+    same = [(n, i) for i, n in counts.items() if n >= minimum and categories.get(i) == category]
+    return max(same)[1] if same else None
 
 
 def is_centred(counts: dict[int, int], target_id: int, ids: np.ndarray) -> bool:

@@ -27,7 +27,7 @@ from vlln.datagen.collector.templates import (
 )
 from vlln.datagen.trajectory import Exchange
 from vlln.errors import ConfigError
-from vlln.oracle.disambiguation import CENTRE_MIN_SHARE, centre_counts, is_centred
+from vlln.oracle.disambiguation import centre_counts, is_centred, most_visible_of
 from vlln.oracle.protocol import Oracle, Question
 from vlln.sim.agent import AgentState
 from vlln.sim.renderer import Frame
@@ -76,6 +76,7 @@ class DialogTriggers:
         self.exchanges: list[Exchange] = []
         self.known: dict[str, str] = {}
         self._asked_about: set[int] = set()
+        self._categories = {i.id: i.category for i in house.instances}
         self._pending: _PendingRoute | None = None
         self._choices_seen = 0
         self._last_position: tuple[float, float, float] | None = None
@@ -147,17 +148,11 @@ class DialogTriggers:
     # ----------------------------------------------------------------- disambiguation
     def _check_disambiguation(self, frame_index: int, state: AgentState, frame: Frame) -> None:
         ids = frame.instance_ids
-        h, w = ids.shape
         counts = centre_counts(ids)
-        minimum = CENTRE_MIN_SHARE * (3 * h // 4 - h // 4) * (3 * w // 4 - w // 4)
-        same = [
-            (n, i)
-            for i, n in counts.items()
-            if n >= minimum and self._instance(i).category == self.target.category
-        ]
-        if not same:
+        found = most_visible_of(counts, ids.shape, self._categories, self.target.category)
+        if found is None:
             return
-        candidate = self._instance(max(same)[1])
+        candidate = self.house.instance(found)
         if candidate.id in self._asked_about or not self._fits_known(candidate):
             return
         if not is_centred(counts, candidate.id, ids):
@@ -174,9 +169,6 @@ class DialogTriggers:
 
     def _fits_known(self, instance: ObjectInstance) -> bool:
         return all(getattr(instance.attributes, k) == v for k, v in self.known.items())
-
-    def _instance(self, instance_id: int) -> ObjectInstance:
-        return self.house.instance(instance_id)
 
     # ----------------------------------------------------------------- asking
     def _ask(
