@@ -267,11 +267,13 @@ def _parquet_bytes(table: pa.Table) -> bytes:
 
 
 def read_journal(path: Path) -> dict[str, Attempt]:
-    """Attempts by episode id; a torn last line (a kill mid-write) is ignored."""
+    """Attempts by episode id. A torn last line (a kill mid-write) is cut from the file, so
+    that the next attempt starts on a line of its own."""
     attempts: dict[str, Attempt] = {}
     if not path.exists():
         return attempts
-    lines = path.read_text(encoding="utf-8").splitlines()
+    text = path.read_text(encoding="utf-8")
+    lines = text.splitlines()
     for number, line in enumerate(lines, 1):
         try:
             data = json.loads(line)
@@ -279,21 +281,17 @@ def read_journal(path: Path) -> dict[str, Attempt]:
                 data["episode_id"], data["episode_index"], data["reason"], data["row"]
             )
         except (ValueError, KeyError, TypeError) as error:
-            if number == len(lines):
-                break
-            raise DataFormatError(
-                f"{path}:{number}: unreadable journal line ({error}); the file was edited or "
-                "damaged: delete the house folder to rebuild it"
-            ) from error
+            if number < len(lines):
+                raise DataFormatError(
+                    f"{path}:{number}: unreadable journal line ({error}); the file was edited "
+                    "or damaged: delete the house folder to rebuild it"
+                ) from error
+            write_text_atomic(path, "".join(f"{kept}\n" for kept in lines[:-1]))
+            return attempts
         attempts[attempt.episode_id] = attempt
-    if lines and not path.read_text(encoding="utf-8").endswith("\n"):
-        _truncate_torn_line(path)
+    if text and not text.endswith("\n"):
+        write_text_atomic(path, text + "\n")  # a whole last line that lost its newline
     return attempts
-
-
-def _truncate_torn_line(path: Path) -> None:
-    text = path.read_text(encoding="utf-8")
-    write_text_atomic(path, text[: text.rfind("\n") + 1])
 
 
 # ------------------------------------------------------------------------------- reading

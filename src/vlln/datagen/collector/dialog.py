@@ -77,6 +77,9 @@ class DialogTriggers:
         self.known: dict[str, str] = {}
         self._asked_about: set[int] = set()
         self._categories = {i.id: i.category for i in house.instances}
+        wanted = [i.id for i in house.instances if i.category == target.category]
+        self._of_category = np.zeros(max(wanted, default=0) + 2, bool)  # ids < 0 read slot 0
+        self._of_category[wanted] = True
         self._pending: _PendingRoute | None = None
         self._choices_seen = 0
         self._last_position: tuple[float, float, float] | None = None
@@ -148,6 +151,10 @@ class DialogTriggers:
     # ----------------------------------------------------------------- disambiguation
     def _check_disambiguation(self, frame_index: int, state: AgentState, frame: Frame) -> None:
         ids = frame.instance_ids
+        h, w = ids.shape
+        centre = ids[h // 4 : 3 * h // 4, w // 4 : 3 * w // 4]
+        if not np.take(self._of_category, centre, mode="clip").any():
+            return  # the common case, checked without counting every id
         counts = centre_counts(ids)
         found = most_visible_of(counts, ids.shape, self._categories, self.target.category)
         if found is None:
