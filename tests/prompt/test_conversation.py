@@ -118,6 +118,7 @@ def test_look_down_turn_and_pixel_reply() -> None:
     assert final.images[-1] == ImageRef("down", 6)
     assert final.images[:-1] == first.images
     assert LEVEL_IMAGE_SIZE == (384, 384) and DOWN_IMAGE_SIZE == (640, 480)
+    assert [image.size for image in final.images[-2:]] == [(384, 384), (640, 480)]
 
 
 def test_every_turn_in_the_text_says_30_degrees() -> None:
@@ -248,6 +249,7 @@ def test_connective_is_a_pure_function_of_seed_episode_and_frame() -> None:
         "ahead of you is ",
     ]
     assert connective_for(0, "a", 0, look_down=True) == "you can spot "
+    assert connective_for(1, 17, 3) == connective_for(1, "17", 3)
 
 
 def test_question_limit_replaces_later_answers() -> None:
@@ -290,6 +292,10 @@ def test_question_limit_replaces_later_answers() -> None:
         (lambda: DialogExchange(0, "q", "see <image>"), "may not contain"),
         (lambda: DialogExchange(0, "q<|oracle|>", "a"), "may not contain"),
         (lambda: DialogExchange(-1, "q", "a"), "non-negative"),
+        (
+            lambda: build_conversation("Find <image>.", 0, [], connective="there is "),
+            "instruction may not contain",
+        ),
         (
             lambda: with_answer(
                 build_conversation(INSTRUCTION, 0, [], connective="there is "), "a"

@@ -18,16 +18,19 @@ from typing import Literal, TypeAlias
 from vlln.errors import ConfigError
 from vlln.prompt.grammar import format_output
 from vlln.prompt.history import (
+    DEFAULT_HISTORY_COUNT,
     DialogExchange,
     check_dialog_text,
     history_frames,
     history_text,
 )
-from vlln.prompt.outputs import PixelOutput, TiltDownOutput, ValidOutput
+from vlln.prompt.outputs import PixelOutput, TalkOutput, TiltDownOutput, ValidOutput
 from vlln.prompt.text import (
     CONNECTIVES,
+    DOWN_IMAGE_SIZE,
     HISTORY_INTRO,
     IMAGE_TAG,
+    LEVEL_IMAGE_SIZE,
     SYSTEM_TEXT,
     SYSTEM_TEXT_NO_DIALOG,
     TALK_TAG,
@@ -43,6 +46,11 @@ class ImageRef:
 
     camera: Camera
     frame: int
+
+    @property
+    def size(self) -> tuple[int, int]:
+        """(width, height) the picture is sent at."""
+        return LEVEL_IMAGE_SIZE if self.camera == "level" else DOWN_IMAGE_SIZE
 
 
 @dataclass(frozen=True)
@@ -84,7 +92,7 @@ class Conversation:
         return result
 
 
-def connective_for(seed: int, episode_id: str, frame: int, *, look_down: bool = False) -> str:
+def connective_for(seed: int, episode_id: str | int, frame: int, *, look_down: bool = False) -> str:
     """The reference's randomly chosen connective, as a pure function of its arguments (the
     look-down turn draws its own), so the export and an agent pick the same one."""
     key = f"{seed}\x1f{episode_id}\x1f{frame}\x1f{'down' if look_down else 'level'}"
@@ -99,7 +107,7 @@ def build_conversation(
     *,
     connective: str,
     dialog_enabled: bool = True,
-    history_count: int = 8,
+    history_count: int = DEFAULT_HISTORY_COUNT,
 ) -> Conversation:
     """The conversation for the decision at level frame ``frame``.
 
@@ -108,6 +116,7 @@ def build_conversation(
     in verbatim and should end with its full stop, as the reference's instructions do.
     """
     _check_connective(connective)
+    check_dialog_text("instruction", instruction)
     if frame < 0:
         raise ConfigError(f"a frame is >= 0, got {frame}")
     if not dialog_enabled and dialogs:
@@ -125,7 +134,8 @@ def build_conversation(
     turns = [Turn("human", text)]
     for exchange in dialogs:
         if exchange.frame == frame:
-            turns += [Turn("gpt", TALK_TAG + exchange.question), Turn("human", exchange.answer)]
+            talk = format_output(TalkOutput(exchange.question))
+            turns += [Turn("gpt", talk), Turn("human", exchange.answer)]
     images = [ImageRef("level", f) for f in frames] + [ImageRef("level", frame)]
     return Conversation(tuple(turns), tuple(images))
 

@@ -45,12 +45,13 @@ class DialogExchange:
 
 
 def check_dialog_text(name: str, value: str) -> None:
-    """Refuse a question or answer holding a marker that would forge a tag in the prompt."""
+    """Refuse prompt text (question, answer, instruction) holding a marker that would forge
+    a tag, an image or a dialog block in the prompt."""
     marker = reserved_marker_in(value)
     if marker is not None:
         raise ConfigError(
-            f"a dialog {name} may not contain {marker!r} (it would forge a tag in the "
-            f"prompt); remove it from {value[:60]!r}"
+            f"the {name} may not contain {marker!r} (it would forge a tag in the prompt); "
+            f"remove it from {value[:60]!r}"
         )
 
 
