@@ -220,6 +220,13 @@ def _bench_oracle(args: argparse.Namespace) -> int:
     return 0
 
 
+def _bench_agent(args: argparse.Namespace) -> int:
+    from vlln.bench.agent import run_agent_benchmark
+
+    run_agent_benchmark(seed=args.seed, repeats=args.repeats, as_json=args.json)
+    return 0
+
+
 def _add_oracle_commands(commands: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     oracle = commands.add_parser("oracle", help="the oracle").add_subparsers(
         dest="oracle_command", required=True
@@ -364,6 +371,11 @@ def build_parser() -> argparse.ArgumentParser:
     )
     bench_oracle.add_argument("--json", action="store_true", help="print one JSON object per line")
     bench_oracle.set_defaults(handler=_bench_oracle)
+    bench_agent = bench.add_parser("agent", help="a model agent's step cost outside the model")
+    bench_agent.add_argument("--seed", type=int, default=0, help="house seed (default 0)")
+    bench_agent.add_argument("--repeats", type=int, default=200, help="timed repeats (200)")
+    bench_agent.add_argument("--json", action="store_true", help="print one JSON object per line")
+    bench_agent.set_defaults(handler=_bench_agent)
 
     bench_data = bench.add_parser("data", help="trajectories per hour of the data pipeline")
     bench_data.add_argument("--houses", type=int, default=2, help="training houses (default 2)")
