@@ -72,7 +72,7 @@ def test_a_pixel_goal_levels_the_camera_and_the_waypoint_leads_to_its_floor_poin
     looks_before = env._looks
     observation, *_ = env.step(PixelGoal(col, row))
     assert observation["tilt"] == 0.0
-    assert env._looks == looks_before + 1
+    assert env._looks == looks_before  # the LOOK_DOWN before it was counted
     walked = 0
     while observation["waypoint_action"] is not None:
         assert walked < 40
@@ -94,6 +94,11 @@ def test_another_action_ends_the_walk_to_a_pixel_goal(scenes: SceneCache) -> Non
     assert observation["waypoint_action"] is not None
     observation, *_ = env.step(Action.LOOK_DOWN)
     assert observation["waypoint_action"] is None
+    env.step(Action.LOOK_UP)
+    looks = env._looks
+    observation, *_ = env.step(PixelGoal(320, 479))  # on a level frame: counted as a look
+    assert env._looks == looks + 1 and env._failed == 0
+    assert observation["waypoint_action"] is not None
 
 
 def test_failed_outputs_waste_a_step_level_the_camera_and_are_counted_by_kind(

@@ -9,10 +9,11 @@ Datasheet
   LOOK_UP/DOWN 30°), :class:`vlln.tasks.spec.Talk` (a question) or
   :class:`vlln.tasks.spec.PixelGoal` (a pixel of the current frame, normally the look-down one,
   to walk to: back-projected with depth and tilt, snapped to the navigable area; the camera
-  returns level; counted like a LOOK). :class:`vlln.tasks.spec.FailedOutput` (a model's output
-  that could not be read, or a server that gave none), a pixel that shows no reachable floor
-  and anything else are failed actions: recorded by kind, the agent does not move, the camera
-  returns level, and it counts as a step.
+  returns level; counted like a LOOK unless the camera was tilted, whose LOOK_DOWN counted).
+  :class:`vlln.tasks.spec.FailedOutput` (a model's output that could not be read, or a server
+  that gave none), a pixel that shows no reachable floor and anything else are failed
+  actions: recorded by kind, the agent does not move, the camera returns level, and it counts
+  as a step.
 * **Observations** (a dict): ``rgb`` (H, W, 3) uint8; ``depth`` (H, W) float32 metres;
   ``gps`` float32 (x, z) in metres from the start in the start's frame (the start heading looks
   along -z); ``compass`` yaw relative to the start heading (radians, left positive); ``tilt``
@@ -253,7 +254,8 @@ class NavigationEnv:
         if isinstance(found, str):
             self._fail(f"FAILED:goal:{goal.col},{goal.row}", "goal")
             return
-        self._looks += 1
+        if self.sim.state.tilt == 0.0:
+            self._looks += 1  # on a tilted frame the LOOK_DOWN before it was counted
         self._actions.append(f"PIXEL:{goal.col},{goal.row}")
         self._waypoint = found
         self._level_camera()
