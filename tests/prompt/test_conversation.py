@@ -164,6 +164,15 @@ def test_history_frames(frame: int, dialog_frames: list[int], expected: list[int
     assert history_frames(frame, dialog_frames) == expected
 
 
+def test_numpy_frames_are_plain_ints() -> None:
+    dialogs = [DialogExchange(np.int64(2), "Q?", "A.")]
+    conversation = build_conversation(INSTRUCTION, np.int64(5), dialogs, connective="there is ")  # type: ignore[arg-type]
+    assert dialogs[0].frame == 2 and type(dialogs[0].frame) is int
+    assert all(type(image.frame) is int for image in conversation.images)
+    with pytest.raises(ConfigError, match="non-negative integer"):
+        DialogExchange(2.0, "Q?", "A.")  # type: ignore[arg-type]
+
+
 def reference_first_turn(
     instruction: str, frame: int, dialogs: list[DialogExchange], connective: str
 ) -> str:
