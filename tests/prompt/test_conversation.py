@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import random
+import re
 
 import numpy as np
 import pytest
@@ -274,6 +275,33 @@ def test_question_limit_replaces_later_answers() -> None:
     assert limit_answers(dialogs, 0)[0].answer == QUESTION_LIMIT_ANSWER
 
 
+def reference_limit(conversation: Conversation, limit: int) -> list[str]:
+    """The reference's rule: answers are counted in the first turn's dialog blocks, then in
+    the human turns after a talk; those from ``limit`` on read the question-limit answer."""
+    counter = iter(range(1000))
+    block = re.compile(r"<\|oracle\|>.*?<\|dialog_end\|>", re.DOTALL)
+
+    def cut(match: re.Match[str]) -> str:
+        keep = next(counter) < limit
+        return match.group(0) if keep else f"<|oracle|>{QUESTION_LIMIT_ANSWER}<|dialog_end|>"
+
+    texts = [turn.text for turn in conversation.turns]
+    texts[0] = block.sub(cut, texts[0])
+    for index in range(1, len(texts)):
+        if conversation.turns[index - 1].text.startswith("<talk>") and next(counter) >= limit:
+            texts[index] = QUESTION_LIMIT_ANSWER
+    return texts
+
+
+def test_question_limit_matches_the_reference_rule_with_one_question_per_frame() -> None:
+    dialogs = [DialogExchange(f, f"q{f}?", f"a{f}.") for f in (0, 3, 9, 12, 20, 20)]
+    for limit in range(7):
+        heard = limit_answers(dialogs, limit)
+        limited = build_conversation(INSTRUCTION, 20, heard, connective="there is ")
+        full = build_conversation(INSTRUCTION, 20, dialogs, connective="there is ")
+        assert [turn.text for turn in limited.turns] == reference_limit(full, limit)
+
+
 @pytest.mark.parametrize(
     ("make", "message"),
     [
@@ -299,7 +327,9 @@ def test_question_limit_replaces_later_answers() -> None:
         ),
         (lambda: build_conversation(INSTRUCTION, -1, [], connective="there is "), "frame"),
         (lambda: DialogExchange(0, "q", "see <image>"), "may not contain"),
-        (lambda: DialogExchange(0, "q<|oracle|>", "a"), "may not contain"),
+        (lambda: DialogExchange(0, "q<|oracle|>", "a"), "reserved marker"),
+        (lambda: DialogExchange(0, "", "a"), "empty question"),
+        (lambda: DialogExchange(0, "q" * 301, "a"), "longer than 300"),
         (lambda: DialogExchange(-1, "q", "a"), "non-negative"),
         (
             lambda: build_conversation("Find <image>.", 0, [], connective="there is "),

@@ -17,7 +17,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from vlln.errors import ConfigError
-from vlln.prompt.outputs import reserved_marker_in
+from vlln.prompt.outputs import question_problem, reserved_marker_in
 from vlln.prompt.text import (
     DIALOG_END,
     DIALOG_START,
@@ -32,7 +32,8 @@ DEFAULT_HISTORY_COUNT = 8
 
 @dataclass(frozen=True)
 class DialogExchange:
-    """One question asked at level frame ``frame`` and the oracle's answer to it."""
+    """One question asked at level frame ``frame`` and the oracle's answer to it; the question
+    follows the reader's rules for ``<talk>`` (so the model only ever sees askable ones)."""
 
     frame: int
     question: str
@@ -40,7 +41,9 @@ class DialogExchange:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "frame", frame_index(self.frame))
-        check_dialog_text("question", self.question)
+        problem = question_problem(self.question)
+        if problem is not None:
+            raise ConfigError(f"invalid dialog question {self.question[:60]!r}: {problem}")
         check_dialog_text("answer", self.answer)
 
 
