@@ -21,6 +21,7 @@ from vlln.prompt.history import (
     DEFAULT_HISTORY_COUNT,
     DialogExchange,
     check_dialog_text,
+    frame_index,
     history_frames,
     history_text,
 )
@@ -117,15 +118,14 @@ def build_conversation(
     """
     _check_connective(connective)
     check_dialog_text("instruction", instruction)
-    if frame < 0:
-        raise ConfigError(f"a frame is >= 0, got {frame}")
+    frame = frame_index(frame)
     if not dialog_enabled and dialogs:
         raise ConfigError("dialogs were given but dialog is disabled")
     later = [d.frame for d in dialogs if d.frame > frame]
     if later:
         raise ConfigError(f"a dialog at frame {later[0]} is after the current frame {frame}")
+    frames = history_frames(frame, (d.frame for d in dialogs), history_count)
     earlier = [d for d in dialogs if d.frame < frame]
-    frames = history_frames(frame, (d.frame for d in earlier), history_count)
     system = SYSTEM_TEXT if dialog_enabled else SYSTEM_TEXT_NO_DIALOG
     text = system.format(instruction=instruction)
     if frames:
