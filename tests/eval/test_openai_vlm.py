@@ -17,7 +17,8 @@ from vlln.agents.expert import ExpertAgent
 from vlln.cli import main
 from vlln.eval.config import EvalConfig
 from vlln.eval.report import write_report
-from vlln.eval.runner import RunOutcome, play_episode, run_evaluation
+from vlln.eval.runner import RunOutcome, derive_seed, play_episode, run_evaluation
+from vlln.prompt import IMAGE_TAG, DialogExchange, build_conversation, connective_for
 from vlln.sim.agent import AgentState
 from vlln.tasks.env import NavigationEnv
 from vlln.tasks.episode import Episode, write_episodes
@@ -96,6 +97,17 @@ def user_texts(request: dict[str, Any]) -> list[str]:
     return texts
 
 
+def sent_turns(request: dict[str, Any]) -> list[str]:
+    """Every message's text as the prompt wrote it, each picture back as an <image> tag."""
+    texts = []
+    for message in request["json"]["messages"]:
+        content = message["content"]
+        if isinstance(content, list):
+            content = "".join(p["text"] if p["type"] == "text" else IMAGE_TAG for p in content)
+        texts.append(content)
+    return texts
+
+
 def image_count(request: dict[str, Any]) -> int:
     return sum(
         part["type"] == "image_url"
@@ -126,6 +138,17 @@ def test_scripted_replies_play_the_experts_episode_to_success(
     url = first["messages"][0]["content"][1]["image_url"]["url"]
     assert url.startswith("data:image/jpeg;base64,/9j/")
     assert "TURN LEFT (←) or TURN RIGHT (→) by 30 degrees" in user_texts(requests[0])[0]
+    # The last decision's prompt is the shared builder's text for that state, byte for byte.
+    frame = sum(name != "STOP" for name in expert.actions)
+    seed = derive_seed(0, "agent", episode.scene_id, episode.episode_id, 0)
+    expected = build_conversation(
+        episode.instruction.instruction_text,
+        frame,
+        [],
+        connective=connective_for(seed, episode.episode_id, frame),
+        dialog_enabled=False,
+    )
+    assert sent_turns(requests[-1]) == [turn.text for turn in expected.turns]
     run_json = json.loads((tmp_path / "run" / "run.json").read_text())
     assert run_json["agent"] == "openai-vlm"
     assert run_json["agent_options"]["model"] == "scripted-vlm"
@@ -191,6 +214,14 @@ def test_a_question_is_answered_and_the_answer_reaches_the_next_prompt(
     (turn,) = record.dialog
     assert turn.question == "What color is it?" and turn.answered
     assert turn.answer
+    seed = derive_seed(0, "agent", episode.scene_id, episode.episode_id, 5)
+    expected = build_conversation(
+        episode.instruction.instruction_text,
+        0,
+        [DialogExchange(0, turn.question, turn.answer)],
+        connective=connective_for(seed, episode.episode_id, 0),
+    )
+    assert sent_turns(requests[1]) == [t.text for t in expected.turns]
     second = requests[1]["json"]["messages"]
     assert second[1] == {"role": "assistant", "content": "<talk>What color is it?"}
     assert second[2]["role"] == "user"
