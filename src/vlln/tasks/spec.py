@@ -68,11 +68,13 @@ AgentOutput = Action | Talk | PixelGoal | FailedOutput
 class TaskConfig:
     """Caps and budgets (reference-facts §1). STOP, FORWARD and TURN count toward
     ``max_steps``; LOOK and TALK do not, so they have caps of their own; outputs that are
-    neither an Action nor a Talk are failed actions, recorded, and capped too."""
+    neither an Action nor a Talk are failed actions, recorded, and capped too. A model agent
+    looks down once per pixel goal and a goal may be a step or two away, so the look cap
+    equals the step cap: it stops endless looking, not ordinary pixel-goal navigation."""
 
     task: TaskType = TaskType.IIGN
     max_steps: int = 500
-    max_look_actions: int = 100
+    max_look_actions: int = 500
     max_talk_actions: int = 20
     max_failed_actions: int = 20
     dialog_budget: int = 5
