@@ -6,6 +6,7 @@ from collections.abc import Callable
 
 from vlln.agents.expert import ExpertAgent
 from vlln.agents.frontier import FrontierAgent
+from vlln.agents.frontier.perception import check_detector
 from vlln.agents.protocol import Agent
 from vlln.agents.random_agent import RandomAgent
 from vlln.errors import ConfigError
@@ -16,10 +17,32 @@ AGENTS: dict[str, Callable[[int], Agent]] = {
     "frontier": FrontierAgent,
 }
 
+DETECTING_AGENTS: dict[str, Callable[[int, str], Agent]] = {
+    "frontier": lambda seed, detector: FrontierAgent(seed, detector=detector),
+}
+"""Agents that perceive objects through a detector (``vlln.agents.frontier.perception``)."""
+DEFAULT_DETECTOR = "truth"
 
-def make_agent(name: str, seed: int) -> Agent:
-    """A fresh agent of the named kind, seeded."""
+
+def resolve_detector(agent: str, detector: str | None) -> str | None:
+    """The detector ``agent`` runs with: ``detector``, checked, or the ground-truth one; None
+    for agents without one (naming a detector for those is an error)."""
+    if agent not in DETECTING_AGENTS:
+        if detector is not None:
+            raise ConfigError(
+                f"agent {agent!r} uses no detector; --detector applies to: "
+                + ", ".join(sorted(DETECTING_AGENTS))
+            )
+        return None
+    return check_detector(detector or DEFAULT_DETECTOR)
+
+
+def make_agent(name: str, seed: int, detector: str | None = None) -> Agent:
+    """A fresh agent of the named kind, seeded (with ``detector`` for agents that take one)."""
     factory = AGENTS.get(name)
     if factory is None:
         raise ConfigError(f"unknown agent {name!r}; choose one of: {', '.join(sorted(AGENTS))}")
-    return factory(seed)
+    chosen = resolve_detector(name, detector)
+    if chosen is None:
+        return factory(seed)
+    return DETECTING_AGENTS[name](seed, chosen)

@@ -66,6 +66,12 @@ class EpisodeRecord:
     dialog: list[DialogTurn] = field(default_factory=list)
     failed_actions: int = 0  # unparseable or invalid agent outputs
     error: str | None = None
+    detector: str | None = None  # the agent's object detector ("truth", "noisy"); None: none
+
+    @property
+    def agent_label(self) -> str:
+        """The agent as tables name it, with its detector: "frontier (noisy detector)"."""
+        return agent_label(self.agent, self.detector)
 
     @property
     def stopped(self) -> bool:
@@ -93,6 +99,11 @@ class EpisodeRecord:
             raise DataFormatError(
                 f"episode record {data.get('episode_id', '?')!r} is malformed: {error}"
             ) from None
+
+
+def agent_label(agent: str, detector: str | None) -> str:
+    """An agent's name with the detector it perceived through, when it has one."""
+    return agent if detector is None else f"{agent} ({detector} detector)"
 
 
 def _finite_or_none(value: float) -> float | None:
