@@ -166,6 +166,25 @@ def test_tasks_without_dialog_run_at_budget_zero_and_resume(
     assert all(r.task == "objectnav" for r in outcome.records)
 
 
+def test_ign_with_budgets_0_to_5_talks_and_reports_msp(
+    tmp_path: Path, split_cache: Path, scenes: SceneCache
+) -> None:
+    budgets = tuple(range(6))
+    outcome = evaluate(
+        tmp_path, split_cache, scenes, agent="frontier", task="ign", budgets=budgets, episodes=1
+    )
+    assert sorted(r.budget for r in outcome.records) == list(budgets)
+    assert {(r.agent_label, r.detector) for r in outcome.records} == {
+        ("frontier (truth detector)", "truth")
+    }
+    data = summary(tmp_path)
+    group = data["groups"][0]
+    assert (group["task"], group["detector"]) == ("ign", "truth")
+    assert group["msp"] is not None
+    assert "MSP (budgets 0..5)" in (tmp_path / "summary.md").read_text()
+    assert "## frontier (truth detector) on IGN" in (tmp_path / "summary.md").read_text()
+
+
 def test_plan_spreads_n_episodes_and_shards_round_robin(split_cache: Path) -> None:
     config = EvalConfig(agent="random", task="iign", houses=1, episodes=5, budgets=(0, 2))
     episodes = load_episodes(config, split_cache, progress=False)
