@@ -150,6 +150,21 @@ def test_other_arguments_in_an_existing_run_are_refused(
     assert lines(full_run) == before
 
 
+def test_lines_without_the_detector_are_not_played_again_beside_new_ones(
+    tmp_path: Path, split_cache: Path, scenes: SceneCache
+) -> None:
+    common: dict[str, Any] = {"agent": "frontier", "budgets": (0,), "episodes": 1, "max_steps": 5}
+    evaluate(tmp_path, split_cache, scenes, **common)
+    old = json.loads(lines(tmp_path)[0])
+    del old["detector"]  # as written before detectors were recorded
+    (tmp_path / "episodes.jsonl").write_text(json.dumps(old) + "\n")
+    with pytest.raises(
+        ConfigError, match=r"episodes of 'frontier', not 'frontier \(truth detector\)'"
+    ):
+        evaluate(tmp_path, split_cache, scenes, **common)
+    assert len(lines(tmp_path)) == 1
+
+
 def test_tasks_without_dialog_run_at_budget_zero_and_resume(
     tmp_path: Path, split_cache: Path, scenes: SceneCache
 ) -> None:
