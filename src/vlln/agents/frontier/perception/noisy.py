@@ -104,12 +104,9 @@ class NoisyDetector:
         visible = np.nonzero(counts[1:])[0] + 1
         if visible.size == 0:
             return ids
-        d = np.asarray(depth, np.float64).ravel()
-        hit = d > 0.0
-        depth_sum = np.bincount(slots[hit], weights=d[hit], minlength=counts.size)
-        depth_count = np.bincount(slots[hit], minlength=counts.size)
-        known = depth_count[visible] > 0
-        distance = np.where(known, depth_sum[visible] / np.maximum(depth_count[visible], 1), np.inf)
+        # an object's pixels always have a depth (0 only where nothing was drawn)
+        depth_sum = np.bincount(slots, weights=np.asarray(depth).ravel(), minlength=counts.size)
+        distance = depth_sum[visible] / counts[visible]
         area = counts[visible].astype(np.float64) * pixel_area
         found = self._frames.random(visible.size) < self.model.recall(distance, area)
         if found.all():
