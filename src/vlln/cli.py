@@ -62,6 +62,7 @@ def _eval(args: argparse.Namespace) -> int:
         shard=Shard.parse(args.shard),
         max_steps=args.max_steps,
         agent_options=_agent_options(args),
+        detector=args.detector,
     )
     cache_dir = None if args.cache_dir is None else Path(args.cache_dir)
     outcome = run_evaluation(
@@ -147,6 +148,10 @@ def _add_eval_commands(commands: argparse._SubParsersAction[argparse.ArgumentPar
     run.add_argument("--episodes", type=int, help="first N episodes (default: all)")
     budget = run.add_mutually_exclusive_group()
     budget.add_argument("--budget", type=int, help="dialog budget (default 5 on IIGN, else 0)")
+    run.add_argument(
+        "--detector",
+        help="object detector of the frontier agent: truth (default, privileged) or noisy",
+    )
     budget.add_argument("--budgets", help="several budgets, e.g. 0-5 or 0,5 (SR per budget, MSP)")
     run.add_argument("--out", required=True, help="run directory (resumed when it exists)")
     run.add_argument("--shard", default="0/1", help="i/n: every episode whose index mod n is i")

@@ -75,6 +75,32 @@ def test_same_seed_same_actions(sim: Simulator) -> None:
     assert runs[0] == runs[1]
 
 
+def test_ign_with_a_budget_asks_before_stopping_but_not_the_stated_colour(sim: Simulator) -> None:
+    episode = world.episode(
+        sim, world.BLUE_CHAIR, (3.5, 2.0), -math.pi / 2, "Search for the blue chair."
+    )
+    env = world.make_env(sim, [episode], TaskType.IGN, budget=5)
+    actions = world.play(env, FrontierAgent(seed=3))
+    record = env.record("frontier")
+    assert classify(record) == "success"
+    questions = [turn.question for turn in record.dialog]
+    assert questions and all(turn.answered for turn in record.dialog)
+    assert any(q.startswith("Is this") for q in questions)
+    assert not any(q.startswith("What") for q in questions)  # the instruction said blue
+    assert sum(isinstance(a, Talk) for a in actions) == len(questions)
+
+
+def test_noisy_detector_same_seed_same_actions(sim: Simulator) -> None:
+    episode = world.episode(sim, world.BLUE_CHAIR, (4.5, 1.0), math.pi)
+    runs = []
+    for seed in (11, 11):
+        env = world.make_env(sim, [episode], TaskType.IIGN, budget=5)
+        runs.append(world.play(env, FrontierAgent(seed=seed, detector="noisy")))
+    assert runs[0] == runs[1]
+    with pytest.raises(ConfigError, match="truth, noisy"):
+        FrontierAgent(detector="perfect")
+
+
 def test_needs_reset_and_a_privileged_environment() -> None:
     agent = FrontierAgent(seed=0)
     with pytest.raises(ConfigError, match="reset"):

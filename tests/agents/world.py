@@ -131,6 +131,6 @@ def play(env: NavigationEnv, agent: Agent, max_actions: int = 700) -> list[Agent
 def make_env(
     sim: Simulator, episodes: list[Episode], task: TaskType, budget: int = 0
 ) -> NavigationEnv:
-    oracle = ColourOracle() if task == TaskType.IIGN and budget > 0 else None
+    oracle = ColourOracle() if task.has_dialog and budget > 0 else None
     config = TaskConfig(task=task, dialog_budget=budget)
     return NavigationEnv(episodes, config, OneScene(sim), oracle, privileged=True)

@@ -57,13 +57,13 @@ class GarbageAgent:
         return garbage[self.calls % len(garbage)]
 
 
-def agent_factory(name: str, seed: int) -> Agent:
+def agent_factory(name: str, seed: int, detector: str | None = None) -> Agent:
     """The registry's agents plus the two misbehaving ones above."""
     if name == "raising":
         return RaisingAgent(seed)
     if name == "garbage":
         return GarbageAgent(seed)
-    return make_agent(name, seed)
+    return make_agent(name, seed, detector)
 
 
 def evaluate(

@@ -75,6 +75,12 @@ def test_eval_command_writes_the_run_and_prints_the_summary(
         (["--task", "pointnav"], "iign, ign, objectnav"),
         (["--shard", "2/2"], "shard 2/2 does not exist"),
         (["--budgets", "3-1"], "backwards"),
+        (
+            ["--agent", "frontier", "--detector", "yolo"],
+            "detector 'yolo'; choose one of: truth, noisy",
+        ),
+        (["--detector", "noisy"], "agent 'random' uses no detector"),
+        (["--task", "objectnav"], "task objectnav has no dialog"),
     ],
 )
 def test_eval_errors_are_one_line_before_any_work(

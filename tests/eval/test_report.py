@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import re
 from pathlib import Path
 
@@ -79,3 +80,33 @@ def test_question_positions_follow_the_movement_actions() -> None:
         end_reason=EndReason.STOP.value,
     )
     assert question_positions(record) == [(0.0, 0.0), (0.0, -0.25)]
+
+
+def test_rows_and_scores_name_the_detector(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    dirs = []
+    for detector, stop in (("truth", 7), ("noisy", 9)):
+        run = tmp_path / f"frontier-{detector}"
+        run.mkdir()
+        records = [
+            make_record(agent="frontier", detector=detector, budget=b, stop_instance_id=stop)
+            for b in (0, 1)
+        ]
+        (run / "episodes.jsonl").write_text(
+            "".join(json.dumps(r.to_json()) + "\n" for r in records)
+        )
+        dirs.append(str(run))
+    out = tmp_path / "report"
+    assert main(["report", *dirs, "--out", str(out), "--samples", "0"]) == 0
+    markdown = (out / "report.md").read_text()
+    for row in (
+        "frontier-truth: frontier (truth detector) IIGN budget 0",
+        "frontier-noisy: frontier (noisy detector) IIGN budget 1",
+    ):
+        assert row in markdown
+    capsys.readouterr()
+    assert main(["score", *dirs]) == 0  # one episode under two detectors is not a clash
+    scores = capsys.readouterr().out
+    assert "## frontier (truth detector) on IIGN" in scores
+    assert "## frontier (noisy detector) on IIGN" in scores

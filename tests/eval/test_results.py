@@ -124,7 +124,9 @@ def test_config_round_trips_and_diffs() -> None:
     ("kwargs", "message"),
     [
         ({"task": "flying"}, "iign, ign, objectnav"),
-        ({"task": "ign", "budgets": (5,)}, "no dialog"),
+        ({"task": "objectnav", "budgets": (5,)}, "no dialog"),
+        ({"agent": "frontier", "detector": "yolo"}, r"unknown detector 'yolo'; .*truth, noisy"),
+        ({"detector": "noisy"}, "agent 'random' uses no detector"),
         ({"split": "holdout"}, "train, val, test"),
         ({"budgets": (1, 1)}, "repeat"),
         ({"episodes": 0}, "at least 1"),
@@ -142,6 +144,7 @@ def test_budgets_and_shards_parse() -> None:
     assert parse_budgets("0,2,5") == (0, 2, 5)
     assert parse_budgets("3") == (3,)
     assert default_budgets("iign") == (5,) and default_budgets("objectnav") == (0,)
+    assert default_budgets("ign") == (0,)  # dialog on IGN only when budgets are given
     with pytest.raises(ConfigError, match="backwards"):
         parse_budgets("5-0")
     with pytest.raises(ConfigError, match="range"):

@@ -150,6 +150,21 @@ def test_other_arguments_in_an_existing_run_are_refused(
     assert lines(full_run) == before
 
 
+def test_lines_without_the_detector_are_not_played_again_beside_new_ones(
+    tmp_path: Path, split_cache: Path, scenes: SceneCache
+) -> None:
+    common: dict[str, Any] = {"agent": "frontier", "budgets": (0,), "episodes": 1, "max_steps": 5}
+    evaluate(tmp_path, split_cache, scenes, **common)
+    old = json.loads(lines(tmp_path)[0])
+    del old["detector"]  # as written before detectors were recorded
+    (tmp_path / "episodes.jsonl").write_text(json.dumps(old) + "\n")
+    with pytest.raises(
+        ConfigError, match=r"episodes of 'frontier', not 'frontier \(truth detector\)'"
+    ):
+        evaluate(tmp_path, split_cache, scenes, **common)
+    assert len(lines(tmp_path)) == 1
+
+
 def test_tasks_without_dialog_run_at_budget_zero_and_resume(
     tmp_path: Path, split_cache: Path, scenes: SceneCache
 ) -> None:
@@ -164,6 +179,25 @@ def test_tasks_without_dialog_run_at_budget_zero_and_resume(
     outcome = evaluate(tmp_path, split_cache, scenes, **common)
     assert outcome.played == 1 and outcome.complete
     assert all(r.task == "objectnav" for r in outcome.records)
+
+
+def test_ign_with_budgets_0_to_5_talks_and_reports_msp(
+    tmp_path: Path, split_cache: Path, scenes: SceneCache
+) -> None:
+    budgets = tuple(range(6))
+    outcome = evaluate(
+        tmp_path, split_cache, scenes, agent="frontier", task="ign", budgets=budgets, episodes=1
+    )
+    assert sorted(r.budget for r in outcome.records) == list(budgets)
+    assert {(r.agent_label, r.detector) for r in outcome.records} == {
+        ("frontier (truth detector)", "truth")
+    }
+    data = summary(tmp_path)
+    group = data["groups"][0]
+    assert (group["task"], group["detector"]) == ("ign", "truth")
+    assert group["msp"] is not None
+    assert "MSP (budgets 0..5)" in (tmp_path / "summary.md").read_text()
+    assert "## frontier (truth detector) on IGN" in (tmp_path / "summary.md").read_text()
 
 
 def test_plan_spreads_n_episodes_and_shards_round_robin(split_cache: Path) -> None:

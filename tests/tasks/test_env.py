@@ -181,3 +181,21 @@ def test_stopping_at_a_distractor_is_an_ambiguous_detection(scenes: SceneCache) 
     assert record.stop_instance_id == distractor.id
     assert record.geodesic_final > 1.0
     assert classify(record) == "ambiguous_detection"
+
+
+def test_ign_answers_questions_when_given_a_budget_objectnav_never(scenes: SceneCache) -> None:
+    target, _ = ambiguous_target(scenes)
+    episode = episode_for(scenes, target, far_start(scenes, target))
+    assert TaskConfig(task=TaskType.IGN).dialog_budget == 0  # the default stays no dialog
+    with pytest.raises(ConfigError, match="ign with a dialog budget needs an oracle"):
+        NavigationEnv([episode], TaskConfig(task=TaskType.IGN, dialog_budget=2), scenes)
+    for task, answered in ((TaskType.IGN, True), (TaskType.OBJECTNAV, False)):
+        config = TaskConfig(task=task, dialog_budget=2)
+        env = NavigationEnv([episode], config, scenes, oracle=RuleOracle(seed=0))
+        obs, _ = env.reset(options={"episode_index": 0})
+        assert obs["questions_left"] == (2 if answered else 0)
+        obs, *_ = env.step(Talk("What color is it?"))
+        assert (obs["oracle_answer"] != REFUSAL_MESSAGE) == answered
+        record = env.record("talker")
+        assert record.budget == (2 if answered else 0)
+        assert [turn.answered for turn in record.dialog] == [answered]

@@ -6,6 +6,7 @@ from collections.abc import Callable, Mapping
 
 from vlln.agents.expert import ExpertAgent
 from vlln.agents.frontier import FrontierAgent
+from vlln.agents.frontier.perception import check_detector
 from vlln.agents.model.options import openai_vlm_agent
 from vlln.agents.protocol import Agent
 from vlln.agents.random_agent import RandomAgent
@@ -22,17 +23,45 @@ CONFIGURED_AGENTS: dict[str, Callable[[int, Mapping[str, str]], Agent]] = {
     "openai-vlm": openai_vlm_agent,
 }
 
+DETECTING_AGENTS: dict[str, Callable[[int, str], Agent]] = {
+    "frontier": lambda seed, detector: FrontierAgent(seed, detector=detector),
+}
+"""Agents that perceive objects through a detector (``vlln.agents.frontier.perception``)."""
+DEFAULT_DETECTOR = "truth"
 
-def make_agent(name: str, seed: int, options: Mapping[str, str] | None = None) -> Agent:
-    """A fresh agent of the named kind, seeded; ``options`` only for agents that take them."""
+
+def resolve_detector(agent: str, detector: str | None) -> str | None:
+    """The detector ``agent`` runs with: ``detector``, checked, or the ground-truth one; None
+    for agents without one (naming a detector for those is an error)."""
+    if agent not in DETECTING_AGENTS:
+        if detector is not None:
+            raise ConfigError(
+                f"agent {agent!r} uses no detector; --detector applies to: "
+                + ", ".join(sorted(DETECTING_AGENTS))
+            )
+        return None
+    return check_detector(detector or DEFAULT_DETECTOR)
+
+
+def make_agent(
+    name: str,
+    seed: int,
+    detector: str | None = None,
+    options: Mapping[str, str] | None = None,
+) -> Agent:
+    """A fresh agent of the named kind, seeded; ``detector`` for agents that perceive through
+    one, ``options`` only for agents that take them."""
     options = options or {}
     configured = CONFIGURED_AGENTS.get(name)
     if configured is not None:
+        resolve_detector(name, detector)
         return configured(seed, options)
-    factory = AGENTS.get(name)
-    if factory is None:
+    if name not in AGENTS:
         names = ", ".join(sorted([*AGENTS, *CONFIGURED_AGENTS]))
         raise ConfigError(f"unknown agent {name!r}; choose one of: {names}")
     if options:
         raise ConfigError(f"agent {name!r} takes no options, got {', '.join(sorted(options))}")
-    return factory(seed)
+    chosen = resolve_detector(name, detector)
+    if chosen is None:
+        return AGENTS[name](seed)
+    return DETECTING_AGENTS[name](seed, chosen)

@@ -13,12 +13,13 @@ import re
 from dataclasses import asdict, dataclass, field
 from typing import Any
 
+from vlln.agents.registry import resolve_detector
 from vlln.errors import ConfigError, DataFormatError
 from vlln.eval.sharding import Shard
 from vlln.tasks.spec import TaskType
 from vlln.tasks.splits import SPLIT_SIZES, SPLITS
 
-DEFAULT_DIALOG_BUDGET = 5
+DEFAULT_DIALOG_BUDGET = TaskType.IIGN.default_budget
 """Answered questions per IIGN episode (reference-facts §1)."""
 
 _BUDGET_RANGE = re.compile(r"^(\d+)-(\d+)$")
@@ -32,6 +33,8 @@ class EvalConfig:
     by default one full cycle of the split: 61/15/14 houses for train/val/test, the paper's
     scene counts) or from a released-format ``episode_file``; exactly one is set.
     ``episodes`` keeps the first N (all when ``None``) after grouping by scene.
+    ``detector`` names the perception of agents that detect objects (the frontier agent's
+    default is the ground-truth detector); other agents take none.
     """
 
     agent: str
@@ -47,6 +50,7 @@ class EvalConfig:
     # Settings of agents that take them (openai-vlm: server, model, key variable, retries);
     # never a secret. Run files written before this field read as no options.
     agent_options: dict[str, str] = field(default_factory=dict)
+    detector: str | None = None
 
     def __post_init__(self) -> None:
         task = TaskType.parse(self.task)
@@ -73,11 +77,12 @@ class EvalConfig:
             raise ConfigError(f"dialog budgets must be >= 0, got {list(self.budgets)}")
         if len(set(self.budgets)) != len(self.budgets):
             raise ConfigError(f"dialog budgets repeat: {list(self.budgets)}")
-        if task != TaskType.IIGN and any(budget > 0 for budget in self.budgets):
+        if not task.has_dialog and any(budget > 0 for budget in self.budgets):
             raise ConfigError(
                 f"task {task.value} has no dialog, so its only budget is 0 "
-                f"(got {list(self.budgets)}); drop --budget/--budgets or use --task iign"
+                f"(got {list(self.budgets)}); drop --budget/--budgets or use --task iign or ign"
             )
+        object.__setattr__(self, "detector", resolve_detector(self.agent, self.detector))
 
     def to_json(self) -> dict[str, Any]:
         data = asdict(self)
@@ -101,8 +106,9 @@ class EvalConfig:
 
 
 def default_budgets(task: str) -> tuple[int, ...]:
-    """IIGN runs with the reference's budget of 5; tasks without dialog with 0."""
-    return (DEFAULT_DIALOG_BUDGET,) if TaskType.parse(task) == TaskType.IIGN else (0,)
+    """IIGN runs with the reference's budget of 5, IGN and ObjectNav with 0 (IGN takes
+    ``--budgets`` for dialog)."""
+    return (TaskType.parse(task).default_budget,)
 
 
 def parse_budgets(text: str) -> tuple[int, ...]:

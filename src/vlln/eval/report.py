@@ -85,7 +85,7 @@ def _labels(run_dirs: Sequence[Path]) -> list[str]:
 
 
 def _row_label(run: ReportRun, group: GroupSummary, budget: int, runs: int) -> str:
-    what = f"{group.agent} {group.task.upper()} budget {budget}"
+    what = f"{group.agent_label} {group.task.upper()} budget {budget}"
     return what if runs == 1 else f"{run.label}: {what}"
 
 
@@ -95,7 +95,7 @@ def _runs_section(runs: Sequence[ReportRun]) -> list[Block]:
         config = RunDirectory(run.path).stored_config() if run.path.is_dir() else None
         source = "?" if config is None else (config.episode_file or f"split {config.split}")
         budgets = sorted({record.budget for record in run.records})
-        agents = ", ".join(sorted({f"{g.agent} on {g.task.upper()}" for g in run.groups}))
+        agents = ", ".join(sorted({g.label for g in run.groups}))
         rows.append(
             [run.label, str(run.path), agents, source, str(len(run.records)), _ranges(budgets)]
         )

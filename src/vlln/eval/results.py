@@ -39,8 +39,9 @@ RecordKey = tuple[str, str, int, str, str]
 
 
 def record_key(record: EpisodeRecord) -> RecordKey:
-    """What makes an episode line unique: agent, task, dialog budget, scene and episode."""
-    return (record.agent, record.task, record.budget, record.scene_id, record.episode_id)
+    """What makes an episode line unique: agent (with its detector), task, dialog budget,
+    scene and episode."""
+    return (record.agent_label, record.task, record.budget, record.scene_id, record.episode_id)
 
 
 def read_records(path: Path, repair: bool = False) -> list[EpisodeRecord]:

@@ -26,7 +26,7 @@ import os
 import sys
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import partial
 from pathlib import Path
 
@@ -44,11 +44,11 @@ from vlln.tasks.env import NavigationEnv
 from vlln.tasks.episode import Episode, read_episodes
 from vlln.tasks.generation import load_or_build_split
 from vlln.tasks.metrics import success
-from vlln.tasks.record import EpisodeRecord
+from vlln.tasks.record import EpisodeRecord, agent_label
 from vlln.tasks.scenes import SceneCache
 from vlln.tasks.spec import TaskConfig, TaskType
 
-AgentFactory = Callable[[str, int], Agent]
+AgentFactory = Callable[[str, int, str | None], Agent]  # (name, seed, detector)
 OracleFactory = Callable[[int], Oracle]
 
 
@@ -62,7 +62,7 @@ class WorkItem:
     def key(self, config: EvalConfig) -> RecordKey:
         """The key its record will have (see :func:`vlln.eval.results.record_key`)."""
         return (
-            config.agent,
+            agent_label(config.agent, config.detector),
             config.task,
             self.budget,
             self.episode.scene_id,
@@ -210,8 +210,8 @@ def run_evaluation(
     if stop_after is not None and stop_after < 0:
         raise ConfigError(f"stop_after must be >= 0, got {stop_after}")
     if agent_factory is None:
-        agent_factory = partial(_registered_agent, options=config.agent_options)
-    agent_factory(config.agent, config.seed)  # an unknown agent fails before any work
+        agent_factory = partial(make_agent, options=config.agent_options)
+    agent_factory(config.agent, config.seed, config.detector)  # fail before any work
     items = plan_work(load_episodes(config, cache_dir, progress), config)
     run_dir = RunDirectory(out)
     run_dir.prepare(config)
@@ -222,6 +222,7 @@ def run_evaluation(
     started = time.perf_counter()
     try:
         with run_dir.writing() as writer:
+            _check_same_agent(writer.records, config, out)
             done = {record_key(record) for record in writer.records}
             remaining = [item for item in items if item.key(config) not in done]
             todo = remaining if stop_after is None else remaining[:stop_after]
@@ -270,15 +271,23 @@ def _play_item(
     def seed_for(role: str) -> int:
         return derive_seed(config.seed, role, episode.scene_id, episode.episode_id, item.budget)
 
-    agent = agent_factory(config.agent, seed_for("agent"))
+    agent = agent_factory(config.agent, seed_for("agent"), config.detector)
     task_config = TaskConfig(task=task, max_steps=config.max_steps, dialog_budget=item.budget)
     oracle = oracle_factory(seed_for("oracle")) if task_config.dialog_enabled else None
     env = NavigationEnv([episode], task_config, scenes, oracle, privileged=agent.privileged)
-    return play_episode(env, agent, config.agent)
+    return replace(play_episode(env, agent, config.agent), detector=config.detector)
 
 
-def _registered_agent(name: str, seed: int, options: dict[str, str]) -> Agent:
-    return make_agent(name, seed, options)
+def _check_same_agent(records: Sequence[EpisodeRecord], config: EvalConfig, out: Path) -> None:
+    """Episode lines of another agent label (one recorded before detectors were named) would
+    be played again beside the new ones; refuse instead."""
+    wanted = agent_label(config.agent, config.detector)
+    other = next((r.agent_label for r in records if r.agent_label != wanted), None)
+    if other is not None:
+        raise ConfigError(
+            f"{out} holds episodes of {other!r}, not {wanted!r} (written by an older vlln?); "
+            "use another --out"
+        )
 
 
 def _success_rate(records: Sequence[EpisodeRecord]) -> float:

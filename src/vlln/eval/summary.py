@@ -24,14 +24,14 @@ from vlln.tasks.aggregate import (
     summarize_by,
 )
 from vlln.tasks.metrics import ORACLE_SUCCESS_RADIUS, SUCCESS_RADIUS
-from vlln.tasks.record import EpisodeRecord
+from vlln.tasks.record import EpisodeRecord, agent_label
 from vlln.tasks.taxonomy import STOP_RADIUS
 
 
 @dataclass(frozen=True)
 class GroupSummary:
-    """One agent on one task: a summary per dialog budget (MSP when complete) and per
-    target category at each budget."""
+    """One agent (with its detector, if it has one) on one task: a summary per dialog budget
+    (MSP when complete) and per target category at each budget."""
 
     agent: str
     task: str
@@ -40,10 +40,15 @@ class GroupSummary:
     # Failed actions per budget and kind ("parse", "server", "goal", "invalid"): a model
     # agent's unreadable replies and server failures, each of which wasted a step.
     failed_actions: dict[int, dict[str, int]] = field(default_factory=dict)
+    detector: str | None = None
+
+    @property
+    def agent_label(self) -> str:
+        return agent_label(self.agent, self.detector)
 
     @property
     def label(self) -> str:
-        return f"{self.agent} on {self.task.upper()}"
+        return f"{self.agent_label} on {self.task.upper()}"
 
 
 def summarize_run(
@@ -52,15 +57,15 @@ def summarize_run(
     os_radius: float = ORACLE_SUCCESS_RADIUS,
     stop_radius: float = STOP_RADIUS,
 ) -> list[GroupSummary]:
-    """Summaries of ``records`` grouped by (agent, task), in canonical order."""
+    """Summaries of ``records`` grouped by (agent, detector, task), in canonical order."""
     ordered = sorted(records, key=record_key)
     if not ordered:
         raise ConfigError("no finished episodes to summarize; run vlln eval first")
-    groups: dict[tuple[str, str], list[EpisodeRecord]] = {}
+    groups: dict[tuple[str, str | None, str], list[EpisodeRecord]] = {}
     for record in ordered:
-        groups.setdefault((record.agent, record.task), []).append(record)
+        groups.setdefault((record.agent, record.detector, record.task), []).append(record)
     summaries = []
-    for (agent, task), group in groups.items():
+    for (agent, detector, task), group in groups.items():
         sweep = summarize_budgets(group, success_radius, os_radius, stop_radius)
         per_category = {
             budget: summarize_by(
@@ -75,7 +80,7 @@ def summarize_run(
             budget: failed_action_counts(r for r in group if r.budget == budget)
             for budget in sweep.by_budget
         }
-        summaries.append(GroupSummary(agent, task, sweep, per_category, failed))
+        summaries.append(GroupSummary(agent, task, sweep, per_category, failed, detector))
     return summaries
 
 
@@ -107,6 +112,7 @@ def summary_json(groups: list[GroupSummary]) -> dict[str, Any]:
         "groups": [
             {
                 "agent": group.agent,
+                "detector": group.detector,
                 "task": group.task,
                 "msp": group.sweep.msp,
                 "budgets": {

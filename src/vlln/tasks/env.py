@@ -3,8 +3,8 @@
 Datasheet
 ---------
 * **Tasks**: IIGN (instruction "Search for the <category>.", dialog with an oracle), IGN (a full
-  description that singles out the instance, no dialog), ObjectNav (any instance of the
-  category is a goal, no dialog).
+  description that singles out the instance; dialog when given a budget, as the paper runs
+  its agents), ObjectNav (any instance of the category is a goal, no dialog).
 * **Actions**: :class:`vlln.sim.agent.Action` (STOP, MOVE_FORWARD 0.25 m, TURN_LEFT/RIGHT 30°,
   LOOK_UP/DOWN 30°), :class:`vlln.tasks.spec.Talk` (a question) or
   :class:`vlln.tasks.spec.PixelGoal` (a pixel of the current frame, normally the look-down one,
@@ -29,7 +29,8 @@ Datasheet
   (STOP, FORWARD, TURN and failed actions count; LOOK and TALK do not) or when the LOOK, TALK
   or failed-action caps are reached.
 * **Dialog**: the first ``dialog_budget`` questions are answered; later ones get
-  :data:`vlln.tasks.spec.REFUSAL_MESSAGE`. Questions are only answered on IIGN.
+  :data:`vlln.tasks.spec.REFUSAL_MESSAGE`. Questions are answered on IIGN (default budget 5)
+  and IGN (default budget 0), never on ObjectNav.
 * **Reward**: the decrease of geodesic distance to the nearest goal view point, plus 2.5 on
   success; the benchmark scores records, not rewards.
 """
@@ -108,7 +109,9 @@ class NavigationEnv:
         privileged: bool = False,
     ) -> None:
         if config.dialog_enabled and oracle is None:
-            raise ConfigError("IIGN with a dialog budget needs an oracle; pass oracle=")
+            raise ConfigError(
+                f"{config.task.value} with a dialog budget needs an oracle; pass oracle="
+            )
         self.episodes = episodes
         self.config = config
         self.scenes = scenes or SceneCache()

@@ -83,6 +83,12 @@ class EpisodeRecord:
     # this field read as empty.
     failures: dict[str, int] = field(default_factory=dict)
     model_calls: list[ModelCall] = field(default_factory=list)  # model agents only
+    detector: str | None = None  # the agent's object detector ("truth", "noisy"); None: none
+
+    @property
+    def agent_label(self) -> str:
+        """The agent as tables name it, with its detector: "frontier (noisy detector)"."""
+        return agent_label(self.agent, self.detector)
 
     @property
     def stopped(self) -> bool:
@@ -111,6 +117,11 @@ class EpisodeRecord:
             raise DataFormatError(
                 f"episode record {data.get('episode_id', '?')!r} is malformed: {error}"
             ) from None
+
+
+def agent_label(agent: str, detector: str | None) -> str:
+    """An agent's name with the detector it perceived through, when it has one."""
+    return agent if detector is None else f"{agent} ({detector} detector)"
 
 
 def _finite_or_none(value: float) -> float | None:

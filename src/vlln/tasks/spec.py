@@ -9,12 +9,15 @@ from typing import Literal
 from vlln.errors import ConfigError
 from vlln.sim.agent import Action
 
+TASK_DEFAULT = -1
+"""A dialog budget that stands for the task's default (5 on IIGN, 0 elsewhere)."""
+
 REFUSAL_MESSAGE = "Sorry, you have reached the question limit. No further answers are available."
 
 
 class TaskType(StrEnum):
-    """IIGN: category-only instruction plus dialog; IGN: full description, no dialog;
-    ObjectNav: any instance of the category is a goal."""
+    """IIGN: category-only instruction plus dialog; IGN: full description (dialog optional);
+    ObjectNav: any instance of the category is a goal (no dialog)."""
 
     IIGN = "iign"
     IGN = "ign"
@@ -27,6 +30,17 @@ class TaskType(StrEnum):
         except ValueError:
             valid = ", ".join(t.value for t in TaskType)
             raise ConfigError(f"unknown task {name!r}; choose one of: {valid}") from None
+
+    @property
+    def has_dialog(self) -> bool:
+        """IIGN and IGN may talk to the oracle (the paper runs its agents with dialog on IGN
+        too); ObjectNav may not: any instance is a goal, so no one object is to be described."""
+        return self != TaskType.OBJECTNAV
+
+    @property
+    def default_budget(self) -> int:
+        """Answered questions when none is given: the reference's 5 on IIGN, else none."""
+        return 5 if self == TaskType.IIGN else 0
 
 
 @dataclass(frozen=True)
@@ -70,17 +84,21 @@ class TaskConfig:
     ``max_steps``; LOOK and TALK do not, so they have caps of their own; outputs that are
     neither an Action nor a Talk are failed actions, recorded, and capped too. A model agent
     looks down once per pixel goal and a goal may be a step or two away, so the look cap
-    equals the step cap: it stops endless looking, not ordinary pixel-goal navigation."""
+    equals the step cap: it stops endless looking, not ordinary pixel-goal navigation.
+    ``dialog_budget`` left at :data:`TASK_DEFAULT` becomes the task's
+    :attr:`TaskType.default_budget`."""
 
     task: TaskType = TaskType.IIGN
     max_steps: int = 500
     max_look_actions: int = 500
     max_talk_actions: int = 20
     max_failed_actions: int = 20
-    dialog_budget: int = 5
+    dialog_budget: int = TASK_DEFAULT
     success_radius: float = 0.25
 
     def __post_init__(self) -> None:
+        if self.dialog_budget == TASK_DEFAULT:
+            object.__setattr__(self, "dialog_budget", self.task.default_budget)
         for name in ("max_steps", "max_look_actions", "max_talk_actions", "max_failed_actions"):
             if getattr(self, name) < 1:
                 raise ConfigError(f"{name} must be at least 1, got {getattr(self, name)}")
@@ -91,4 +109,4 @@ class TaskConfig:
 
     @property
     def dialog_enabled(self) -> bool:
-        return self.task == TaskType.IIGN and self.dialog_budget > 0
+        return self.task.has_dialog and self.dialog_budget > 0

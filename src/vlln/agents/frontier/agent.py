@@ -1,15 +1,18 @@
-"""The frontier-exploration baseline with a ground-truth detector and an optional dialog.
+"""The frontier-exploration baseline with a simulated detector and an optional dialog.
 
 It follows the reference's data-collection policy (reference-facts §5): a 360° scan, then
 frontier exploration on a map built from depth, and once an instance of the target category
 that fits what is known about the target is seen, a walk up to it and STOP facing it. It never
-reads the expert action or the geodesic field; its privileges are the instance-id image and
-the detector's id -> (category, attributes) lookup.
+reads the expert action or the geodesic field; it sees objects through a detector simulated on
+the instance-id image: the ground-truth one (``truth``, privileged: every instance in view,
+exactly labelled) or a noisy one (``noisy``: misses, look-alike categories, misread attributes;
+:mod:`vlln.agents.frontier.perception`).
 
-What is known about the target comes from the instruction's adjectives (IGN) or, on IIGN with
-a question budget, from the oracle: a colour question at the start, "is this the one?" before
-stopping at a candidate, and "which way?" when exploration drags on or gets stuck. Every
-random choice comes from a generator seeded by the agent's seed and the episode id.
+What is known about the target comes from the instruction's adjectives (IGN) and, with a
+question budget (IIGN, or IGN when given one), from the oracle: a colour question at the start
+unless the instruction named the colour, "is this the one?" before stopping at a candidate,
+and "which way?" when exploration drags on or gets stuck. Every random choice comes from
+generators seeded by the agent's seed and the episode id.
 """
 
 from __future__ import annotations
@@ -25,6 +28,7 @@ from vlln.agents.frontier import dialog
 from vlln.agents.frontier.detector import Candidate, CandidateTracker
 from vlln.agents.frontier.explorer import Explorer, ExplorerConfig
 from vlln.agents.frontier.mapping import MapConfig, ObstacleMap, Pose
+from vlln.agents.frontier.perception import check_detector, make_detector
 from vlln.agents.frontier.planner import turn_toward
 from vlln.errors import ConfigError
 from vlln.sim.agent import Action
@@ -62,14 +66,17 @@ class FrontierConfig:
 
 
 class FrontierAgent:
-    """Frontier exploration + ground-truth detection (+ questions on IIGN)."""
+    """Frontier exploration + detection (+ questions when the task gives a budget)."""
 
     name = "frontier"
-    privileged = True
+    privileged = True  # the detectors are simulated on the instance-id image
 
-    def __init__(self, seed: int = 0, config: FrontierConfig | None = None) -> None:
+    def __init__(
+        self, seed: int = 0, config: FrontierConfig | None = None, detector: str = "truth"
+    ) -> None:
         self.seed = int(seed)
         self.config = config or FrontierConfig()
+        self.detector = check_detector(detector)
         self._info: EpisodeInfo | None = None
 
     # ----------------------------------------------------------------- episode start
@@ -81,20 +88,22 @@ class FrontierAgent:
             )
         cfg = self.config
         self._info = episode
-        self._rng = np.random.default_rng([self.seed, zlib.crc32(episode.episode_id.encode())])
+        episode_key = zlib.crc32(episode.episode_id.encode())
+        self._rng = np.random.default_rng([self.seed, episode_key])
+        detector = make_detector(self.detector, episode.detector, [self.seed, episode_key])
         self._turn = math.radians(episode.motion.turn_deg)
         self._tilt_step = math.radians(episode.motion.tilt_step_deg)
         self.map = ObstacleMap(episode.camera, cfg.map)
         self.tracker = CandidateTracker(
             episode.camera,
-            episode.detector,
+            detector,
             episode.object_category,
             self.map,
             min_pixels=cfg.min_detection_pixels,
         )
         self.explorer = Explorer(self.map, self._turn, self._rng, cfg.explorer)
         vocabulary = dialog.Vocabulary.from_attributes(
-            d.attributes for d in episode.detector.values()
+            d.attributes for d in detector.labels.values()
         )
         self._answer_vocabulary = vocabulary.restricted(dialog.ANSWER_ATTRIBUTES)
         self.known: dict[str, str] = {}
@@ -106,7 +115,7 @@ class FrontierAgent:
         self.confirmed: int | None = None
         self._target: int | None = None
         self._pending: tuple[str, int | None] | None = None
-        self._asked_attribute = False
+        self._asked_attribute = "color" in self.known  # IGN: the instruction may name it
         self._dialog_closed = False
         self._questions_left = episode.dialog_budget
         self._aim: int | None = None
@@ -290,7 +299,7 @@ class FrontierAgent:
     # ----------------------------------------------------------------- dialog
     def _can_ask(self, spare: bool = False) -> bool:
         info = self._info
-        if info is None or info.task != TaskType.IIGN or self._dialog_closed:
+        if info is None or self._dialog_closed:
             return False
         reserve = self.config.reserve_questions if spare and self.confirmed is None else 0
         return self._questions_left > reserve

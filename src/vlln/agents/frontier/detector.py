@@ -1,10 +1,10 @@
-"""Candidates of the target category, from the instance-id image used as a perfect detector.
+"""Candidates of the target category, from what the agent's detector reports.
 
-Privileged agents see the renderer's instance ids; with the episode's detector lookup (id ->
-category and attributes) that is what a perfect detector with attribute recognition reports.
-Every instance of the target category that covers enough pixels becomes a candidate; its
-pixels are back-projected with the depth into map cells, so the agent knows where the object
-is (its footprint as seen so far) and can walk up to it.
+The detector (:mod:`vlln.agents.frontier.perception`) hands back the instance-id image with
+the instances it missed blanked out, and says what it takes each instance for (category and
+attributes). Every detected instance reported as the target category that covers enough
+pixels becomes a candidate; its pixels are back-projected with the depth into map cells, so
+the agent knows where the object is (its footprint as seen so far) and can walk up to it.
 """
 
 from __future__ import annotations
@@ -16,9 +16,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from vlln.agents.frontier.mapping import ObstacleMap, Pose
+from vlln.agents.frontier.perception import Detector
 from vlln.errors import ConfigError
 from vlln.sim.camera import CameraSpec
-from vlln.tasks.env import DetectedObject
 from vlln.world.model import Attributes
 
 
@@ -61,7 +61,7 @@ class CandidateTracker:
     def __init__(
         self,
         camera: CameraSpec,
-        detector: dict[int, DetectedObject],
+        detector: Detector,
         category: str,
         obstacle_map: ObstacleMap,
         stride: int = 2,
@@ -74,7 +74,7 @@ class CandidateTracker:
         self.map = obstacle_map
         self.min_pixels = min_pixels
         self._scale = stride * stride
-        wanted = [i for i, d in detector.items() if d.category == category and i > 0]
+        wanted = [i for i, d in detector.labels.items() if d.category == category and i > 0]
         self._lookup = np.zeros(max(wanted, default=0) + 2, bool)
         self._lookup[wanted] = True
         self._pixels = (slice(stride // 2, None, stride), slice(stride // 2, None, stride))
@@ -100,7 +100,9 @@ class CandidateTracker:
         pose: Pose,
         tilt: float,
     ) -> None:
-        ids = np.asarray(instance_ids)[self._pixels]
+        ids = self.detector.detect(
+            np.asarray(instance_ids)[self._pixels], np.asarray(depth)[self._pixels], self._scale
+        )
         self._last_ids = ids
         mask = np.take(self._lookup, ids, mode="clip")  # structure ids (< 0) read slot 0
         self.visible = {}
@@ -123,7 +125,7 @@ class CandidateTracker:
                 continue
             candidate = self.candidates.get(instance_id)
             if candidate is None:
-                candidate = Candidate(instance_id, self.detector[instance_id].attributes)
+                candidate = Candidate(instance_id, self.detector.labels[instance_id].attributes)
                 self.candidates[instance_id] = candidate
             own = points[usable]
             candidate.point_sum += own.sum(axis=0)
