@@ -66,6 +66,7 @@ class EpisodeRecord:
     dialog: list[DialogTurn] = field(default_factory=list)
     failed_actions: int = 0  # unparseable or invalid agent outputs
     error: str | None = None
+    oracle: str | None = None  # rules | llm | human; None: not stated (vlln eval: the rule oracle)
 
     @property
     def stopped(self) -> bool:
