@@ -1,0 +1,76 @@
+"""The API's guards: codes open only their role, the token, body sizes, rates, headers."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import httpx
+import pytest
+from fastapi.testclient import TestClient
+
+from vlln.errors import ConfigError
+from vlln.web.app import create_app
+from vlln.web.config import WebConfig
+from vlln.web.server import build_server
+
+from .conftest import Served, Study
+
+TOKEN = "a-token-of-sixteen-plus"
+
+
+def test_a_code_opens_only_its_own_role(served: Served) -> None:
+    with httpx.Client(base_url=served.url, timeout=30.0) as client:
+        body = {"navigator": "human", "participant": "p20", "oracle": "human", "episode_index": 3}
+        created = client.post("/api/sessions", json=body).json()
+        navigator, oracle = created["navigator_code"], created["oracle_code"]
+        assert len(navigator) >= 16 and navigator != oracle
+        assert client.post("/api/join", json={"code": oracle}).json()["page"] == "/answer"
+        assert (
+            client.get("/api/oracle/map", headers={"X-Session-Code": navigator}).status_code == 404
+        )
+        assert client.get("/api/oracle", headers={"X-Session-Code": navigator}).status_code == 404
+        assert client.get("/api/navigator", headers={"X-Session-Code": oracle}).status_code == 404
+        assert client.get("/api/navigator", headers={"X-Session-Code": "guess"}).status_code == 404
+        again = client.post("/api/sessions", json=body)
+        assert again.status_code == 409 and "has played or is playing" in again.json()["detail"]
+        bad = client.post("/api/sessions", json={**body, "participant": "<b>x</b>"})
+        assert bad.status_code == 409 and "not a valid label" in bad.json()["detail"]
+        page = client.get("/navigate")
+        assert "script-src 'self'" in page.headers["content-security-policy"]
+        assert page.headers["referrer-policy"] == "no-referrer"
+
+
+def test_the_token_guards_the_lobby_and_other_hosts_need_one(study: Study, tmp_path: Path) -> None:
+    config = WebConfig(episodes=tuple(study.episodes), out=tmp_path / "a", token=TOKEN)
+    with TestClient(create_app(config)) as client:
+        assert client.get("/api/lobby").status_code == 401
+        wrong = {"Authorization": "Bearer not-the-token-at-all"}
+        assert (
+            client.post("/api/sessions", json={"navigator": "human"}, headers=wrong).status_code
+            == 401
+        )
+        assert (
+            client.get("/api/lobby", headers={"Authorization": f"Bearer {TOKEN}"}).status_code
+            == 200
+        )
+    open_config = WebConfig(episodes=tuple(study.episodes), out=tmp_path / "b")
+    with pytest.raises(ConfigError, match="needs an access token"):
+        build_server(open_config, "0.0.0.0", 0)
+    build_server(config, "0.0.0.0", 0)  # with a token: built, never started
+    with pytest.raises(ConfigError, match="at least 16 characters"):
+        WebConfig(episodes=tuple(study.episodes), out=tmp_path / "c", token="short")
+
+
+def test_bodies_and_request_rates_are_bounded(study: Study, tmp_path: Path) -> None:
+    config = WebConfig(
+        episodes=tuple(study.episodes),
+        out=tmp_path / "a",
+        max_body_bytes=512,
+        requests_per_second=1.0,
+        request_burst=5,
+    )
+    with TestClient(create_app(config)) as client:
+        huge = {"navigator": "human", "participant": "x" * 1000}
+        assert client.post("/api/sessions", json=huge).status_code == 413
+        codes = [client.get("/api/health").status_code for _ in range(8)]
+        assert codes[:4] == [200] * 4 and codes[-1] == 429
