@@ -31,7 +31,6 @@ from fastapi.staticfiles import StaticFiles
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from vlln import __version__
-from vlln.agents.registry import AGENTS
 from vlln.errors import ConfigError
 from vlln.oracle.service.app import RequestGate, error_response
 from vlln.tasks.spec import Talk
@@ -128,7 +127,7 @@ def create_app(
                 }
                 for i, e in enumerate(config.episodes)
             ],
-            "agents": sorted(AGENTS),
+            "agents": list(config.agents),
             "oracles": [kind.value for kind in config.oracles],
             "budget": config.dialog_budget,
             "task": config.task.value,

@@ -47,12 +47,27 @@ def _serve_web(args: argparse.Namespace) -> int:
         idle_limit_s=args.idle_limit,
         max_live_sessions=args.max_sessions,
         llm=llm,
+        agent_options=_agent_options(args.agent_option),
     )
     source = episode_source(episode_file, args.split, houses)
     if args.episodes is not None:
         source += f", {args.episodes} episodes"
     serve(config, args.host, args.port, source)
     return 0
+
+
+def _agent_options(given: list[str]) -> dict[str, dict[str, str]]:
+    """``AGENT.KEY=VALUE`` settings, e.g. ``openai-vlm.base_url=http://127.0.0.1:8000/v1``."""
+    from vlln.errors import ConfigError
+
+    options: dict[str, dict[str, str]] = {}
+    for item in given:
+        name, dot, rest = item.partition(".")
+        key, equals, value = rest.partition("=")
+        if not (dot and equals and name and key):
+            raise ConfigError(f"--agent-option {item!r} is not AGENT.KEY=VALUE")
+        options.setdefault(name, {})[key] = value
+    return options
 
 
 def add_serve_commands(commands: Commands) -> None:
@@ -89,6 +104,14 @@ def add_serve_commands(commands: Commands) -> None:
     web.add_argument("--llm-model", help="offer the language-model oracle with this model")
     web.add_argument(
         "--llm-base-url", default="https://api.openai.com/v1", help="its OpenAI-compatible URL"
+    )
+    web.add_argument(
+        "--agent-option",
+        action="append",
+        default=[],
+        metavar="AGENT.KEY=VALUE",
+        help="offer an agent that takes options, e.g. openai-vlm.base_url=URL and "
+        "openai-vlm.model=NAME (repeatable)",
     )
     web.add_argument("--cache-dir", help="where built splits are kept (default ~/.cache/vlln)")
     web.set_defaults(handler=_serve_web)

@@ -4,10 +4,12 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass
+from collections.abc import Mapping
+from dataclasses import dataclass, field
 from enum import StrEnum
 from pathlib import Path
 
+from vlln.agents.registry import AGENTS, CONFIGURED_AGENTS
 from vlln.errors import ConfigError
 from vlln.oracle.llm.openai_client import OpenAISettings
 from vlln.tasks.episode import Episode
@@ -53,6 +55,7 @@ class WebConfig:
     max_answer_chars: int = 1000
     jpeg_quality: int = 85
     llm: OpenAISettings | None = None
+    agent_options: Mapping[str, Mapping[str, str]] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         if not self.episodes:
@@ -84,6 +87,13 @@ class WebConfig:
                 raise ConfigError(f"{name} must be a whole number >= 1, got {value!r}")
         if not 1 <= self.jpeg_quality <= 95:
             raise ConfigError(f"jpeg_quality must be in 1..95, got {self.jpeg_quality}")
+
+    @property
+    def agents(self) -> tuple[str, ...]:
+        """The agents a session may choose: the plain ones, and those that take options
+        (which server, which model) when the server was given them."""
+        configured = [name for name in CONFIGURED_AGENTS if name in self.agent_options]
+        return tuple(sorted([*AGENTS, *configured]))
 
     @property
     def oracles(self) -> tuple[OracleKind, ...]:

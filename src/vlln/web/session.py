@@ -180,7 +180,12 @@ class EpisodeSession:
     def _play(self, scenes: SceneCache) -> None:
         spec = self.spec
         task = TaskConfig(self.config.task, self.config.max_steps, dialog_budget=spec.budget)
-        agent = None if spec.human_navigator else make_agent(spec.navigator, self._seed("agent"))
+        options = self.config.agent_options.get(spec.navigator)
+        agent = (
+            None
+            if spec.human_navigator
+            else make_agent(spec.navigator, self._seed("agent"), options)
+        )
         live = self._make_oracle(self.oracle_kind, self._seed("oracle"), self.board)
         replies = [step.reply for step in self._replay if step.reply is not None]
         self._oracle = _SessionOracle(live, replies)

@@ -19,7 +19,6 @@ from contextlib import ExitStack
 from dataclasses import dataclass
 from typing import Any
 
-from vlln.agents.registry import AGENTS
 from vlln.errors import ConfigError
 from vlln.eval.results import RecordKey, RecordWriter, RunDirectory, record_key
 from vlln.files import write_text_atomic
@@ -109,10 +108,10 @@ class SessionStore:
         """Start a session; ``navigator`` is ``human:<participant>`` or an agent name."""
         if navigator.startswith(f"{HUMAN_PREFIX}:"):
             check_participant(navigator.split(":", 1)[1])
-        elif navigator not in AGENTS:
+        elif navigator not in self.config.agents:
             raise ConfigError(
                 f"unknown navigator {navigator[:40]!r}; a person (human:<name>) or one of: "
-                + ", ".join(sorted(AGENTS))
+                + ", ".join(self.config.agents)
             )
         if oracle not in self.config.oracles:
             raise ConfigError(
