@@ -9,6 +9,7 @@ import pytest
 from fastapi.testclient import TestClient
 
 from vlln.errors import ConfigError
+from vlln.eval.results import load_run_records
 from vlln.web.app import create_app
 from vlln.web.config import WebConfig
 from vlln.web.server import build_server
@@ -74,3 +75,20 @@ def test_bodies_and_request_rates_are_bounded(study: Study, tmp_path: Path) -> N
         assert client.post("/api/sessions", json=huge).status_code == 413
         codes = [client.get("/api/health").status_code for _ in range(8)]
         assert codes[:4] == [200] * 4 and codes[-1] == 429
+
+
+def test_an_idle_episode_is_recorded_as_abandoned(study: Study, tmp_path: Path) -> None:
+    config = WebConfig(episodes=tuple(study.episodes), out=tmp_path / "a", idle_limit_s=0.5)
+    with TestClient(create_app(config)) as client:
+        body = {"navigator": "human", "participant": "p30", "oracle": "rules"}
+        code = client.post("/api/sessions", json=body).json()["navigator_code"]
+        view = client.get("/api/navigator", headers={"X-Session-Code": code}).json()
+        while view["result"] is None:
+            after = view["version"]
+            view = client.get(
+                f"/api/navigator?after={after}", headers={"X-Session-Code": code}
+            ).json()
+        assert view["status"] == "abandoned" and view["result"]["success"] is False
+    (record,) = load_run_records([config.out])
+    assert record.agent == "human:p30" and record.error is not None
+    assert record.error.startswith("abandoned: no action for")

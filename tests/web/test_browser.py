@@ -75,15 +75,18 @@ def _start(
 
 
 def _walk(page: Page, route: list[str]) -> None:
-    """Press the keys of ``route`` one by one, each after the page shows the last move."""
+    """Press the keys of ``route`` one by one, each after the page shows the last move, and
+    stop (S twice) when it ends with STOP."""
     page.wait_for_function("document.querySelector('#forward').disabled === false", timeout=WAIT_MS)
-    for action in route[:-1]:
+    moves = route[:-1] if route[-1] == "STOP" else route
+    for action in moves:
         steps_before = page.text_content("#steps")
         frame_before = page.evaluate("window.vllnLatencies.length")
         page.keyboard.press(KEY_OF[action])
         page.wait_for_function(f"window.vllnLatencies.length > {frame_before}", timeout=WAIT_MS)
         assert page.text_content("#steps") != steps_before
-    assert route[-1] == "STOP"
+    if moves is route:
+        return
     page.keyboard.press("s")
     page.keyboard.press("s")
     page.wait_for_selector("#result:not(.hidden)", timeout=WAIT_MS)
@@ -107,8 +110,17 @@ def test_a_person_reaches_the_target_and_the_record_scores_as_a_success(
     page.fill("#question", "What color is it?")
     page.click("#ask")
     page.wait_for_selector("#dialog li")
+    half = len(study.routes[0]) // 2
+    _walk(page, study.routes[0][:half])
     page.screenshot(path=str(SCREENSHOTS / "navigator.png"))
-    _walk(page, study.routes[0])
+    link = page.url
+    page.close()  # a closed tab loses nothing: the same link resumes the episode
+    page = browser.new_page(bypass_csp=True, viewport={"width": 1280, "height": 800})
+    page.on("response", keep)
+    page.goto(link)
+    page.wait_for_selector("#dialog li")
+    assert page.text_content("#steps") == str(half)
+    _walk(page, study.routes[0][half:])
     assert "Success" in (page.text_content("#result") or "")
     page.close()
 
@@ -126,6 +138,7 @@ def test_two_people_play_one_episode_from_two_browsers_and_markup_shows_as_text(
     host = browser.new_context(bypass_csp=True, viewport={"width": 1280, "height": 800})
     navigator = host.new_page()
     codes = _start(navigator, served, "human", "p02", "human", 1)
+    navigator.screenshot(path=str(SCREENSHOTS / "lobby.png"))
     navigator.click("#navigator-link")
     navigator.wait_for_selector("#instruction:has-text('Search for the')")
 
@@ -137,6 +150,8 @@ def test_two_people_play_one_episode_from_two_browsers_and_markup_shows_as_text(
     oracle.wait_for_url("**/answer#*")
     oracle.wait_for_selector("#target .name")
 
+    half = len(study.routes[1]) // 2
+    _walk(navigator, study.routes[1][:half])
     question = "<script>window.pwned = 1</script><b>Which</b> one is it?"
     navigator.fill("#question", question)
     navigator.click("#ask")
@@ -156,7 +171,7 @@ def test_two_people_play_one_episode_from_two_browsers_and_markup_shows_as_text(
     for page in (navigator, oracle):
         assert page.evaluate("typeof window.pwned") == "undefined"
 
-    _walk(navigator, study.routes[1])
+    _walk(navigator, study.routes[1][half:])
     oracle.wait_for_selector("#result:not(.hidden)", timeout=WAIT_MS)
     host.close()
     helper.close()

@@ -107,7 +107,6 @@ def create_app(
         found = store().find(code or "")
         if found is None or found[1] != wanted:
             raise WebError(404, "unknown code", f"no {wanted} page has this code; check it")
-        found[0].last_seen = asyncio.get_running_loop().time()
         return found[0]
 
     @app.get("/api/health")
@@ -165,10 +164,10 @@ def create_app(
 
     @app.get("/api/navigator")
     async def navigator(
-        after: int = 0, x_session_code: str | None = Header(default=None)
+        request: Request, after: int = 0, x_session_code: str | None = Header(default=None)
     ) -> dict[str, Any]:
         session = role(x_session_code, NAVIGATOR)
-        await session.signal.wait_beyond(after, LONG_POLL_S)
+        await _wait(session, after, request)
         return navigator_view(session)
 
     @app.post("/api/navigator/act")
@@ -190,11 +189,11 @@ def create_app(
 
     @app.get("/api/oracle")
     async def oracle(
-        after: int = 0, x_session_code: str | None = Header(default=None)
+        request: Request, after: int = 0, x_session_code: str | None = Header(default=None)
     ) -> dict[str, Any]:
         session = role(x_session_code, ORACLE)
         session.oracle_joined()
-        await session.signal.wait_beyond(after, LONG_POLL_S)
+        await _wait(session, after, request)
         return oracle_view(session)
 
     @app.get("/api/oracle/map")
@@ -219,6 +218,17 @@ def create_app(
         return oracle_view(session)
 
     return app
+
+
+async def _wait(session: EpisodeSession, after: int, request: Request) -> None:
+    """Long polling: return when the session is newer than ``after``, after
+    :data:`LONG_POLL_S`, or when the page went away (a closed tab holds nothing open)."""
+    loop = asyncio.get_running_loop()
+    deadline = loop.time() + LONG_POLL_S
+    while session.signal.version <= after and loop.time() < deadline:
+        await session.signal.wait_beyond(after, min(1.0, deadline - loop.time()))
+        if await request.is_disconnected():
+            return
 
 
 async def _play(session: EpisodeSession, output: Any, wait_s: float) -> None:

@@ -13,7 +13,6 @@ from __future__ import annotations
 import contextlib
 import queue
 import threading
-import time
 from collections import deque
 from collections.abc import Callable
 from concurrent.futures import Future
@@ -111,7 +110,6 @@ class EpisodeSession:
         self.board = AnswerBoard(signal.bump)
         self.view = View()
         self.lock = threading.Lock()
-        self.last_seen = time.monotonic()
         self._journal = journal
         self._make_oracle = make_oracle
         self._finish = finish

@@ -43,6 +43,7 @@ from vlln.web.journal import (
 from vlln.web.session import EpisodeSession, OracleFactory, Status
 
 SETTINGS_FILE = "web.json"
+KEPT_FINISHED = 64  # finished sessions kept for their pages to show the outcome
 RESTARTED = "the server stopped during the episode"
 NAVIGATOR = "navigator"
 ORACLE = "oracle"
@@ -146,6 +147,7 @@ class SessionStore:
             )
             session = self._session(spec, episode)
             self._register(session)
+            self._forget_old_sessions()
         session.start()
         return Created(spec.session_id, index, navigator_code, oracle_code)
 
@@ -234,6 +236,15 @@ class SessionStore:
         for digest, role in ((spec.navigator_code, NAVIGATOR), (spec.oracle_code, ORACLE)):
             if digest is not None:
                 self._codes[digest] = (spec.session_id, role)
+
+    def _forget_old_sessions(self) -> None:
+        """Drop the oldest finished sessions beyond :data:`KEPT_FINISHED`, with their codes,
+        so memory stays bounded however long the server runs (their records are on disk)."""
+        finished = [s for s in self._sessions.values() if s.done]
+        for session in finished[: max(0, len(finished) - KEPT_FINISHED)]:
+            del self._sessions[session.spec.session_id]
+        known = set(self._sessions)
+        self._codes = {k: v for k, v in self._codes.items() if v[0] in known}
 
     def _episode(self, spec: SessionSpec) -> Episode:
         episodes = self.config.episodes

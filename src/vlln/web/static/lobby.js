@@ -41,7 +41,7 @@ async function load() {
   document.getElementById("overview").textContent =
     `Task ${info.task.toUpperCase()}, ${info.budget} answered questions per episode, ` +
     `${info.episodes.length} episodes. Sessions: ${s.live} live, ${s.finished} finished, ` +
-    `${s.abandoned} abandoned; ${s.records} episode records written.`;
+    `${s.abandoned} abandoned. Episode records written: ${s.records}.`;
 }
 
 function showCode(role, code, page) {
