@@ -75,6 +75,8 @@ class Journal:
         folder.mkdir(parents=True, exist_ok=True)
         self.path = folder / f"{spec.session_id}.jsonl"
         fresh = not self.path.exists()
+        if not fresh:
+            _cut_torn_line(self.path)
         self._handle: IO[bytes] = self.path.open("ab")
         if fresh:
             self._write({"kind": "session", **asdict(spec)}, durable=True)
@@ -100,6 +102,16 @@ class Journal:
         self._handle.flush()
         if durable:
             os.fsync(self._handle.fileno())
+
+
+def _cut_torn_line(path: Path) -> None:
+    """Cut a partial last line (a kill mid-write), so the next line starts on its own."""
+    data = path.read_bytes()
+    complete = data.rfind(b"\n") + 1
+    if complete < len(data):
+        with path.open("r+b") as handle:
+            handle.truncate(complete)
+            os.fsync(handle.fileno())
 
 
 def read_journal(path: Path) -> JournalContents:

@@ -43,7 +43,8 @@ class TokenBucket:
 
 
 class RateLimit:
-    """ASGI middleware: a token bucket per client address (429 when it runs dry), and the
+    """ASGI middleware: a token bucket per client address and page (its session code; 429
+    when it runs dry), so participants behind one address do not share a bucket, and the
     security headers on every response. Buckets of the least recently seen clients are
     dropped beyond ``max_clients``, so the table stays bounded."""
 
@@ -65,7 +66,8 @@ class RateLimit:
             await send(message)
 
         client = scope.get("client")
-        address = client[0] if client else "?"
+        code = dict(scope["headers"]).get(b"x-session-code", b"")[:64]
+        address = f"{client[0] if client else '?'} {code.decode('latin-1')}"  # per page
         bucket = self._buckets.pop(address, None) or TokenBucket(self.rate, self.burst)
         self._buckets[address] = bucket  # most recently seen last
         while len(self._buckets) > self.max_clients:
