@@ -101,7 +101,6 @@ def study(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Study]:
 class Served:
     url: str
     config: WebConfig
-    stop: threading.Event
 
 
 def start_server(config: WebConfig) -> tuple[str, object, threading.Thread]:
@@ -125,6 +124,6 @@ def served(study: Study, tmp_path_factory: pytest.TempPathFactory) -> Iterator[S
         answer_time_limit_s=60.0,
     )
     url, server, thread = start_server(config)
-    yield Served(url, config, threading.Event())
+    yield Served(url, config)
     server.should_exit = True  # type: ignore[attr-defined]
     thread.join(timeout=START_TIMEOUT)

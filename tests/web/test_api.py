@@ -8,8 +8,10 @@ import httpx
 import pytest
 from fastapi.testclient import TestClient
 
+from tests.oracle.llm.chat_server import chat_server, completion
 from vlln.errors import ConfigError
 from vlln.eval.results import load_run_records
+from vlln.oracle.llm.openai_client import OpenAISettings
 from vlln.web.app import create_app
 from vlln.web.config import WebConfig
 from vlln.web.server import build_server
@@ -92,3 +94,31 @@ def test_an_idle_episode_is_recorded_as_abandoned(study: Study, tmp_path: Path) 
     (record,) = load_run_records([config.out])
     assert record.agent == "human:p30" and record.error is not None
     assert record.error.startswith("abandoned: no action for")
+
+
+def test_a_person_asks_the_language_model_oracle(study: Study, tmp_path: Path) -> None:
+    script = [completion("attribute"), completion("The bin is silver and stands by the door.")]
+    with chat_server(script) as chat:
+        llm = OpenAISettings(model="scripted-oracle", base_url=chat.base_url, max_retries=0)
+        config = WebConfig(episodes=tuple(study.episodes), out=tmp_path / "a", llm=llm)
+        with TestClient(create_app(config)) as client:
+            assert client.get("/api/lobby").json()["oracles"] == ["rules", "llm", "human"]
+            body = {"navigator": "human", "participant": "p40", "oracle": "llm"}
+            headers = {
+                "X-Session-Code": client.post("/api/sessions", json=body).json()["navigator_code"]
+            }
+            view = client.get("/api/navigator", headers=headers).json()
+            while view["status"] != "playing":
+                view = client.get(f"/api/navigator?after={view['version']}", headers=headers).json()
+            asked = client.post(
+                "/api/navigator/ask", json={"question": "What color is it?"}, headers=headers
+            )
+            assert (
+                asked.json()["dialog"][0]["answer"] == "The bin is silver and stands by the door."
+            )
+            assert client.post(
+                "/api/navigator/act", json={"action": "stop"}, headers=headers
+            ).json()["result"]
+    (record,) = load_run_records([config.out])
+    assert record.agent == "human:p40 with llm oracle" and record.oracle == "llm"
+    assert record.dialog[0].backend.startswith("openai:scripted-oracle")
