@@ -35,6 +35,7 @@ from vlln.errors import ConfigError
 from vlln.oracle.service.app import RequestGate, error_response
 from vlln.tasks.spec import Talk
 from vlln.web.config import HUMAN_PREFIX, OracleKind, WebConfig
+from vlln.web.limits import RateLimit
 from vlln.web.oracles import oracle_factory
 from vlln.web.schemas import ACTIONS, Act, Answer, Ask, CreateSession, Join
 from vlln.web.session import EpisodeSession, OracleFactory, Status
@@ -84,8 +85,6 @@ def create_app(
     )
     _add_error_handlers(app)
     app.add_middleware(RequestGate, token=None, max_body_bytes=config.max_body_bytes)
-    from vlln.web.limits import RateLimit
-
     app.add_middleware(RateLimit, rate=config.requests_per_second, burst=config.request_burst)
     app.mount("/static", StaticFiles(directory=STATIC), name="static")
 
@@ -100,7 +99,8 @@ def create_app(
         if config.token is None:
             return
         scheme, _, given = (authorization or "").partition(" ")
-        if scheme.lower() != "bearer" or not hmac.compare_digest(given.strip(), config.token):
+        token = config.token.encode("utf-8")
+        if scheme.lower() != "bearer" or not hmac.compare_digest(given.strip().encode(), token):
             raise WebError(401, "unauthorized", "this server needs its access token (ask the host)")
 
     def role(code: str | None, wanted: str) -> EpisodeSession:

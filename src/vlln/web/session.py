@@ -229,6 +229,7 @@ class EpisodeSession:
                 return
 
     def _run_agent(self, agent: Agent, observation: Observation) -> None:
+        env = self._require_env()
         if self.oracle_kind == OracleKind.HUMAN:
             self._set_status(Status.WAITING_FOR_ORACLE)
             if not self._oracle_joined.wait(self.config.idle_limit_s):
@@ -238,23 +239,19 @@ class EpisodeSession:
             return
         self._set_status(Status.PLAYING)
         try:
-            agent.reset(self._require_env().episode_info())
-        except Exception as error:
-            self._end(
-                self._require_env().record(self.label, error=_describe(error)), Status.FINISHED
-            )
+            agent.reset(env.episode_info())
+        except Exception as error:  # an agent that fails ends its episode, as in vlln eval
+            self._end(env.record(self.label, error=_describe(error)), Status.FINISHED)
             return
         while not self._closing:
             try:
                 output = agent.act(observation)
             except Exception as error:
-                self._end(
-                    self._require_env().record(self.label, error=_describe(error)), Status.FINISHED
-                )
+                self._end(env.record(self.label, error=_describe(error)), Status.FINISHED)
                 return
             observation, finished = self._apply(output)
             if finished:
-                self._end(self._require_env().record(self.label), Status.FINISHED)
+                self._end(env.record(self.label), Status.FINISHED)
                 return
 
     def _apply(self, output: object, journal: bool = True) -> tuple[Observation, bool]:
