@@ -9,6 +9,7 @@ import pytest
 from fastapi.testclient import TestClient
 
 from tests.oracle.llm.chat_server import chat_server, completion
+from vlln.cli import main
 from vlln.errors import ConfigError
 from vlln.eval.results import load_run_records
 from vlln.oracle.llm.openai_client import OpenAISettings
@@ -122,3 +123,14 @@ def test_a_person_asks_the_language_model_oracle(study: Study, tmp_path: Path) -
     (record,) = load_run_records([config.out])
     assert record.agent == "human:p40 with llm oracle" and record.oracle == "llm"
     assert record.dialog[0].backend.startswith("openai:scripted-oracle")
+
+
+def test_the_command_line_names_bad_settings_in_one_line(
+    study: Study, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    (tmp_path / "file").write_text("not a folder")
+    source = ["--episode-file", str(study.episode_file)]
+    assert main(["serve", "web", *source, "--out", str(tmp_path / "file")]) == 2
+    assert "is a file; give a folder" in capsys.readouterr().err
+    assert main(["serve", "web", *source, "--out", str(tmp_path / "a"), "--host", "0.0.0.0"]) == 2
+    assert "needs an access token: set VLLN_WEB_TOKEN" in capsys.readouterr().err

@@ -38,7 +38,7 @@ from vlln.web.config import HUMAN_PREFIX, OracleKind, WebConfig
 from vlln.web.limits import RateLimit
 from vlln.web.oracles import oracle_factory
 from vlln.web.schemas import ACTIONS, Act, Answer, Ask, CreateSession, Join
-from vlln.web.session import EpisodeSession, OracleFactory, Status
+from vlln.web.session import EpisodeSession, Status
 from vlln.web.store import NAVIGATOR, ORACLE, SessionStore
 from vlln.web.views import navigator_view, oracle_map, oracle_view
 
@@ -54,18 +54,17 @@ class WebError(Exception):
         self.status, self.error, self.detail = status, error, detail
 
 
-def create_app(
-    config: WebConfig, source: str = "", make_oracle: OracleFactory | None = None
-) -> FastAPI:
-    """A new web app serving ``config``; its store opens (and resumes) when the app starts."""
+def create_app(config: WebConfig, source: str = "", opened: SessionStore | None = None) -> FastAPI:
+    """A new web app serving ``config`` with the store ``opened`` (see :func:`open_store`),
+    or with one it opens (and resumes) when the app starts; it closes the store at the end."""
     holder: dict[str, SessionStore] = {}
 
     @asynccontextmanager
     async def lifespan(_: FastAPI) -> AsyncIterator[None]:
-        store = SessionStore(
-            config, make_oracle or oracle_factory(config), source, asyncio.get_running_loop()
-        )
-        await asyncio.to_thread(store.open)
+        store = opened
+        if store is None:
+            store = await asyncio.to_thread(open_store, config, source)
+        store.attach(asyncio.get_running_loop())
         holder["store"] = store
         try:
             yield
@@ -218,6 +217,14 @@ def create_app(
         return oracle_view(session)
 
     return app
+
+
+def open_store(config: WebConfig, source: str) -> SessionStore:
+    """Take the output folder and resume what was in flight; raises :class:`ConfigError`
+    (before any server starts) when the folder cannot be used."""
+    store = SessionStore(config, oracle_factory(config), source)
+    store.open()
+    return store
 
 
 async def _wait(session: EpisodeSession, after: int, request: Request) -> None:

@@ -21,6 +21,10 @@ class ChangeSignal:
         self._version = 1
         self._event: asyncio.Event | None = None
 
+    def attach(self, loop: asyncio.AbstractEventLoop) -> None:
+        """Wake waiters on ``loop`` from now on (the server's loop, once it runs)."""
+        self._loop = loop
+
     @property
     def version(self) -> int:
         return self._version

@@ -11,8 +11,10 @@ Commands = argparse._SubParsersAction
 
 
 def _serve_web(args: argparse.Namespace) -> int:
+    from vlln.errors import ConfigError
     from vlln.eval.runner import default_cache_dir, order_by_scene, spread_over_scenes
     from vlln.oracle.llm.openai_client import OpenAISettings
+    from vlln.oracle.service.server import is_loopback
     from vlln.tasks.episode import read_episodes
     from vlln.tasks.generation import load_or_build_split
     from vlln.tasks.spec import TaskType
@@ -20,6 +22,12 @@ def _serve_web(args: argparse.Namespace) -> int:
     from vlln.web.config import WebConfig
     from vlln.web.server import episode_source, serve
 
+    token = os.environ.get(args.token_env) or None
+    if token is None and not is_loopback(args.host):  # before building any house
+        raise ConfigError(
+            f"host {args.host!r} is not a loopback address; serving the study beyond this "
+            f"machine needs an access token: set {args.token_env} (16+ characters)"
+        )
     task = TaskType.parse(args.task)
     episode_file = None if args.episode_file is None else Path(args.episode_file)
     houses = args.houses or SPLIT_SIZES.get(args.split, 1)
@@ -42,7 +50,7 @@ def _serve_web(args: argparse.Namespace) -> int:
         dialog_budget=budget,
         max_steps=args.max_steps,
         seed=args.seed,
-        token=os.environ.get(args.token_env) or None,
+        token=token,
         answer_time_limit_s=args.answer_time_limit,
         idle_limit_s=args.idle_limit,
         max_live_sessions=args.max_sessions,

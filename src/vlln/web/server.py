@@ -13,7 +13,7 @@ import uvicorn
 
 from vlln.errors import ConfigError
 from vlln.oracle.service.server import is_loopback
-from vlln.web.app import create_app
+from vlln.web.app import create_app, open_store
 from vlln.web.config import WebConfig
 
 DEFAULT_HOST = "127.0.0.1"
@@ -28,7 +28,8 @@ def build_server(
     source: str = "",
     log_level: str = "warning",
 ) -> uvicorn.Server:
-    """A uvicorn server for the web app, not yet running; ``port=0`` picks a free port."""
+    """A uvicorn server for the web app, not yet running (its output folder already taken);
+    ``port=0`` picks a free port."""
     if isinstance(port, bool) or not isinstance(port, int) or not 0 <= port <= 65535:
         raise ConfigError(f"port must be a whole number in 0..65535, got {port!r}")
     if not is_loopback(host):
@@ -43,7 +44,7 @@ def build_server(
             file=sys.stderr,
         )
     settings = uvicorn.Config(
-        create_app(config, source),
+        create_app(config, source, open_store(config, source)),
         host=host,
         port=port,
         log_level=log_level,

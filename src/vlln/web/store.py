@@ -63,12 +63,12 @@ class SessionStore:
     """Live and finished sessions, their codes, and the record writer (module doc)."""
 
     def __init__(
-        self, config: WebConfig, make_oracle: OracleFactory, source: str, signal_loop: Any = None
+        self, config: WebConfig, make_oracle: OracleFactory, source: str, loop: Any = None
     ) -> None:
         self.config = config
         self.source = source
         self._make_oracle = make_oracle
-        self._loop = signal_loop
+        self._loop = loop
         self._lock = threading.Lock()
         self._sessions: dict[str, EpisodeSession] = {}
         self._codes: dict[str, tuple[str, str]] = {}  # digest -> (session id, role)
@@ -79,6 +79,8 @@ class SessionStore:
     def open(self) -> None:
         """Take the folder, check its settings, and resume or record the episodes in flight."""
         out = self.config.out
+        if out.exists() and not out.is_dir():
+            raise ConfigError(f"--out {out} is a file; give a folder for the study's records")
         out.mkdir(parents=True, exist_ok=True)
         self._check_settings()
         self._writer = self._exit.enter_context(RunDirectory(out).writing())
@@ -95,6 +97,13 @@ class SessionStore:
             )
             self._register(session)
             session.start()
+
+    def attach(self, loop: Any) -> None:
+        """Let pages waiting on ``loop`` (the server's) hear of every session's changes."""
+        with self._lock:
+            self._loop = loop
+            for session in self._sessions.values():
+                session.signal.attach(loop)
 
     def close(self) -> None:
         """Stop every live session (their journals keep them for the next start)."""
