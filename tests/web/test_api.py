@@ -134,3 +134,7 @@ def test_the_command_line_names_bad_settings_in_one_line(
     assert "is a file; give a folder" in capsys.readouterr().err
     assert main(["serve", "web", *source, "--out", str(tmp_path / "a"), "--host", "0.0.0.0"]) == 2
     assert "needs an access token: set VLLN_WEB_TOKEN" in capsys.readouterr().err
+    (tmp_path / "b").mkdir()
+    (tmp_path / "b" / "web.json").write_text('{"source": "split val, 3 houses"}')
+    assert main(["serve", "web", *source, "--out", str(tmp_path / "b")]) == 2
+    assert "holds a study served with other settings" in capsys.readouterr().err
