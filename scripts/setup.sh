@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs everything vlln needs on a fresh Debian/Ubuntu machine with Python 3.11+:
-# the system EGL/Mesa libraries for headless rendering (only when missing), a virtual
+# the system EGL/Mesa libraries for headless rendering and Chromium for the browser tests
+# (each only when missing), a virtual
 # environment in .venv, and the package with its development tools.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -29,6 +30,22 @@ if ! have_egl; then
   fi
   $SUDO apt-get update -q
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q libegl1 libgl1-mesa-dri
+fi
+
+# Headless Chromium for the web app's browser tests and `vlln bench web` (Debian's package,
+# driven by Playwright's Python client; Playwright's own browser download is never used).
+if ! command -v chromium >/dev/null; then
+  echo "Installing the system package for the browser tests: chromium"
+  SUDO=""
+  if [ "$(id -u)" -ne 0 ]; then
+    if command -v sudo >/dev/null; then SUDO="sudo"; else
+      echo "error: chromium is missing and this user cannot install it;" \
+        "ask an administrator to run: apt-get install chromium" >&2
+      exit 1
+    fi
+  fi
+  $SUDO apt-get update -q
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q chromium
 fi
 
 if [ ! -x .venv/bin/python ]; then

@@ -10,6 +10,7 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 
 from vlln.errors import VllnError
+from vlln.web.command import add_bench_web, add_serve_commands
 
 Handler = Callable[[argparse.Namespace], int]
 
@@ -389,6 +390,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     bench_data.add_argument("--json", action="store_true", help="print one JSON object per line")
     bench_data.set_defaults(handler=_bench_data)
+    add_bench_web(bench)
 
     demo = commands.add_parser("demo", help="the main job on the built-in houses")
     demo.add_argument("--out", default="out/demo", help="output directory (default out/demo)")
@@ -396,6 +398,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_eval_commands(commands)
     _add_oracle_commands(commands)
     _add_data_commands(commands)
+    add_serve_commands(commands)
     return parser
 
 

@@ -17,6 +17,7 @@ from vlln.errors import ConfigError
 from vlln.eval.document import Block, Heading, Image, Paragraph, Table, to_html, to_markdown
 from vlln.eval.episode_map import draw_episode_map
 from vlln.eval.figures import plot_failure_taxonomy, plot_sr_by_budget
+from vlln.eval.pairings import people_section
 from vlln.eval.results import RunDirectory, load_run_records
 from vlln.eval.summary import GroupSummary, budget_table, failed_actions_line, summarize_run
 from vlln.files import write_text_atomic
@@ -68,6 +69,8 @@ def write_report(
     blocks += _metrics_section(runs, success_radius, os_radius)
     blocks += _budget_section(runs, out, written)
     blocks += _taxonomy_section(runs, out, written)
+    every_record = [record for run in runs for record in run.records]
+    blocks += people_section(every_record, success_radius, os_radius)
     blocks += _samples_section(runs, out, written, samples_per_run, success_radius)
     for name, text in (
         (REPORT_MD, to_markdown(blocks)),

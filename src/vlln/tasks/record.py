@@ -84,6 +84,7 @@ class EpisodeRecord:
     failures: dict[str, int] = field(default_factory=dict)
     model_calls: list[ModelCall] = field(default_factory=list)  # model agents only
     detector: str | None = None  # the agent's object detector ("truth", "noisy"); None: none
+    oracle: str | None = None  # rules | llm | human; None: not stated (vlln eval: the rule oracle)
 
     @property
     def agent_label(self) -> str:

@@ -1,0 +1,84 @@
+"""Request rates and response headers that every page and API call gets."""
+
+from __future__ import annotations
+
+import time
+
+from starlette.types import ASGIApp, Message, Receive, Scope, Send
+
+from vlln.oracle.service.app import error_response
+
+# Pages load their scripts and styles from this server only, never inline: a question or
+# an answer that smuggles in markup cannot run even if a page forgot to escape it.
+SECURITY_HEADERS = [
+    (
+        b"content-security-policy",
+        b"default-src 'self'; img-src 'self' data:; script-src 'self'; style-src 'self'; "
+        b"connect-src 'self'; frame-ancestors 'none'; base-uri 'none'; form-action 'self'",
+    ),
+    (b"x-content-type-options", b"nosniff"),
+    (b"x-frame-options", b"DENY"),
+    (b"referrer-policy", b"no-referrer"),
+    (b"cache-control", b"no-store"),
+]
+
+
+class TokenBucket:
+    """``rate`` requests per second on average, up to ``burst`` at once."""
+
+    def __init__(self, rate: float, burst: int) -> None:
+        self.rate = rate
+        self.burst = float(burst)
+        self.tokens = float(burst)
+        self.stamp = time.monotonic()
+
+    def take(self) -> bool:
+        now = time.monotonic()
+        self.tokens = min(self.burst, self.tokens + (now - self.stamp) * self.rate)
+        self.stamp = now
+        if self.tokens < 1.0:
+            return False
+        self.tokens -= 1.0
+        return True
+
+
+class RateLimit:
+    """ASGI middleware: a token bucket per client address and page (its session code; 429
+    when it runs dry), so participants behind one address do not share a bucket, and the
+    security headers on every response. Buckets of the least recently seen clients are
+    dropped beyond ``max_clients``, so the table stays bounded."""
+
+    def __init__(self, app: ASGIApp, rate: float, burst: int, max_clients: int = 4096) -> None:
+        self.app = app
+        self.rate = rate
+        self.burst = burst
+        self.max_clients = max_clients
+        self._buckets: dict[str, TokenBucket] = {}
+
+    async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
+        if scope["type"] != "http":
+            await self.app(scope, receive, send)
+            return
+
+        async def send_with_headers(message: Message) -> None:
+            if message["type"] == "http.response.start":
+                message["headers"] = list(message.get("headers", [])) + SECURITY_HEADERS
+            await send(message)
+
+        client = scope.get("client")
+        code = dict(scope["headers"]).get(b"x-session-code", b"")[:64]
+        address = f"{client[0] if client else '?'} {code.decode('latin-1')}"  # per page
+        bucket = self._buckets.pop(address, None) or TokenBucket(self.rate, self.burst)
+        self._buckets[address] = bucket  # most recently seen last
+        while len(self._buckets) > self.max_clients:
+            del self._buckets[next(iter(self._buckets))]
+        if not bucket.take():
+            reply = error_response(
+                429,
+                "too many requests",
+                "slow down and try again in a second",
+                **{"Retry-After": "1"},
+            )
+            await reply(scope, receive, send_with_headers)
+            return
+        await self.app(scope, receive, send_with_headers)
