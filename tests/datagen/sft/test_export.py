@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import math
+import shutil
 from collections import Counter
 from pathlib import Path
 from typing import Any
@@ -258,3 +259,15 @@ def test_progress_bar_can_be_shown(
     assert "export-sft" in capsys.readouterr().err
     export_sft(hand_dataset.root, tmp_path / "hidden", progress=False)
     assert "export-sft" not in capsys.readouterr().err
+
+
+def test_a_folder_in_the_reference_layout_without_info_json_exports_the_same(
+    hand_dataset: HandDataset, default_export: Path, tmp_path: Path
+) -> None:
+    copy = tmp_path / "reference"
+    shutil.copytree(hand_dataset.root, copy)
+    (copy / "trajectories" / hand_dataset.house / "meta" / "info.json").unlink()
+    export_sft(copy, tmp_path / "out", progress=False)
+    assert (tmp_path / "out" / "sft.jsonl").read_bytes() == (
+        default_export / "sft.jsonl"
+    ).read_bytes()
