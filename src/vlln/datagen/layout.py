@@ -46,6 +46,7 @@ from vlln.files import write_text_atomic
 from vlln.sim.agent import Action
 from vlln.sim.camera import CameraSpec
 from vlln.sim.renderer import Frame
+from vlln.tasks.episode import scene_name
 
 FORMAT_VERSION = "vlln-trajectories/1.0"
 CHUNK_SIZE = 1000
@@ -67,8 +68,8 @@ FRAME_COLUMNS: dict[str, tuple[str, list[int]]] = {
 
 
 def house_dir_name(scene_id: str) -> str:
-    """``vlln/house_00003`` -> ``house_00003``: one folder per scene."""
-    return scene_id.rstrip("/").rsplit("/", 1)[-1]
+    """``vlln/house_00003/house_00003.glb`` -> ``house_00003``: one folder per scene."""
+    return scene_name(scene_id.rstrip("/"))
 
 
 def data_path(episode_index: int) -> str:
