@@ -162,7 +162,8 @@ def build_house(
     instances.sort(key=lambda inst: inst.id)
     report.instances = len(instances)
     report.unmapped.sort()
-    mesh = _mesh(triangles, colours, ids)
+    order = _draw_order(triangles, ids)
+    mesh = _mesh(triangles[order], colours[order], ids[order])
     house = House(
         name=name,
         rooms=rooms,
@@ -228,6 +229,22 @@ def _structure_ids(triangles: NDArray[np.float64], rooms: list[Room]) -> NDArray
     ids[up < -0.7] = int(StructureId.CEILING)
     ids[(up > 0.7) & near_floor] = int(StructureId.FLOOR)
     return ids
+
+
+_CELL = 1.0  # m: triangles of one id are ordered by the 1 m cell their centre is in
+
+
+def _draw_order(triangles: NDArray[np.float64], ids: NDArray[np.int64]) -> NDArray[np.intp]:
+    """Triangles grouped by id, then by cell along a Z-order curve, so that every run of a
+    long id (a scan's walls) is spatially compact and the renderer can cull its pieces."""
+    cells = np.floor(triangles.mean(axis=1) / _CELL).astype(np.int64)
+    cells -= cells.min(axis=0)
+    key = np.zeros(len(triangles), np.int64)
+    for bit in range(10):  # interleave the bits of the three cell coordinates
+        for axis in range(3):
+            key |= ((cells[:, axis] >> bit) & 1) << (3 * bit + axis)
+    order: NDArray[np.intp] = np.lexsort((key, ids))
+    return order
 
 
 def _mesh(
