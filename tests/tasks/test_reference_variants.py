@@ -259,3 +259,17 @@ def test_an_imported_scan_with_its_summary_takes_the_summary_words(
     back = load_scene(tmp_path / house.name)
     assert [i.attributes for i in back.instances] == [i.attributes for i in house.instances]
     assert [r.type for r in back.rooms] == [r.type for r in house.rooms]
+
+
+def test_the_eval_command_finds_scenes_in_the_scenes_folder(
+    scenes: tuple[Path, House], tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from vlln.cli import main
+
+    root, house = scenes
+    path = write_file(tmp_path / "val_ign.json.gz", [base_episode(house)])
+    args = ["eval", "--agent", "expert", "--task", "ign", "--episode-file", str(path)]
+    assert main([*args, "--scenes", str(root), "--out", str(tmp_path / "run"), "--quiet"]) == 0
+    assert "| 100.0 |" in capsys.readouterr().out.replace("100.00", "100.0")
+    assert main([*args, "--out", str(tmp_path / "other"), "--quiet"]) == 2
+    assert "pass the folder of imported scenes (--scenes)" in capsys.readouterr().err
