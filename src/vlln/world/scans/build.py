@@ -105,20 +105,22 @@ def owners_by_box(triangles: NDArray[np.float64], objects: list[ScanObject]) -> 
     owner = np.full(len(triangles), -1, np.int64)
     best = np.full(len(triangles), np.inf)
     lo, hi = triangles.min(axis=1), triangles.max(axis=1)
+    by_x = np.argsort(lo[:, 0], kind="stable")  # a box only looks at triangles starting in it
+    sorted_x = lo[by_x, 0]
     for obj in objects:
         if obj.center is None or obj.axes is None or obj.half is None:
             continue
         half = np.asarray(obj.half) + 1e-3
         reach = np.abs(np.asarray(obj.axes)).T @ half
-        near = np.all(
-            (lo >= np.asarray(obj.center) - reach) & (hi <= np.asarray(obj.center) + reach), axis=1
-        )
-        candidates = np.flatnonzero(near)
-        local = (triangles[candidates] - np.asarray(obj.center)) @ np.asarray(obj.axes).T
-        inside = np.zeros(len(triangles), bool)
-        inside[candidates] = np.all(np.abs(local) <= half, axis=(1, 2))
+        low, high = np.asarray(obj.center) - reach, np.asarray(obj.center) + reach
+        first = np.searchsorted(sorted_x, low[0], side="left")
+        last = np.searchsorted(sorted_x, high[0], side="right")
+        span = by_x[first:last]
+        span = span[np.all((lo[span] >= low) & (hi[span] <= high), axis=1)]
+        local = (triangles[span] - np.asarray(obj.center)) @ np.asarray(obj.axes).T
+        hit = span[np.all(np.abs(local) <= half, axis=(1, 2))]
         volume = float(np.prod(2 * half))
-        take = inside & (volume < best)
+        take = hit[volume < best[hit]]
         owner[take] = obj.id
         best[take] = volume
     return owner

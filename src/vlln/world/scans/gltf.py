@@ -23,17 +23,19 @@ from vlln.errors import DataFormatError
 
 FloatArray = NDArray[np.float64]
 
-# vlln (x, y, z) -> scan (x, -z, y) and back.
-_TO_SCAN = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]])
-_FROM_SCAN = _TO_SCAN.T
-
 
 def to_scan_frame(points: NDArray[np.floating]) -> FloatArray:
-    return np.asarray(points, np.float64) @ _TO_SCAN.T
+    """``(x, y, z)`` -> ``(x, -z, y)``, row by row."""
+    out = np.asarray(points, np.float64)[:, [0, 2, 1]]
+    out[:, 1] *= -1.0
+    return out
 
 
 def from_scan_frame(points: NDArray[np.floating]) -> FloatArray:
-    return np.asarray(points, np.float64) @ _FROM_SCAN.T
+    """``(x, y, z)`` -> ``(x, z, -y)``, row by row."""
+    out = np.asarray(points, np.float64)[:, [0, 2, 1]]
+    out[:, 2] *= -1.0
+    return out
 
 
 def _gltf_json(path: Path) -> dict[str, Any]:
