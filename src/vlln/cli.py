@@ -25,10 +25,40 @@ def _world_show(args: argparse.Namespace) -> int:
     return 0
 
 
+def _world_export(args: argparse.Namespace) -> int:
+    from vlln.world.generator import generate_house, parameters_from_overrides
+    from vlln.world.scans import export_scene
+
+    house = generate_house(args.seed, parameters_from_overrides(args.param))
+    for style in args.style or ["mp3d", "hm3d"]:
+        print(f"wrote {export_scene(house, Path(args.out) / style, style)}")
+    return 0
+
+
+def _world_import(args: argparse.Namespace) -> int:
+    import dataclasses
+    import json
+
+    from vlln.world.scans import import_scene
+    from vlln.world.scene_summary import export_scene_summary
+
+    house, report = import_scene(Path(args.scene))
+    if args.summary_out:
+        export_scene_summary(house, Path(args.summary_out))
+    print(json.dumps(dataclasses.asdict(report), indent=2))
+    return 0
+
+
 def _bench_sim(args: argparse.Namespace) -> int:
     from vlln.bench.sim import run_sim_benchmark
 
-    run_sim_benchmark(seed=args.seed, frames=args.frames, repeats=args.repeats, as_json=args.json)
+    run_sim_benchmark(
+        seed=args.seed,
+        frames=args.frames,
+        repeats=args.repeats,
+        as_json=args.json,
+        scene=None if args.scene is None else Path(args.scene),
+    )
     return 0
 
 
@@ -65,14 +95,21 @@ def _eval(args: argparse.Namespace) -> int:
         agent_options=_agent_options(args),
         detector=args.detector,
     )
+    from vlln.tasks.scenes import SceneCache
+
     cache_dir = None if args.cache_dir is None else Path(args.cache_dir)
-    outcome = run_evaluation(
-        config,
-        Path(args.out),
-        cache_dir=cache_dir,
-        stop_after=args.stop_after,
-        progress=not args.quiet,
-    )
+    scenes = SceneCache(scenes_dir=args.scenes)
+    try:
+        outcome = run_evaluation(
+            config,
+            Path(args.out),
+            cache_dir=cache_dir,
+            stop_after=args.stop_after,
+            progress=not args.quiet,
+            scenes=scenes,
+        )
+    finally:
+        scenes.close()
     state = "complete" if outcome.complete else "incomplete: rerun the same command to go on"
     print(
         f"{len(outcome.records)} of {outcome.planned} episodes in {args.out} ({state}); "
@@ -146,6 +183,7 @@ def _add_eval_commands(commands: argparse._SubParsersAction[argparse.ArgumentPar
     source = run.add_mutually_exclusive_group()
     source.add_argument("--split", default="test", help="built-in split (default test)")
     source.add_argument("--episode-file", help="released-format episode file (.json.gz)")
+    run.add_argument("--scenes", help="folder of scanned scenes (<scenes>/<scene>/) the file names")
     run.add_argument("--episodes", type=int, help="first N episodes (default: all)")
     budget = run.add_mutually_exclusive_group()
     budget.add_argument("--budget", type=int, help="dialog budget (default 5 on IIGN, else 0)")
@@ -356,6 +394,16 @@ def build_parser() -> argparse.ArgumentParser:
         help="a house-generator parameter, e.g. --param max_rooms=6 (repeatable)",
     )
     show.set_defaults(handler=_world_show)
+    export = world.add_parser("export", help="write a house as Matterport3D/HM3D scene folders")
+    export.add_argument("--seed", type=int, default=0, help="house seed (default 0)")
+    export.add_argument("--out", required=True, help="output folder (<out>/<style>/<scene>/)")
+    export.add_argument("--style", action="append", choices=["mp3d", "hm3d"], help="repeatable")
+    export.add_argument("--param", action="append", default=[], metavar="NAME=VALUE")
+    export.set_defaults(handler=_world_export)
+    imported = world.add_parser("import", help="read a Matterport3D or HM3D scene folder")
+    imported.add_argument("scene", help="scene folder <dir>/<scene>/ (.glb + .house or semantic)")
+    imported.add_argument("--summary-out", help="also write its scene summary under this folder")
+    imported.set_defaults(handler=_world_import)
 
     bench = commands.add_parser("bench", help="speed and memory benchmarks").add_subparsers(
         dest="bench_command", required=True
@@ -365,6 +413,7 @@ def build_parser() -> argparse.ArgumentParser:
     sim.add_argument("--frames", type=int, default=300, help="frames per timing (default 300)")
     sim.add_argument("--repeats", type=int, default=3, help="passes per frame rate (default 3)")
     sim.add_argument("--json", action="store_true", help="print one JSON object per line")
+    sim.add_argument("--scene", help="a scanned scene folder instead of a procedural house")
     sim.set_defaults(handler=_bench_sim)
     bench_eval = bench.add_parser("eval", help="episodes per hour of the evaluation runner")
     bench_eval.add_argument("--episodes", type=int, default=6, help="episodes (default 6)")

@@ -318,3 +318,26 @@ def test_renderers_sharing_a_process_each_draw_their_own_scene() -> None:
     first.close()
     assert after.instance_ids.tobytes() == before.instance_ids.tobytes()
     assert after.depth.tobytes() == before.depth.tobytes()
+
+
+def test_long_runs_of_one_id_are_cut_into_chunks_that_draw_the_same_image(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    from vlln.sim import renderer
+
+    build = MeshBuilder()
+    for i, j in itertools.product(range(40), range(40)):  # 3,200 floor triangles
+        build.quad(
+            (i * 0.25 - 5, 0.0, j * 0.25 - 5), (0.0, 0.0, 0.25), (0.25, 0.0, 0.0), (0.5,) * 3, 0
+        )
+    mesh = build.build().with_instance_id(int(StructureId.FLOOR))
+    cut = DrawList.from_vertices(interleave_vertices(mesh))
+    assert len(cut.starts) == math.ceil(3 * 3200 / renderer.MAX_CHUNK_CORNERS)
+    assert cut.counts.max() <= renderer.MAX_CHUNK_CORNERS
+    with Renderer(mesh) as split:
+        a = split.render((0.0, 0.0, 0.0), 0.3, tilt=-0.5)
+    monkeypatch.setattr(renderer, "MAX_CHUNK_CORNERS", 10**9)
+    with Renderer(mesh) as whole:
+        b = whole.render((0.0, 0.0, 0.0), 0.3, tilt=-0.5)
+    assert np.count_nonzero(a.instance_ids) > 1000
+    assert np.array_equal(a.instance_ids, b.instance_ids) and np.array_equal(a.rgb, b.rgb)

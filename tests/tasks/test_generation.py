@@ -111,10 +111,12 @@ def test_the_three_lists_are_aligned_with_unique_ids(made: HouseEpisodes) -> Non
         assert a.start_position == b.start_position == c.start_position
         assert a.start_rotation == b.start_rotation == c.start_rotation
         assert target_id(a) == target_id(b) == target_id(c)
-        seed, target, k = a.episode_id.split("_")
-        assert (int(seed), int(target)) == (SEED, target_id(a)) and 0 <= int(k) < 2
+        seed_and_target, k = divmod(int(a.episode_id), 100)
+        assert divmod(seed_and_target, 10_000) == (SEED, target_id(a)) and 0 <= k < 2
+        assert a.episode_id.isdecimal()
     assert len({e.episode_id for e in made.iign}) == len(made.iign)
-    assert {e.scene_id for e in all_episodes(made)} == {"vlln/house_00007"}
+    assert {e.scene_id for e in all_episodes(made)} == {"vlln/house_00007/house_00007.glb"}
+    assert all(e.instruction.instruction_text.endswith(".") for e in all_episodes(made))
 
 
 def test_starts_are_navigable_and_within_the_geodesic_range(
@@ -316,7 +318,7 @@ def test_load_or_build_builds_once(
         "test", "iign", 1, tmp_path, 0, SPLIT_CONFIG, scenes=scenes, progress=False
     )
     assert built == read_episodes(episode_path(tmp_path, "test", TaskType.IIGN))
-    assert {e.scene_id for e in built} == {"vlln/house_00076"}
+    assert {e.scene_id for e in built} == {"vlln/house_00076/house_00076.glb"}
 
     def refuse(*args: Any, **kwargs: Any) -> Path:
         raise AssertionError("the cached split was built again")

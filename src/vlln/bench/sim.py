@@ -15,6 +15,7 @@ import subprocess
 import sys
 import time
 from dataclasses import dataclass
+from pathlib import Path
 
 import moderngl
 import numpy as np
@@ -39,6 +40,7 @@ from vlln.sim.simulator import Simulator
 from vlln.sim.viewpoints import view_points
 from vlln.world.generator import generate_house
 from vlln.world.mesh import Mesh
+from vlln.world.scans import import_scene
 
 # Frames drawn before any clock starts: shader compilation, first allocations, caches.
 WARM_UP_FRAMES = 30
@@ -47,9 +49,15 @@ WALK = (Action.MOVE_FORWARD, Action.MOVE_FORWARD, Action.TURN_LEFT, Action.TURN_
 
 
 def run_sim_benchmark(
-    seed: int = 0, frames: int = 300, repeats: int = 3, as_json: bool = False
+    seed: int = 0,
+    frames: int = 300,
+    repeats: int = 3,
+    as_json: bool = False,
+    scene: Path | None = None,
 ) -> list[Figure]:
-    """Measure and print every simulator figure for house ``seed``.
+    """Measure and print every simulator figure for house ``seed``, or for the scanned scene
+    folder ``scene`` (then its import time and the simulator's build time instead of the
+    house build time, and no memory probe).
 
     The three frame rates replay the same walk ``repeats`` times, interleaved, and report the
     median pass, so a neighbour's burst on a shared machine moves all three alike.
@@ -61,12 +69,19 @@ def run_sim_benchmark(
         figures.append(figure)
         emit(figure, as_json)
 
-    build_s = median_seconds(lambda: generate_house(seed), repeats=3)
-    record("house_build_s", build_s, "s")
-    house = generate_house(seed)
+    if scene is None:
+        build_s = median_seconds(lambda: generate_house(seed), repeats=3)
+        record("house_build_s", build_s, "s")
+        house = generate_house(seed)
+    else:
+        house, report = import_scene(scene)
+        record("scene_import_s", report.seconds, "s")
     record("house_triangles", house.geometry.mesh.n_triangles if house.geometry else 0, "count")
     rng = np.random.default_rng(seed)
+    started = time.perf_counter()
     with Simulator(house) as sim:
+        if scene is not None:
+            record("simulator_build_s", time.perf_counter() - started, "s")
         walk = _walk(sim, rng, frames)
         goals = _goal_sets(sim, rng, count=3)
         passes: dict[str, list[float]] = {"render_fps": [], "raw_raster_fps": [], "step_fps": []}
@@ -80,7 +95,8 @@ def run_sim_benchmark(
         field_s = median_seconds(lambda: GeodesicField(sim.grid, goals[0]), repeats=5)
         record("field_build_ms", field_s * 1e3, "ms")
         record("geodesic_query_us", _query_us(sim, GeodesicField(sim.grid, goals[1]), rng), "us")
-    record("sim_rss_mb", _rss_of_fresh_simulator(seed), "MiB")
+    if scene is None:
+        record("sim_rss_mb", _rss_of_fresh_simulator(seed), "MiB")
     return figures
 
 

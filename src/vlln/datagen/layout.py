@@ -43,6 +43,7 @@ from vlln.datagen.goals import Goal
 from vlln.datagen.trajectory import Trajectory
 from vlln.sim.agent import Action
 from vlln.sim.camera import CameraSpec, Position
+from vlln.tasks.episode import scene_name
 
 FORMAT_VERSION = "vlln-trajectories/2.0"
 CHUNK_SIZE = 1000
@@ -62,8 +63,8 @@ _OPENCV_TO_OPENGL = np.diag([1.0, -1.0, -1.0])
 
 
 def house_dir_name(scene_id: str) -> str:
-    """``vlln/house_00003`` -> ``house_00003``: one folder per scene."""
-    return scene_id.rstrip("/").rsplit("/", 1)[-1]
+    """``vlln/house_00003/house_00003.glb`` -> ``house_00003``: one folder per scene."""
+    return scene_name(scene_id.rstrip("/"))
 
 
 def camera_setting(spec: CameraSpec, camera: str) -> str:

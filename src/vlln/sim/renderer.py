@@ -56,6 +56,9 @@ class Frame:
         )
 
 
+MAX_CHUNK_CORNERS = 3 * 1024  # triangle corners per culling chunk at most
+
+
 @dataclass(frozen=True)
 class DrawList:
     """The vertex buffer to upload, and which of its triangles to draw per frame, in what order.
@@ -98,7 +101,12 @@ class DrawList:
         corners = rank[unique_of_corner.ravel()].astype(np.uint32)
 
         positions = records["position"].astype(np.float64)
-        starts = np.flatnonzero(np.r_[True, ids[1:] != ids[:-1]]).astype(np.int64)
+        run_start = np.r_[True, ids[1:] != ids[:-1]]
+        # Long runs (a scan's walls and floors) are cut into pieces that can be culled apart.
+        run_index = np.cumsum(run_start) - 1
+        corner_in_run = np.arange(len(ids)) - np.flatnonzero(run_start)[run_index]
+        cut = run_start | ((corner_in_run % MAX_CHUNK_CORNERS) == 0)
+        starts = np.flatnonzero(cut).astype(np.int64)
         counts = np.diff(np.r_[starts, len(ids)]).astype(np.int64)
         low = np.minimum.reduceat(positions, starts)
         high = np.maximum.reduceat(positions, starts)

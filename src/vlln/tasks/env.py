@@ -49,7 +49,9 @@ from vlln.oracle.protocol import EpisodeContext, Oracle, Question
 from vlln.sim.agent import Action, AgentState, MotionConfig
 from vlln.sim.camera import CameraSpec
 from vlln.sim.follower import GreedyFollower
+from vlln.sim.navgrid import Point2
 from vlln.sim.simulator import Simulator
+from vlln.sim.viewpoints import view_points
 from vlln.tasks.episode import Episode
 from vlln.tasks.record import DialogTurn, EndReason, EpisodeRecord, ModelCall
 from vlln.tasks.scenes import SceneCache
@@ -136,9 +138,7 @@ class NavigationEnv:
         self.sim: Simulator = self.scenes.get(episode.scene_id)
         house = self.sim.house
         self.targets = self._goal_instances(episode)
-        self.goal_points = [
-            (vp.position[0], vp.position[2]) for goal in episode.goals for vp in goal.view_points
-        ]
+        self.goal_points = self._goal_points(episode)
         self.field = self.sim.geodesic_field(self.goal_points)
         self.follower = GreedyFollower(
             self.sim.grid, self.field, self.config.success_radius, self.sim.config.motion
@@ -417,12 +417,40 @@ class NavigationEnv:
         instance_id = best[3]
         return instance_id, house.instance(instance_id).category
 
+    def _goal_points(self, episode: Episode) -> list[Point2]:
+        """The goals' view points; a goal listing none gets those of its box (reference §1)."""
+        points: list[Point2] = []
+        for k, goal in enumerate(episode.goals):
+            if goal.view_points:
+                points += [(vp.position[0], vp.position[2]) for vp in goal.view_points]
+                continue
+            if goal.bbox is not None:
+                x0, y0, z0, x1, y1, z1 = goal.bbox
+                box = Box3((x0, y0, z0), (x1, y1, z1))
+            elif k < len(self.targets):
+                box = self.targets[k].box
+            else:
+                box = Box3(goal.position, goal.position)
+            points += view_points(self.sim.grid, box)
+        if not points:
+            raise ConfigError(
+                f"episode {episode.episode_id} in {episode.scene_id}: no goal has a navigable "
+                "view point"
+            )
+        return points
+
     def _goal_instances(self, episode: Episode) -> list[ObjectInstance]:
         house = self.sim.house
         if self.config.task == TaskType.OBJECTNAV:
             found = house.instances_of(episode.object_category)
         else:
-            found = [house.instance(int(i)) for i in episode.instruction.instance_id]
+            try:
+                found = [house.instance_for_key(i) for i in episode.instruction.instance_id]
+            except KeyError as error:
+                raise ConfigError(
+                    f"episode {episode.episode_id}: {error.args[0]}; the episode file and the "
+                    "scene do not match"
+                ) from None
         if not found:
             raise ConfigError(
                 f"episode {episode.episode_id} names no goal instance of "

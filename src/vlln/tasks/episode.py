@@ -13,10 +13,24 @@ A file is gzip-compressed JSON ``{"episodes": [...]}``; each episode is::
 in the Habitat frame that vlln uses throughout (:mod:`vlln.world.frame`); ``goals[0]`` is the
 target. Extra keys of our own go into :attr:`Episode.info`, written as the episode's ``"info"``
 key only when it is not empty; the reference loader (a Habitat ``Episode``) accepts ``info``,
-so such files still load there. A top-level ``"category_to_task_category_id"``, which the
-reference loader also accepts, is ignored. Anything else the reference would choke on is a
-:class:`DataFormatError` naming the file, the episode (index and id), the field, and what
-was expected.
+so such files still load there.
+
+Reading accepts every variant the reference accepts (reference-formats §1): top-level extras
+(``category_to_task_category``, ...) are ignored, and so are Habitat's episode extras
+(:data:`IGNORED_EPISODE_KEYS`, InternNav's ``frames``) and Habitat's goal extras
+(``object_id``, ``object_name``, ...); ``episode_id`` may be an integer; a goal may lack
+``radius`` and ``bbox``, and its ``view_points`` may be empty (the environment computes
+them); ``instruction_info`` may be missing or null; a missing or null ``object_category`` is
+taken from the target goal's ``object_category``, else from an instance id such as
+``"3/chair_12"``, else from an instruction "... the <category>.". Anything else the reference
+would choke on is a :class:`DataFormatError` naming the file, the episode (index and id), the
+field, and what was expected.
+
+Writing follows the reference evaluator's conventions: decimal episode ids unique per file (it
+calls ``int(episode_id)``), instructions ending with a full stop (it drops the last
+character), and ``scene_id`` shaped ``<root>/<scene>/<scene>.glb`` (it takes the scene folder
+as ``scene_id.split('/')[-2]``); :func:`reference_convention_problems` lists breaches, and the
+split builder refuses to write episodes with any.
 
 Writing is atomic and deterministic: the same episodes give the same bytes (key order fixed,
 gzip header time 0, no file name in the header), and a file is checked by the reader's rules
@@ -28,6 +42,7 @@ from __future__ import annotations
 import gzip
 import json
 import math
+import re
 import zlib
 from collections.abc import Iterable
 from dataclasses import dataclass, field
@@ -41,7 +56,21 @@ from vlln.world.model import Point3
 Quaternion = tuple[float, float, float, float]  # [x, y, z, w]
 BBox = tuple[float, float, float, float, float, float]  # [minx, miny, minz, maxx, maxy, maxz]
 
-_IGNORED_TOP_LEVEL_KEYS = ("category_to_task_category_id",)
+IGNORED_EPISODE_KEYS = (
+    "scene_dataset_config",
+    "additional_obj_config_paths",
+    "shortest_paths",
+    "start_room",
+    "frames",
+)
+IGNORED_GOAL_KEYS = (
+    "object_id",
+    "object_name",
+    "object_name_id",
+    "object_category",
+    "room_id",
+    "room_name",
+)
 
 
 @dataclass(frozen=True)
@@ -53,11 +82,12 @@ class ViewPoint:
 
 @dataclass(frozen=True)
 class Goal:
-    """One goal instance: its centre, box and view points (``radius`` may be unknown)."""
+    """One goal instance: its centre, box and view points (``radius`` and ``bbox`` may be
+    unknown; no view points means the environment computes them from the box)."""
 
     position: Point3
     radius: float | None
-    bbox: BBox
+    bbox: BBox | None
     view_points: tuple[ViewPoint, ...]
 
 
@@ -92,17 +122,7 @@ class Episode:
             "start_position": list(self.start_position),
             "start_rotation": list(self.start_rotation),
             "object_category": self.object_category,
-            "goals": [
-                {
-                    "position": list(goal.position),
-                    "radius": goal.radius,
-                    "bbox": list(goal.bbox),
-                    "view_points": [
-                        {"agent_state": {"position": list(vp.position)}} for vp in goal.view_points
-                    ],
-                }
-                for goal in self.goals
-            ],
+            "goals": [_goal_json(goal) for goal in self.goals],
             "instruction": {
                 "task_type": self.instruction.task_type,
                 "instruction_text": self.instruction.instruction_text,
@@ -126,6 +146,16 @@ class Episode:
             raise DataFormatError(
                 f"{where}: field {err.field!r}: expected {err.expected}, got {shown}"
             ) from None
+
+
+def _goal_json(goal: Goal) -> dict[str, Any]:
+    data: dict[str, Any] = {"position": list(goal.position), "radius": goal.radius}
+    if goal.bbox is not None:
+        data["bbox"] = list(goal.bbox)
+    data["view_points"] = [
+        {"agent_state": {"position": list(vp.position)}} for vp in goal.view_points
+    ]
+    return data
 
 
 def read_episodes(path: str | Path) -> list[Episode]:
@@ -159,6 +189,35 @@ def write_episodes(path: str | Path, episodes: Iterable[Episode]) -> None:
     write_bytes_atomic(path, blob)
 
 
+def reference_convention_problems(episodes: Iterable[Episode]) -> list[str]:
+    """What in these episodes the reference evaluator would misread (module doc), one line
+    each; the split builder refuses to write episodes with any."""
+    problems: list[str] = []
+    seen: set[int] = set()
+    for index, episode in enumerate(episodes):
+        where = f"episode {index} (episode_id {episode.episode_id!r})"
+        if not episode.episode_id.isdecimal() or int(episode.episode_id) in seen:
+            problems.append(f"{where}: the id is not a decimal string unique in the file")
+        else:
+            seen.add(int(episode.episode_id))
+        if not episode.instruction.instruction_text.endswith("."):
+            problems.append(f"{where}: the instruction does not end with a full stop")
+        parts = episode.scene_id.split("/")
+        if len(parts) < 2 or parts[-1] != f"{parts[-2]}.glb":
+            problems.append(
+                f"{where}: scene_id {episode.scene_id!r} is not <root>/<scene>/<scene>.glb"
+            )
+    return problems
+
+
+def scene_name(scene_id: str) -> str:
+    """The scene a ``scene_id`` names, as the reference reads it: its folder, else its stem."""
+    parts = scene_id.split("/")
+    if len(parts) >= 2 and parts[-1].endswith(".glb"):
+        return parts[-2]
+    return parts[-1].removesuffix(".glb")
+
+
 # --- validation -------------------------------------------------------------------------
 
 
@@ -178,9 +237,6 @@ class _FieldError(Exception):
 def _parse_file(data: Any, source: str) -> list[Episode]:
     if not isinstance(data, dict) or "episodes" not in data:
         raise DataFormatError(f"{source}: expected a JSON object with an 'episodes' list")
-    unknown = sorted(set(data) - {"episodes", *_IGNORED_TOP_LEVEL_KEYS})
-    if unknown:
-        raise DataFormatError(f"{source}: unknown top-level keys {unknown}; expected 'episodes'")
     if not isinstance(data["episodes"], list):
         raise DataFormatError(f"{source}: 'episodes' must be a list, got {data['episodes']!r:.80}")
     episodes = []
@@ -193,12 +249,16 @@ def _parse_file(data: Any, source: str) -> list[Episode]:
 
 
 def _check_keys(
-    data: Any, name: str, required: tuple[str, ...], optional: tuple[str, ...] = ()
+    data: Any,
+    name: str,
+    required: tuple[str, ...],
+    optional: tuple[str, ...] = (),
+    ignored: tuple[str, ...] = (),
 ) -> dict[str, Any]:
     if not isinstance(data, dict):
         raise _FieldError(name or "episode", "a JSON object", data)
     prefix = f"{name}." if name else ""
-    unknown = sorted(set(data) - set(required) - set(optional))
+    unknown = sorted(set(data) - set(required) - set(optional) - set(ignored))
     if unknown:
         raise _FieldError(
             prefix + unknown[0], f"only the keys {[*required, *optional]}", data[unknown[0]]
@@ -239,18 +299,26 @@ def _texts(value: Any, name: str) -> tuple[str, ...]:
     return tuple(_text(v, f"{name}[{i}]") for i, v in enumerate(value))
 
 
+def _id_text(value: Any, name: str) -> str:
+    """An id written as a string or an integer (hand-made and Habitat files use both)."""
+    if isinstance(value, int) and not isinstance(value, bool):
+        return str(value)
+    if not isinstance(value, str):
+        raise _FieldError(name, "a string or an integer", value)
+    return value
+
+
 def _parse_episode(data: Any) -> Episode:
-    optional = ("info",)
+    optional = ("info", "object_category")
     required = (
         "episode_id",
         "scene_id",
         "start_position",
         "start_rotation",
-        "object_category",
         "goals",
         "instruction",
     )
-    data = _check_keys(data, "", required, optional)
+    data = _check_keys(data, "", required, optional, IGNORED_EPISODE_KEYS)
     goals = data["goals"]
     if not isinstance(goals, list) or not goals:
         raise _FieldError("goals", "a non-empty list of goals (goals[0] is the target)", goals)
@@ -258,37 +326,76 @@ def _parse_episode(data: Any) -> Episode:
     if info is not None and not isinstance(info, dict):
         raise _FieldError("info", "a JSON object or null", info)
     x, y, z, w = _numbers(data["start_rotation"], "start_rotation", 4)
+    instruction = _parse_instruction(data["instruction"])
     return Episode(
-        episode_id=_text(data["episode_id"], "episode_id"),
+        episode_id=_id_text(data["episode_id"], "episode_id"),
         scene_id=_text(data["scene_id"], "scene_id"),
         start_position=_point(data["start_position"], "start_position"),
         start_rotation=(x, y, z, w),
-        object_category=_text(data["object_category"], "object_category"),
+        object_category=_category_of(data, instruction),
         goals=tuple(_parse_goal(goal, f"goals[{i}]") for i, goal in enumerate(goals)),
-        instruction=_parse_instruction(data["instruction"]),
+        instruction=instruction,
         info=dict(info or {}),
     )
 
 
+_INSTRUCTION_CATEGORY = re.compile(r"\bthe ([a-z][a-z ]*?)[.,;]", re.IGNORECASE)
+
+
+def _category_of(data: dict[str, Any], instruction: Instruction) -> str:
+    """``object_category``, else the target goal's, else from an instance id, else the text."""
+    given = data.get("object_category")
+    if given is not None:
+        return _text(given, "object_category")
+    target = data["goals"][0]
+    from_goal = target.get("object_category") if isinstance(target, dict) else None
+    if isinstance(from_goal, str) and from_goal:
+        return from_goal
+    for instance_id in instruction.instance_id:
+        category = category_of_instance_key(instance_id)
+        if category:
+            return category
+    match = _INSTRUCTION_CATEGORY.search(instruction.instruction_text)
+    if match is not None:
+        return match.group(1).strip().lower()
+    raise _FieldError(
+        "object_category",
+        "a category here, in goals[0].object_category, in an instance id such as "
+        "'3/chair_12' or in an instruction '... the <category>.'",
+        _Absent(),
+    )
+
+
+def category_of_instance_key(key: str) -> str:
+    """The category an instance id such as ``"3/chair_12"`` names (``""`` for ``"12"``)."""
+    match = re.fullmatch(r"(?:.*/)?([^/]*?)_(\d+)", key)
+    return "" if match is None else match.group(1).replace("_", " ")
+
+
 def _parse_goal(data: Any, name: str) -> Goal:
-    data = _check_keys(data, name, ("position", "radius", "bbox", "view_points"))
-    radius = data["radius"]
+    data = _check_keys(
+        data, name, ("position",), ("radius", "bbox", "view_points"), IGNORED_GOAL_KEYS
+    )
+    radius = data.get("radius")
     if radius is not None:
         (radius,) = _numbers([radius], f"{name}.radius", 1)
-    bbox = _numbers(data["bbox"], f"{name}.bbox", 6)
-    view_points = data["view_points"]
+    bbox: BBox | None = None
+    if data.get("bbox") is not None:
+        b = _numbers(data["bbox"], f"{name}.bbox", 6)
+        bbox = (b[0], b[1], b[2], b[3], b[4], b[5])
+    view_points = data.get("view_points") or []
     if not isinstance(view_points, list):
         raise _FieldError(f"{name}.view_points", "a list of view points", view_points)
     points = []
     for i, view_point in enumerate(view_points):
         vp_name = f"{name}.view_points[{i}]"
         state = _check_keys(view_point, vp_name, ("agent_state",))["agent_state"]
-        state = _check_keys(state, f"{vp_name}.agent_state", ("position",))
+        state = _check_keys(state, f"{vp_name}.agent_state", ("position",), (), ("rotation",))
         points.append(ViewPoint(_point(state["position"], f"{vp_name}.agent_state.position")))
     return Goal(
         position=_point(data["position"], f"{name}.position"),
         radius=radius,
-        bbox=(bbox[0], bbox[1], bbox[2], bbox[3], bbox[4], bbox[5]),
+        bbox=bbox,
         view_points=tuple(points),
     )
 
@@ -297,9 +404,12 @@ def _parse_instruction(data: Any) -> Instruction:
     required = ("task_type", "instruction_text", "instance_id")
     data = _check_keys(data, "instruction", required, ("instruction_info",))
     info = data.get("instruction_info")
+    ids = data["instance_id"]
+    if not isinstance(ids, list):
+        raise _FieldError("instruction.instance_id", "a list of instance ids", ids)
     return Instruction(
         task_type=_text(data["task_type"], "instruction.task_type"),
         instruction_text=_text(data["instruction_text"], "instruction.instruction_text"),
-        instance_id=_texts(data["instance_id"], "instruction.instance_id"),
+        instance_id=tuple(_id_text(v, f"instruction.instance_id[{i}]") for i, v in enumerate(ids)),
         instruction_info=None if info is None else _texts(info, "instruction.instruction_info"),
     )

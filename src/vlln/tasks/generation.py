@@ -35,12 +35,20 @@ from scipy.sparse import csgraph
 from tqdm import tqdm
 
 from vlln import __version__
-from vlln.errors import ConfigError
+from vlln.errors import ConfigError, DataFormatError
 from vlln.files import write_text_atomic
 from vlln.sim.navgrid import Point2
 from vlln.sim.simulator import Simulator
 from vlln.sim.viewpoints import view_points
-from vlln.tasks.episode import Episode, Goal, Instruction, ViewPoint, read_episodes, write_episodes
+from vlln.tasks.episode import (
+    Episode,
+    Goal,
+    Instruction,
+    ViewPoint,
+    read_episodes,
+    reference_convention_problems,
+    write_episodes,
+)
 from vlln.tasks.instructions import AmbiguousTargetError, InstructionWriter, partial_instruction
 from vlln.tasks.scenes import SceneCache, procedural_scene_id
 from vlln.tasks.spec import TaskType
@@ -278,7 +286,7 @@ class _HouseContext:
             distances = (to_target[start], to_target[start], to_category[start])
             iign, ign, objectnav = (
                 Episode(
-                    episode_id=f"{self.house.seed}_{target.id}_{k}",
+                    episode_id=episode_id(int(self.house.seed or 0), target.id, k),
                     scene_id=self.scene_id,
                     start_position=(x, self.grid.floor_y, z),
                     start_rotation=(qx, qy, qz, qw),
@@ -293,9 +301,23 @@ class _HouseContext:
         return made
 
 
-def _id_order(episode_id: str) -> tuple[int, ...]:
-    """``"<seed>_<target>_<k>"`` as numbers, so episodes sort by target, then start."""
-    return tuple(int(part) for part in episode_id.split("_"))
+_TARGETS_PER_HOUSE = 10_000
+_STARTS_PER_TARGET = 100
+
+
+def episode_id(house_seed: int, target_id: int, start: int) -> str:
+    """A decimal id unique per file (the reference evaluator reads ids with ``int()``):
+    ``<seed><target, 4 digits><start, 2 digits>``, so ids sort by house, target, then start."""
+    if not (0 <= target_id < _TARGETS_PER_HOUSE and 0 <= start < _STARTS_PER_TARGET):
+        raise ConfigError(
+            f"episode ids hold target ids below {_TARGETS_PER_HOUSE} and fewer than "
+            f"{_STARTS_PER_TARGET} starts per target; got target {target_id}, start {start}"
+        )
+    return str((house_seed * _TARGETS_PER_HOUSE + target_id) * _STARTS_PER_TARGET + start)
+
+
+def _id_order(episode_id: str) -> int:
+    return int(episode_id)
 
 
 def _check_count(name: str, value: object, low: int) -> None:
@@ -356,6 +378,9 @@ def build_split(
             cache.close()
     out = Path(out_dir)
     for task in TaskType:
+        problems = reference_convention_problems(episodes[task])
+        if problems:
+            raise DataFormatError(f"{split} {task.value} episodes: {problems[0]}")
         write_episodes(episode_path(out, split, task), episodes[task])
     totals = HouseStats(-1, "", 0)
     for stats in per_house:

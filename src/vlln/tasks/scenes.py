@@ -1,7 +1,10 @@
 """Scene ids and the simulators behind them.
 
-Procedural houses are named ``vlln/house_<seed>`` in episode files (the released data uses a
-path to a scan there); :class:`SceneCache` builds a simulator per scene and keeps the most
+Procedural houses are named ``vlln/house_<seed>/house_<seed>.glb`` in episode files, the shape
+of the released data's paths to scans (``<root>/<scene>/<scene>.glb``, whose folder the
+reference reads as the scene); the short ``vlln/house_<seed>`` of older files is read too.
+Other scene ids name an imported scan: the folder ``<scenes dir>/<scene>`` (see
+:mod:`vlln.world.scans`). :class:`SceneCache` builds a simulator per scene and keeps the most
 recent few, since runners visit episodes scene by scene.
 """
 
@@ -9,24 +12,32 @@ from __future__ import annotations
 
 import re
 from collections import OrderedDict
+from pathlib import Path
 
 from vlln.errors import ConfigError
 from vlln.sim.simulator import Simulator, SimulatorConfig
+from vlln.tasks.episode import scene_name
 from vlln.world.generator import generate_house
+from vlln.world.model import House
+from vlln.world.scans import load_scene
 
-_PROCEDURAL = re.compile(r"^vlln/house_(\d+)$")
+_PROCEDURAL = re.compile(r"^vlln/house_(\d+)(?:/house_\1\.glb)?$")
 
 
 def procedural_scene_id(seed: int) -> str:
-    return f"vlln/house_{seed:05d}"
+    return f"vlln/house_{seed:05d}/house_{seed:05d}.glb"
+
+
+def is_procedural(scene_id: str) -> bool:
+    return _PROCEDURAL.match(scene_id) is not None
 
 
 def procedural_seed(scene_id: str) -> int:
     match = _PROCEDURAL.match(scene_id)
     if match is None:
         raise ConfigError(
-            f"scene {scene_id!r} is not a built-in procedural house (vlln/house_<seed>); "
-            "importers for other scenes are separate"
+            f"scene {scene_id!r} is not a built-in procedural house "
+            "(vlln/house_<seed>/house_<seed>.glb); pass the folder of imported scenes (--scenes)"
         )
     return int(match.group(1))
 
@@ -34,9 +45,15 @@ def procedural_seed(scene_id: str) -> int:
 class SceneCache:
     """Simulators by scene id, least recently used dropped first."""
 
-    def __init__(self, config: SimulatorConfig | None = None, capacity: int = 2) -> None:
+    def __init__(
+        self,
+        config: SimulatorConfig | None = None,
+        capacity: int = 2,
+        scenes_dir: str | Path | None = None,
+    ) -> None:
         self.config = config
         self.capacity = capacity
+        self.scenes_dir = None if scenes_dir is None else Path(scenes_dir)
         self._sims: OrderedDict[str, Simulator] = OrderedDict()
 
     def get(self, scene_id: str) -> Simulator:
@@ -44,12 +61,17 @@ class SceneCache:
         if sim is not None:
             self._sims.move_to_end(scene_id)
             return sim
-        sim = Simulator(generate_house(procedural_seed(scene_id)), self.config)
+        sim = Simulator(self._house(scene_id), self.config)
         self._sims[scene_id] = sim
         while len(self._sims) > self.capacity:
             _, old = self._sims.popitem(last=False)
             old.close()
         return sim
+
+    def _house(self, scene_id: str) -> House:
+        if is_procedural(scene_id) or self.scenes_dir is None:
+            return generate_house(procedural_seed(scene_id))
+        return load_scene(self.scenes_dir / scene_name(scene_id))
 
     def close(self) -> None:
         for sim in self._sims.values():

@@ -182,7 +182,7 @@ class EpisodeSession:
         agent = (
             None
             if spec.human_navigator
-            else make_agent(spec.navigator, self._seed("agent"), options)
+            else make_agent(spec.navigator, self._seed("agent"), options=options)
         )
         live = self._make_oracle(self.oracle_kind, self._seed("oracle"), self.board)
         replies = [step.reply for step in self._replay if step.reply is not None]

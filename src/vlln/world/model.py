@@ -148,12 +148,24 @@ class House:
     relations: list[Relation] = field(default_factory=list)
     geometry: HouseGeometry | None = None
     seed: int | None = None
+    # Instance ids as a file spells them ("3/chair_12") -> our integer ids.
+    instance_keys: dict[str, int] = field(default_factory=dict)
 
     def instance(self, instance_id: int) -> ObjectInstance:
         for inst in self.instances:
             if inst.id == instance_id:
                 return inst
         raise KeyError(f"house {self.name!r} has no instance {instance_id}")
+
+    def instance_for_key(self, key: str) -> ObjectInstance:
+        """The instance an episode file names: by a key of :attr:`instance_keys`, a decimal
+        id, or the trailing number of a key like ``"3/chair_12"`` (the scan's object index)."""
+        if key in self.instance_keys:
+            return self.instance(self.instance_keys[key])
+        tail = key.rsplit("_", 1)[-1].rsplit("/", 1)[-1].strip()
+        if tail.isdecimal():
+            return self.instance(int(tail))
+        raise KeyError(f"house {self.name!r} has no instance {key!r}")
 
     def room(self, room_id: int) -> Room:
         for room in self.rooms:

@@ -55,7 +55,7 @@ def collect_trajectory(
     """Walk ``episode`` in ``sim`` (its house) and return every step and dialog exchange."""
     config = config or CollectorConfig()
     house = sim.house
-    target = house.instance(int(episode.instruction.instance_id[0]))
+    target = house.instance_for_key(episode.instruction.instance_id[0])
     points = tuple((vp.position[0], vp.position[2]) for vp in episode.goals[0].view_points)
     field_ = sim.geodesic_field(points)
     follower = LatticeFollower(
