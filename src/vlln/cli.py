@@ -69,6 +69,7 @@ def _eval(args: argparse.Namespace) -> int:
         cache_dir=cache_dir,
         stop_after=args.stop_after,
         progress=not args.quiet,
+        sweep=not args.no_sweep,
     )
     state = "complete" if outcome.complete else "incomplete: rerun the same command to go on"
     print(
@@ -142,6 +143,11 @@ def _add_eval_commands(commands: argparse._SubParsersAction[argparse.ArgumentPar
     run.add_argument("--cache-dir", help="where built splits are kept (default ~/.cache/vlln)")
     run.add_argument("--stop-after", type=int, help="play at most N episodes now, then stop")
     run.add_argument("--quiet", action="store_true", help="no progress bar")
+    run.add_argument(
+        "--no-sweep",
+        action="store_true",
+        help="play every budget on its own instead of sharing prefixes (same records, slower)",
+    )
     run.set_defaults(handler=_eval)
 
     score = commands.add_parser("score", help="recompute every metric from run directories")

@@ -6,10 +6,15 @@ budget of 5 (the rule oracle answering), over a fixed set of test episodes (the 
 the house's simulator built before the clock starts, so the figures are the steady state of a
 long run, where both are amortised over dozens of episodes per house; ``scene_load_s`` gives
 that one-off cost separately.
+
+``sweep_cost_ratio`` is the time of the MSP sweep (budgets 0-5 of the same episodes, played by
+prefix sharing, :mod:`vlln.eval.sweep`) divided by the time of the budget-5 run: six
+independent runs would cost about 6.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import tempfile
 import time
 from pathlib import Path
@@ -54,6 +59,11 @@ def run_eval_benchmark(
             outcome = run_evaluation(
                 config, Path(out), cache_dir=cache_dir, progress=False, scenes=scenes
             )
+        sweep = dataclasses.replace(config, budgets=tuple(range(BENCH_BUDGET + 1)))
+        with tempfile.TemporaryDirectory(prefix="vlln-bench-sweep-") as out:
+            swept = run_evaluation(
+                sweep, Path(out), cache_dir=cache_dir, progress=False, scenes=scenes
+            )
     finally:
         scenes.close()
     n = len(outcome.records)
@@ -66,4 +76,6 @@ def run_eval_benchmark(
     note("actions_per_second", actions / outcome.seconds, "actions/s")
     note("success_rate", 100.0 * sum(map(success, outcome.records)) / n, "%")
     note("mean_questions_per_episode", sum(len(r.dialog) for r in outcome.records) / n, "count")
+    note("sweep_seconds", swept.seconds, "s")
+    note("sweep_cost_ratio", swept.seconds / outcome.seconds, "x")
     return figures
