@@ -27,6 +27,13 @@ def _world_show(args: argparse.Namespace) -> int:
 def _bench_sim(args: argparse.Namespace) -> int:
     from vlln.bench.sim import run_sim_benchmark
 
+    if args.envs is not None:
+        from vlln.bench.parallel import run_parallel_benchmark
+
+        run_parallel_benchmark(
+            args.envs, seed=args.seed, frames=args.frames, repeats=args.repeats, as_json=args.json
+        )
+        return 0
     run_sim_benchmark(seed=args.seed, frames=args.frames, repeats=args.repeats, as_json=args.json)
     return 0
 
@@ -336,6 +343,9 @@ def build_parser() -> argparse.ArgumentParser:
     sim.add_argument("--frames", type=int, default=300, help="frames per timing (default 300)")
     sim.add_argument("--repeats", type=int, default=3, help="passes per frame rate (default 3)")
     sim.add_argument("--json", action="store_true", help="print one JSON object per line")
+    sim.add_argument(
+        "--envs", type=int, help="steps/s of N environments in N processes against one (speed-up)"
+    )
     sim.set_defaults(handler=_bench_sim)
     bench_eval = bench.add_parser("eval", help="episodes per hour of the evaluation runner")
     bench_eval.add_argument("--episodes", type=int, default=6, help="episodes (default 6)")
