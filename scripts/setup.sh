@@ -17,18 +17,29 @@ have_egl() {
       ls /usr/lib/*/dri/swrast_dri.so /usr/lib/*/dri/llvmpipe_dri.so >/dev/null 2>&1; }
 }
 
-if ! have_egl; then
-  echo "Installing the system packages for headless rendering: libegl1 libgl1-mesa-dri"
+# apt_install WHY PACKAGE...: install Debian packages, with sudo when not root.
+apt_install() {
+  local why="$1"
+  shift
+  echo "Installing $why: $*"
   SUDO=""
   if [ "$(id -u)" -ne 0 ]; then
     if command -v sudo >/dev/null; then SUDO="sudo"; else
-      echo "error: libegl1 and libgl1-mesa-dri are missing and this user cannot install them;" \
-        "ask an administrator to run: apt-get install libegl1 libgl1-mesa-dri" >&2
+      echo "error: $* missing and this user cannot install them;" \
+        "ask an administrator to run: apt-get install $*" >&2
       exit 1
     fi
   fi
   $SUDO apt-get update -q
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q libegl1 libgl1-mesa-dri
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q "$@"
+}
+
+if ! have_egl; then
+  apt_install "the system packages for headless rendering" libegl1 libgl1-mesa-dri
+fi
+# The test that plays an episode video in a browser drives Debian's chromium (headless).
+if ! command -v chromium >/dev/null; then
+  apt_install "a headless browser for the report-video test" chromium
 fi
 
 if [ ! -x .venv/bin/python ]; then

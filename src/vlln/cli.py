@@ -115,6 +115,7 @@ def _report(args: argparse.Namespace) -> int:
         samples_per_run=args.samples,
         success_radius=args.success_radius,
         os_radius=args.os_radius,
+        videos_per_run=args.videos,
     )
     print(f"wrote {len(files)} files to {out}: {out / 'report.md'} and {out / 'report.html'}")
     return 0
@@ -164,6 +165,9 @@ def _add_eval_commands(commands: argparse._SubParsersAction[argparse.ArgumentPar
     report.add_argument("dirs", nargs="+", help="run directories, compared side by side")
     report.add_argument("--out", help="report directory (default DIR/report for one run)")
     report.add_argument("--samples", type=int, default=4, help="episode maps per run (default 4)")
+    report.add_argument(
+        "--videos", type=int, default=0, help="episode videos per run (MP4, needs vlln[video])"
+    )
     for command in (score, report):
         command.add_argument(
             "--os-radius",
@@ -210,6 +214,24 @@ def _bench_oracle(args: argparse.Namespace) -> int:
 
     run_oracle_benchmark(seed=args.seed, questions=args.questions, as_json=args.json)
     return 0
+
+
+def _video(args: argparse.Namespace) -> int:
+    from vlln.eval.videos import make_video
+
+    out = Path(args.out) if args.out else None
+    path, seconds = make_video(Path(args.source), out, args.episode, args.budget)
+    print(f"wrote {path} ({seconds:.1f} s)")
+    return 0
+
+
+def _add_video_command(commands: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
+    video = commands.add_parser("video", help="an MP4 of an episode: view, map, dialog captions")
+    video.add_argument("source", help="a run directory, a results .jsonl or a record .json")
+    video.add_argument("--episode", help="episode id (default: the one with the most dialog)")
+    video.add_argument("--budget", type=int, help="dialog budget (default: the largest)")
+    video.add_argument("--out", help="MP4 file (default SOURCE_DIR/videos/video_<id>_b<k>.mp4)")
+    video.set_defaults(handler=_video)
 
 
 def _add_oracle_commands(commands: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
@@ -374,6 +396,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_eval_commands(commands)
     _add_oracle_commands(commands)
     _add_data_commands(commands)
+    _add_video_command(commands)
     return parser
 
 
