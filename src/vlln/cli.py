@@ -70,14 +70,28 @@ def _eval(args: argparse.Namespace) -> int:
         max_steps=args.max_steps,
     )
     cache_dir = None if args.cache_dir is None else Path(args.cache_dir)
-    outcome = run_evaluation(
-        config,
-        Path(args.out),
-        cache_dir=cache_dir,
-        stop_after=args.stop_after,
-        progress=not args.quiet,
-        sweep=not args.no_sweep,
-    )
+    if args.ray is not None:
+        from vlln.cluster.evaluation import run_ray_evaluation
+
+        outcome = run_ray_evaluation(
+            config,
+            Path(args.out),
+            address=args.ray or None,
+            cache_dir=cache_dir,
+            episodes_per_chunk=args.chunk,
+            max_retries=args.retries,
+            progress=not args.quiet,
+            sweep=not args.no_sweep,
+        )
+    else:
+        outcome = run_evaluation(
+            config,
+            Path(args.out),
+            cache_dir=cache_dir,
+            stop_after=args.stop_after,
+            progress=not args.quiet,
+            sweep=not args.no_sweep,
+        )
     state = "complete" if outcome.complete else "incomplete: rerun the same command to go on"
     print(
         f"{len(outcome.records)} of {outcome.planned} episodes in {args.out} ({state}); "
@@ -129,6 +143,24 @@ def _bench_eval(args: argparse.Namespace) -> int:
     return 0
 
 
+def _add_ray_options(parser: argparse.ArgumentParser, chunks: bool) -> None:
+    """``--ray [ADDRESS]``, ``--retries`` and, for episodes, ``--chunk`` (docs/ray.md)."""
+    parser.add_argument(
+        "--ray",
+        nargs="?",
+        const="",
+        metavar="ADDRESS",
+        help="run on a Ray cluster (ADDRESS, 'auto', or none for RAY_ADDRESS or a local one)",
+    )
+    if chunks:
+        parser.add_argument(
+            "--chunk", type=int, default=4, help="episodes per Ray task (default 4)"
+        )
+    parser.add_argument(
+        "--retries", type=int, default=3, help="re-runs of a task whose worker died (default 3)"
+    )
+
+
 def _add_eval_commands(commands: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     """`vlln eval`, `vlln score` and `vlln report`."""
     from vlln.tasks.metrics import ORACLE_SUCCESS_RADIUS, SUCCESS_RADIUS
@@ -156,6 +188,7 @@ def _add_eval_commands(commands: argparse._SubParsersAction[argparse.ArgumentPar
         action="store_true",
         help="play every budget on its own instead of sharing prefixes (same records, slower)",
     )
+    _add_ray_options(run, chunks=True)
     run.set_defaults(handler=_eval)
 
     score = commands.add_parser("score", help="recompute every metric from run directories")
@@ -269,7 +302,21 @@ def _data_build(args: argparse.Namespace) -> int:
         houses=args.houses, split=args.split, seed=args.seed, per_house=args.per_house
     )
     shard = Shard.parse(args.shard) if args.shard else None
-    out = build_dataset(Path(args.out), config, shard=shard, progress=not args.quiet)
+    if args.ray is not None:
+        from vlln.cluster.data import build_dataset_ray
+        from vlln.errors import ConfigError
+
+        if shard is not None:
+            raise ConfigError("--shard and --ray do not mix: Ray shares the houses out itself")
+        out = build_dataset_ray(
+            Path(args.out),
+            config,
+            address=args.ray or None,
+            max_retries=args.retries,
+            progress=not args.quiet,
+        )
+    else:
+        out = build_dataset(Path(args.out), config, shard=shard, progress=not args.quiet)
     print(f"dataset in {out} (summarise it with: vlln data stats {out})")
     return 0
 
@@ -321,6 +368,7 @@ def _add_data_commands(commands: argparse._SubParsersAction[argparse.ArgumentPar
     build.add_argument("--seed", type=int, default=0, help="seed of every random choice")
     build.add_argument("--shard", help="i/n: build every n-th house, starting at the i-th")
     build.add_argument("--quiet", action="store_true", help="no progress bars")
+    _add_ray_options(build, chunks=False)
     build.set_defaults(handler=_data_build)
     stats = data.add_parser("stats", help="statistics, figure and report of a built dataset")
     stats.add_argument("dataset", help="a folder made by vlln data build")

@@ -230,7 +230,7 @@ def run_evaluation(
             )
             with bar:
                 scene: str | None = None
-                for group in _by_episode(todo):
+                for group in by_episode(todo):
                     if scene is not None and group[0].episode.scene_id != scene:
                         cache.close()  # episodes come grouped by scene: free the last house
                     scene = group[0].episode.scene_id
@@ -253,7 +253,25 @@ def run_evaluation(
     return RunOutcome(out, len(items), played, seconds, records, summary)
 
 
-def _by_episode(items: Sequence[WorkItem]) -> list[list[WorkItem]]:
+def play_items(
+    items: Sequence[WorkItem],
+    config: EvalConfig,
+    scenes: SceneCache,
+    agent_factory: AgentFactory = make_agent,
+    oracle_factory: OracleFactory = RuleOracle,
+    sweep: bool = True,
+) -> list[EpisodeRecord]:
+    """The records of ``items`` in order, as :func:`run_evaluation` plays them (without
+    writing them anywhere): what a remote worker runs for its chunk."""
+    task = TaskType.parse(config.task)
+    return [
+        record
+        for group in by_episode(items)
+        for record in _play_group(group, config, task, scenes, agent_factory, oracle_factory, sweep)
+    ]
+
+
+def by_episode(items: Sequence[WorkItem]) -> list[list[WorkItem]]:
     """Consecutive items of one episode (its budgets) as groups, in order."""
     groups: list[list[WorkItem]] = []
     for item in items:
