@@ -59,6 +59,7 @@ def build_dataset_ray(
 ) -> Path:
     """Build (or resume) the dataset into ``out`` on a Ray cluster (module doc)."""
     root = Path(out)
+    ray = connect(address)  # an unreachable cluster fails before any work
     check_settings(root, config)
     seeds = house_seeds(config.split, config.houses)
     cache = SceneCache(capacity=1)
@@ -67,7 +68,6 @@ def build_dataset_ray(
     finally:
         cache.close()
     todo = [seed for seed in seeds if not _finished(root, seed)]
-    ray = connect(address)
     task = remote_function(build_house_files, max_retries)
     config_ref = ray.put(config)
     refs = []

@@ -60,10 +60,10 @@ def run_ray_evaluation(
 ) -> RunOutcome:
     """Play ``config`` on a Ray cluster into ``out`` (module doc); resumes like the runner."""
     make_agent(config.agent, config.seed)  # an unknown agent fails before any work
+    ray = connect(address)  # an unreachable cluster too
     items = plan_work(load_episodes(config, cache_dir, progress), config)
     run_dir = RunDirectory(out)
     run_dir.prepare(config)
-    ray = connect(address)
     task = remote_function(play_eval_chunk, max_retries)
     played = 0
     started = time.perf_counter()
