@@ -22,7 +22,7 @@ def test_sweep_records_equal_independent_runs(
 ) -> None:
     settings: dict[str, Any] = {
         "agent": "frontier",
-        "episodes": 2,
+        "episodes": 1,
         "budgets": (0, 1, 2, 3, 4, 5),
         "max_steps": 120,
     }
