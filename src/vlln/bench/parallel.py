@@ -6,7 +6,10 @@ all start together after a barrier, and the rate is every process's steps over t
 the first start to the last finish. On a CPU renderer (Mesa llvmpipe) the rasteriser's threads
 are shared out: each of N processes gets ``cores // N`` (``LP_NUM_THREADS``), so one
 environment alone may use every core. ``envs_speedup`` compares N processes with one, both
-measured in the same invocation, ``repeats`` times interleaved (median).
+measured in the same invocation, ``repeats`` times interleaved (median). The CPU time per
+step (every thread of the process, the rasteriser's included) is reported beside the rates:
+it does not depend on what else the machine runs, so it shows whether N processes cost more
+CPU per step than one when a busy machine hides the speed-up.
 """
 
 from __future__ import annotations
@@ -33,24 +36,29 @@ def run_parallel_benchmark(
     if envs < 1:
         raise ConfigError(f"--envs must be at least 1, got {envs}")
     cores = len(os.sched_getaffinity(0))  # the cores this process may use (taskset, cgroups)
-    one: list[float] = []
-    many: list[float] = []
+    one: list[tuple[float, float]] = []
+    many: list[tuple[float, float]] = []
     for _ in range(repeats):
         one.append(_steps_per_second(1, seed, frames, cores))
         many.append(_steps_per_second(envs, seed, frames, cores))
+    rate_one = statistics.median(rate for rate, _ in one)
+    rate_many = statistics.median(rate for rate, _ in many)
     figures = [
         Figure("envs", envs, "count"),
         Figure("cpu_cores", cores, "count"),
-        Figure("steps_per_s_1_env", statistics.median(one), "steps/s"),
-        Figure(f"steps_per_s_{envs}_envs", statistics.median(many), "steps/s"),
-        Figure("envs_speedup", statistics.median(many) / statistics.median(one), "x"),
+        Figure("steps_per_s_1_env", rate_one, "steps/s"),
+        Figure(f"steps_per_s_{envs}_envs", rate_many, "steps/s"),
+        Figure("envs_speedup", rate_many / rate_one, "x"),
+        Figure("cpu_ms_per_step_1_env", statistics.median(cpu for _, cpu in one), "ms"),
+        Figure(f"cpu_ms_per_step_{envs}_envs", statistics.median(cpu for _, cpu in many), "ms"),
     ]
     for figure in figures:
         emit(figure, as_json)
     return figures
 
 
-def _steps_per_second(envs: int, seed: int, frames: int, cores: int) -> float:
+def _steps_per_second(envs: int, seed: int, frames: int, cores: int) -> tuple[float, float]:
+    """(steps per second of all processes together, CPU milliseconds per step)."""
     context = multiprocessing.get_context("spawn")  # a fresh GL context in every process
     barrier = context.Barrier(envs)
     results: Any = context.Queue()
@@ -68,7 +76,8 @@ def _steps_per_second(envs: int, seed: int, frames: int, cores: int) -> float:
         raise ConfigError("a benchmark process failed; run `vlln bench sim` alone to see why")
     start = min(t[0] for t in timings)
     end = max(t[1] for t in timings)
-    return sum(t[2] for t in timings) / (end - start)
+    steps = sum(t[2] for t in timings)
+    return steps / (end - start), 1e3 * sum(t[3] for t in timings) / steps
 
 
 def _walk_in_process(
@@ -86,6 +95,7 @@ def _walk_in_process(
         goals = _goal_sets(sim, rng, count=1)[0]
         _step_fps(sim, warm_up, goals)
         barrier.wait()
-        start = time.perf_counter()
+        start, cpu = time.perf_counter(), time.process_time()
         _step_fps(sim, walk, goals)
-        results.put((start, time.perf_counter(), len(walk.actions)))
+        end, cpu = time.perf_counter(), time.process_time() - cpu
+        results.put((start, end, len(walk.actions), cpu))
