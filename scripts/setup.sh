@@ -18,34 +18,31 @@ have_egl() {
       ls /usr/lib/*/dri/swrast_dri.so /usr/lib/*/dri/llvmpipe_dri.so >/dev/null 2>&1; }
 }
 
-if ! have_egl; then
-  echo "Installing the system packages for headless rendering: libegl1 libgl1-mesa-dri"
+# apt_install WHY PACKAGE...: install Debian packages, with sudo when not root.
+apt_install() {
+  local why="$1"
+  shift
+  echo "Installing $why: $*"
   SUDO=""
   if [ "$(id -u)" -ne 0 ]; then
     if command -v sudo >/dev/null; then SUDO="sudo"; else
-      echo "error: libegl1 and libgl1-mesa-dri are missing and this user cannot install them;" \
-        "ask an administrator to run: apt-get install libegl1 libgl1-mesa-dri" >&2
+      echo "error: $* missing and this user cannot install them;" \
+        "ask an administrator to run: apt-get install $*" >&2
       exit 1
     fi
   fi
   $SUDO apt-get update -q
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q libegl1 libgl1-mesa-dri
-fi
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q "$@"
+}
 
-# Headless Chromium for the web app's browser tests and `vlln bench web` (Debian's package,
-# driven by Playwright's Python client; Playwright's own browser download is never used).
+if ! have_egl; then
+  apt_install "the system packages for headless rendering" libegl1 libgl1-mesa-dri
+fi
+# Headless Chromium for the browser tests (web app, report videos) and `vlln bench web`:
+# Debian's package, driven by Playwright's Python client; Playwright's own browser download is
+# never used.
 if ! command -v chromium >/dev/null; then
-  echo "Installing the system package for the browser tests: chromium"
-  SUDO=""
-  if [ "$(id -u)" -ne 0 ]; then
-    if command -v sudo >/dev/null; then SUDO="sudo"; else
-      echo "error: chromium is missing and this user cannot install it;" \
-        "ask an administrator to run: apt-get install chromium" >&2
-      exit 1
-    fi
-  fi
-  $SUDO apt-get update -q
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q chromium
+  apt_install "a headless browser for the browser tests" chromium
 fi
 
 if [ ! -x .venv/bin/python ]; then

@@ -9,7 +9,7 @@ import sys
 from collections.abc import Callable, Sequence
 from pathlib import Path
 
-from vlln.errors import VllnError
+from vlln.errors import ConfigError, VllnError
 from vlln.web.command import add_bench_web, add_serve_commands
 
 Handler = Callable[[argparse.Namespace], int]
@@ -52,6 +52,13 @@ def _world_import(args: argparse.Namespace) -> int:
 def _bench_sim(args: argparse.Namespace) -> int:
     from vlln.bench.sim import run_sim_benchmark
 
+    if args.envs is not None:
+        from vlln.bench.parallel import run_parallel_benchmark
+
+        run_parallel_benchmark(
+            args.envs, seed=args.seed, frames=args.frames, repeats=args.repeats, as_json=args.json
+        )
+        return 0
     run_sim_benchmark(
         seed=args.seed,
         frames=args.frames,
@@ -98,18 +105,35 @@ def _eval(args: argparse.Namespace) -> int:
     from vlln.tasks.scenes import SceneCache
 
     cache_dir = None if args.cache_dir is None else Path(args.cache_dir)
-    scenes = SceneCache(scenes_dir=args.scenes)
-    try:
-        outcome = run_evaluation(
+    if args.ray is not None:
+        from vlln.cluster.evaluation import run_ray_evaluation
+
+        if args.scenes is not None:
+            raise ConfigError("--scenes and --ray do not mix yet: evaluate scanned scenes locally")
+        outcome = run_ray_evaluation(
             config,
             Path(args.out),
+            address=args.ray or None,
             cache_dir=cache_dir,
-            stop_after=args.stop_after,
+            episodes_per_chunk=args.chunk,
+            max_retries=args.retries,
             progress=not args.quiet,
-            scenes=scenes,
+            sweep=not args.no_sweep,
         )
-    finally:
-        scenes.close()
+    else:
+        scenes = SceneCache(scenes_dir=args.scenes)
+        try:
+            outcome = run_evaluation(
+                config,
+                Path(args.out),
+                cache_dir=cache_dir,
+                stop_after=args.stop_after,
+                progress=not args.quiet,
+                scenes=scenes,
+                sweep=not args.no_sweep,
+            )
+        finally:
+            scenes.close()
     state = "complete" if outcome.complete else "incomplete: rerun the same command to go on"
     print(
         f"{len(outcome.records)} of {outcome.planned} episodes in {args.out} ({state}); "
@@ -160,6 +184,7 @@ def _report(args: argparse.Namespace) -> int:
         samples_per_run=args.samples,
         success_radius=args.success_radius,
         os_radius=args.os_radius,
+        videos_per_run=args.videos,
     )
     print(f"wrote {len(files)} files to {out}: {out / 'report.md'} and {out / 'report.html'}")
     return 0
@@ -171,6 +196,24 @@ def _bench_eval(args: argparse.Namespace) -> int:
     cache_dir = None if args.cache_dir is None else Path(args.cache_dir)
     run_eval_benchmark(episodes=args.episodes, as_json=args.json, cache_dir=cache_dir)
     return 0
+
+
+def _add_ray_options(parser: argparse.ArgumentParser, chunks: bool) -> None:
+    """``--ray [ADDRESS]``, ``--retries`` and, for episodes, ``--chunk`` (docs/ray.md)."""
+    parser.add_argument(
+        "--ray",
+        nargs="?",
+        const="",
+        metavar="ADDRESS",
+        help="run on a Ray cluster (ADDRESS, 'auto', or none for RAY_ADDRESS or a local one)",
+    )
+    if chunks:
+        parser.add_argument(
+            "--chunk", type=int, default=4, help="episodes per Ray task (default 4)"
+        )
+    parser.add_argument(
+        "--retries", type=int, default=3, help="re-runs of a task whose worker died (default 3)"
+    )
 
 
 def _add_eval_commands(commands: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
@@ -207,6 +250,13 @@ def _add_eval_commands(commands: argparse._SubParsersAction[argparse.ArgumentPar
     model.add_argument("--model-timeout", type=float, help="seconds per request (default 60)")
     model.add_argument("--model-retries", type=int, help="retries per request (default 4)")
     model.add_argument("--model-cache", help="folder caching model replies (default: none)")
+
+    run.add_argument(
+        "--no-sweep",
+        action="store_true",
+        help="play every budget on its own instead of sharing prefixes (same records, slower)",
+    )
+    _add_ray_options(run, chunks=True)
     run.set_defaults(handler=_eval)
 
     score = commands.add_parser("score", help="recompute every metric from run directories")
@@ -216,6 +266,9 @@ def _add_eval_commands(commands: argparse._SubParsersAction[argparse.ArgumentPar
     report.add_argument("dirs", nargs="+", help="run directories, compared side by side")
     report.add_argument("--out", help="report directory (default DIR/report for one run)")
     report.add_argument("--samples", type=int, default=4, help="episode maps per run (default 4)")
+    report.add_argument(
+        "--videos", type=int, default=0, help="episode videos per run (MP4, needs vlln[video])"
+    )
     for command in (score, report):
         command.add_argument(
             "--os-radius",
@@ -271,6 +324,24 @@ def _bench_agent(args: argparse.Namespace) -> int:
     return 0
 
 
+def _video(args: argparse.Namespace) -> int:
+    from vlln.eval.videos import make_video
+
+    out = Path(args.out) if args.out else None
+    path, seconds = make_video(Path(args.source), out, args.episode, args.budget)
+    print(f"wrote {path} ({seconds:.1f} s)")
+    return 0
+
+
+def _add_video_command(commands: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
+    video = commands.add_parser("video", help="an MP4 of an episode: view, map, dialog captions")
+    video.add_argument("source", help="a run directory, a results .jsonl or a record .json")
+    video.add_argument("--episode", help="episode id (default: the one with the most dialog)")
+    video.add_argument("--budget", type=int, help="dialog budget (default: the largest)")
+    video.add_argument("--out", help="MP4 file (default SOURCE_DIR/videos/video_<id>_b<k>.mp4)")
+    video.set_defaults(handler=_video)
+
+
 def _add_oracle_commands(commands: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     oracle = commands.add_parser("oracle", help="the oracle").add_subparsers(
         dest="oracle_command", required=True
@@ -306,7 +377,20 @@ def _data_build(args: argparse.Namespace) -> int:
         houses=args.houses, split=args.split, seed=args.seed, per_house=args.per_house
     )
     shard = Shard.parse(args.shard) if args.shard else None
-    out = build_dataset(Path(args.out), config, shard=shard, progress=not args.quiet)
+    if args.ray is not None:
+        from vlln.cluster.data import build_dataset_ray
+
+        if shard is not None:
+            raise ConfigError("--shard and --ray do not mix: Ray shares the houses out itself")
+        out = build_dataset_ray(
+            Path(args.out),
+            config,
+            address=args.ray or None,
+            max_retries=args.retries,
+            progress=not args.quiet,
+        )
+    else:
+        out = build_dataset(Path(args.out), config, shard=shard, progress=not args.quiet)
     print(summarize(out).line())
     print(f"dataset in {out} (summarise it with: vlln data stats {out})")
     return 0
@@ -359,6 +443,7 @@ def _add_data_commands(commands: argparse._SubParsersAction[argparse.ArgumentPar
     build.add_argument("--seed", type=int, default=0, help="seed of every random choice")
     build.add_argument("--shard", help="i/n: build every n-th house, starting at the i-th")
     build.add_argument("--quiet", action="store_true", help="no progress bars")
+    _add_ray_options(build, chunks=False)
     build.set_defaults(handler=_data_build)
     stats = data.add_parser("stats", help="statistics, figure and report of a built dataset")
     stats.add_argument("dataset", help="a folder made by vlln data build")
@@ -414,6 +499,10 @@ def build_parser() -> argparse.ArgumentParser:
     sim.add_argument("--repeats", type=int, default=3, help="passes per frame rate (default 3)")
     sim.add_argument("--json", action="store_true", help="print one JSON object per line")
     sim.add_argument("--scene", help="a scanned scene folder instead of a procedural house")
+
+    sim.add_argument(
+        "--envs", type=int, help="steps/s of N environments in N processes against one (speed-up)"
+    )
     sim.set_defaults(handler=_bench_sim)
     bench_eval = bench.add_parser("eval", help="episodes per hour of the evaluation runner")
     bench_eval.add_argument("--episodes", type=int, default=6, help="episodes (default 6)")
@@ -449,6 +538,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_oracle_commands(commands)
     _add_data_commands(commands)
     add_serve_commands(commands)
+    _add_video_command(commands)
     return parser
 
 

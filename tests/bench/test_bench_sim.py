@@ -24,3 +24,14 @@ def test_sim_benchmark_prints_json_lines(capsys: pytest.CaptureFixture[str]) -> 
     values = {line["metric"]: line["value"] for line in lines}
     assert set(values) >= REQUIRED
     assert all(values[name] > 0 for name in REQUIRED)
+
+
+def test_parallel_environments_report_their_speed_up(capsys: pytest.CaptureFixture[str]) -> None:
+    args = ["bench", "sim", "--json", "--envs", "2", "--frames", "20", "--repeats", "1"]
+    assert main([*args, "--seed", "3"]) == 0
+    lines = [json.loads(line) for line in capsys.readouterr().out.splitlines()]
+    values = {line["metric"]: line["value"] for line in lines}
+    assert values["envs"] == 2
+    assert values["steps_per_s_1_env"] > 0 and values["steps_per_s_2_envs"] > 0
+    expected = values["steps_per_s_2_envs"] / values["steps_per_s_1_env"]
+    assert values["envs_speedup"] == pytest.approx(expected, rel=0.01)

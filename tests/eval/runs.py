@@ -71,6 +71,7 @@ def evaluate(
     cache_dir: Path,
     scenes: SceneCache,
     stop_after: int | None = None,
+    sweep: bool = True,
     **overrides: Any,
 ) -> RunOutcome:
     """Run a small evaluation: 4 episodes of the first test house, 40 counted steps at most."""
@@ -91,6 +92,7 @@ def evaluate(
         progress=False,
         agent_factory=agent_factory,
         scenes=scenes,
+        sweep=sweep,
     )
 
 

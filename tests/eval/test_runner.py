@@ -92,13 +92,13 @@ def test_same_seed_gives_identical_lines_and_another_seed_other_agent_seeds(
 ) -> None:
     evaluate(tmp_path, split_cache, scenes)
     assert lines(tmp_path) == lines(full_run)
-    assert derive_seed(0, "agent", "s", "e", 1) == derive_seed(0, "agent", "s", "e", 1)
+    assert derive_seed(0, "agent", "s", "e") == derive_seed(0, "agent", "s", "e")
     variants = {
-        derive_seed(0, "agent", "s", "e", 1),
-        derive_seed(1, "agent", "s", "e", 1),
-        derive_seed(0, "oracle", "s", "e", 1),
-        derive_seed(0, "agent", "s", "e", 0),
-        derive_seed(0, "agent", "s", "f", 1),
+        derive_seed(0, "agent", "s", "e"),
+        derive_seed(1, "agent", "s", "e"),
+        derive_seed(0, "oracle", "s", "e"),
+        derive_seed(0, "agent", "t", "e"),
+        derive_seed(0, "agent", "s", "f"),
     }
     assert len(variants) == 5
 

@@ -13,6 +13,7 @@ class ExpertAgent:
 
     name = "expert"
     privileged = True
+    snapshottable = True  # see vlln.eval.sweep
 
     def __init__(self, seed: int = 0) -> None:
         self.seed = int(seed)  # unused: the expert is deterministic

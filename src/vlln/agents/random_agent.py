@@ -23,6 +23,7 @@ class RandomAgent:
 
     name = "random"
     privileged = False
+    snapshottable = True  # see vlln.eval.sweep
 
     def __init__(self, seed: int = 0, stop_probability: float = 0.02) -> None:
         if not 0.0 <= stop_probability <= 1.0:

@@ -6,10 +6,17 @@ budget of 5 (the rule oracle answering), over a fixed set of test episodes (the 
 the house's simulator built before the clock starts, so the figures are the steady state of a
 long run, where both are amortised over dozens of episodes per house; ``scene_load_s`` gives
 that one-off cost separately.
+
+``sweep_cost_ratio`` is the time of the MSP sweep (budgets 0-5 of the same episodes, played by
+prefix sharing, :mod:`vlln.eval.sweep`) divided by the time of the budget-5 run (the mean of
+a run before and one after the sweep, so that a change of load on a shared machine moves
+both sides): six independent runs would cost about 6. ``sweep_actions_ratio`` is the same
+ratio in actions played, the part of it that does not depend on the machine.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import tempfile
 import time
 from pathlib import Path
@@ -18,6 +25,7 @@ from vlln.bench.figures import Figure, emit
 from vlln.eval.config import EvalConfig
 from vlln.eval.runner import load_episodes, run_evaluation
 from vlln.tasks.metrics import success
+from vlln.tasks.record import EpisodeRecord
 from vlln.tasks.scenes import SceneCache
 
 BENCH_AGENT = "frontier"
@@ -54,6 +62,15 @@ def run_eval_benchmark(
             outcome = run_evaluation(
                 config, Path(out), cache_dir=cache_dir, progress=False, scenes=scenes
             )
+        sweep = dataclasses.replace(config, budgets=tuple(range(BENCH_BUDGET + 1)))
+        with tempfile.TemporaryDirectory(prefix="vlln-bench-sweep-") as out:
+            swept = run_evaluation(
+                sweep, Path(out), cache_dir=cache_dir, progress=False, scenes=scenes
+            )
+        with tempfile.TemporaryDirectory(prefix="vlln-bench-eval-") as out:
+            again = run_evaluation(
+                config, Path(out), cache_dir=cache_dir, progress=False, scenes=scenes
+            )
     finally:
         scenes.close()
     n = len(outcome.records)
@@ -66,4 +83,22 @@ def run_eval_benchmark(
     note("actions_per_second", actions / outcome.seconds, "actions/s")
     note("success_rate", 100.0 * sum(map(success, outcome.records)) / n, "%")
     note("mean_questions_per_episode", sum(len(r.dialog) for r in outcome.records) / n, "count")
+    note("sweep_seconds", swept.seconds, "s")
+    swept_actions = sum(len(r.actions) for r in swept.records if r.budget == BENCH_BUDGET)
+    note("sweep_actions_ratio", _sweep_actions(swept.records) / swept_actions, "x")
+    note("sweep_cost_ratio", swept.seconds / ((outcome.seconds + again.seconds) / 2), "x")
     return figures
+
+
+def _sweep_actions(records: list[EpisodeRecord]) -> int:
+    """Actions the sweep played: the full run, plus each lower budget from the action where
+    the full run asked the question it refuses."""
+    full = {r.episode_id: r for r in records if r.budget == BENCH_BUDGET}
+    total = sum(len(r.actions) for r in full.values())
+    for record in records:
+        if record.budget == BENCH_BUDGET:
+            continue
+        talks = [i for i, a in enumerate(full[record.episode_id].actions) if a == "TALK"]
+        if record.budget < len(talks):
+            total += len(record.actions) - talks[record.budget]
+    return total

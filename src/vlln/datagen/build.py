@@ -80,7 +80,7 @@ def build_dataset(
 ) -> Path:
     """Run (or resume) every stage into ``out``; returns ``out``."""
     root = Path(out)
-    _check_settings(root, config)
+    check_settings(root, config)
     mine = (shard or Shard(0, 1)).take(house_seeds(config.split, config.houses))
     cache = SceneCache(capacity=1)
     try:
@@ -202,7 +202,7 @@ def _episodes_by_scene(episodes: list[Episode]) -> dict[str, list[Episode]]:
     return grouped
 
 
-def _check_settings(root: Path, config: BuildConfig) -> None:
+def check_settings(root: Path, config: BuildConfig) -> None:
     """Record the settings on the first run; refuse to mix settings in one folder."""
     path = root / "build.json"
     wanted = json.loads(json.dumps(config.settings()))

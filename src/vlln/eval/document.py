@@ -51,7 +51,13 @@ class Image:
     alt: str
 
 
-Block = Heading | Paragraph | Table | Image
+@dataclass(frozen=True)
+class Video:
+    file: str  # relative to the document
+    caption: str
+
+
+Block = Heading | Paragraph | Table | Image | Video
 
 
 def _cells(line: str) -> list[str]:
@@ -68,6 +74,8 @@ def to_markdown(blocks: Sequence[Block]) -> str:
         elif isinstance(block, Table):
             rows = [block.header, ["---"] * len(block.header), *block.rows]
             parts.append("\n".join("| " + " | ".join(row) + " |" for row in rows))
+        elif isinstance(block, Video):
+            parts.append(f"[video: {block.caption}]({block.file})")
         else:
             parts.append(f"![{block.alt}]({block.file})")
     return "\n\n".join(parts) + "\n"
@@ -79,7 +87,7 @@ table { border-collapse: collapse; margin: 0.5em 0; font-size: 0.9em; }
 th, td { border: 1px solid #bbb; padding: 0.25em 0.6em; text-align: right; }
 th:first-child, td:first-child { text-align: left; }
 th { background: #f0f0f0; }
-img { max-width: 100%; border: 1px solid #ddd; }
+img, video { max-width: 100%; border: 1px solid #ddd; }
 figure { margin: 1em 0; }
 """
 
@@ -100,6 +108,12 @@ def to_html(blocks: Sequence[Block], title: str) -> str:
                 for row in block.rows
             )
             body.append(f"<table><thead><tr>{head}</tr></thead><tbody>{rows}</tbody></table>")
+        elif isinstance(block, Video):
+            caption = html.escape(block.caption)
+            body.append(
+                f'<figure><video controls preload="metadata" src="{html.escape(block.file)}">'
+                f"</video><figcaption>{caption}</figcaption></figure>"
+            )
         else:
             alt = html.escape(block.alt)
             body.append(

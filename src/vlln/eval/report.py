@@ -14,7 +14,16 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from vlln.errors import ConfigError
-from vlln.eval.document import Block, Heading, Image, Paragraph, Table, to_html, to_markdown
+from vlln.eval.document import (
+    Block,
+    Heading,
+    Image,
+    Paragraph,
+    Table,
+    Video,
+    to_html,
+    to_markdown,
+)
 from vlln.eval.episode_map import draw_episode_map
 from vlln.eval.figures import plot_failure_taxonomy, plot_sr_by_budget
 from vlln.eval.pairings import people_section
@@ -51,8 +60,10 @@ def write_report(
     samples_per_run: int = 4,
     success_radius: float = SUCCESS_RADIUS,
     os_radius: float = ORACLE_SUCCESS_RADIUS,
+    videos_per_run: int = 0,
 ) -> list[Path]:
-    """Write report.md, report.html and their PNGs into ``out``; returns the files written."""
+    """Write report.md, report.html and their PNGs into ``out``; returns the files written.
+    ``videos_per_run`` adds that many episode videos per run (MP4, PyAV needed)."""
     if not run_dirs:
         raise ConfigError("give at least one run directory to report on")
     labels = _labels(run_dirs)
@@ -72,6 +83,7 @@ def write_report(
     every_record = [record for run in runs for record in run.records]
     blocks += people_section(every_record, success_radius, os_radius)
     blocks += _samples_section(runs, out, written, samples_per_run, success_radius)
+    blocks += _videos_section(runs, out, written, videos_per_run)
     for name, text in (
         (REPORT_MD, to_markdown(blocks)),
         (REPORT_HTML, to_html(blocks, "vlln report")),
@@ -223,6 +235,35 @@ def _samples_section(
             draw_episode_map(record, house, out / name, title, outcome != SUCCESS)
             written.append(out / name)
             blocks += [Heading(3, title), Image(name, title)]
+    return blocks
+
+
+def _videos_section(
+    runs: Sequence[ReportRun], out: Path, written: list[Path], per_run: int
+) -> list[Block]:
+    """Videos of the episodes with the most dialog (:mod:`vlln.eval.videos`)."""
+    from vlln.eval.videos import dialog_first, replayable, write_videos
+
+    if per_run <= 0:
+        return []
+    blocks: list[Block] = [
+        Heading(2, "Episode videos"),
+        Paragraph(
+            "First-person view beside the map (trail in blue, agent in red, target in red); "
+            "each question and its answer are captioned where they are asked."
+        ),
+    ]
+    for run_index, run in enumerate(runs):
+        chosen = dialog_first([r for r in run.records if replayable(r)], per_run)
+        for record, (path, seconds) in zip(
+            chosen, write_videos(chosen, out, prefix=f"video_{run_index}"), strict=True
+        ):
+            written.append(path)
+            caption = (
+                f"{run.label}: {record.episode_id} ({record.object_category}), budget "
+                f"{record.budget}, {len(record.dialog)} questions, {seconds:.1f} s"
+            )
+            blocks.append(Video(path.name, caption))
     return blocks
 
 

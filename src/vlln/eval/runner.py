@@ -7,8 +7,10 @@ n-th of them, and each episode is played at
 every dialog budget before the next one (the geodesic field of its goals is reused).
 
 Determinism: for every (episode, budget) the agent and the oracle are made afresh with seeds
-derived from (``--seed``, scene, episode, budget) by a hash, so an episode line depends on
-nothing that ran before it: one process, many shards, or a resumed run give identical lines.
+derived from (``--seed``, scene, episode) by a hash, the same at every budget, so an episode
+line depends on nothing that ran before it: one process, many shards, or a resumed run give
+identical lines. Where the agent allows it, an episode's budgets are played together by
+prefix sharing (:mod:`vlln.eval.sweep`), which gives the same lines.
 
 Simulators: the plan never returns to a scene it has left, so the previous house's simulator
 is closed before the next one is built, and memory stays that of one house.
@@ -38,6 +40,7 @@ from vlln.errors import ConfigError
 from vlln.eval.config import EvalConfig
 from vlln.eval.results import RecordKey, RunDirectory, record_key
 from vlln.eval.summary import GroupSummary, summarize_run, summary_json, summary_markdown
+from vlln.eval.sweep import can_sweep, describe_error, play_sweep
 from vlln.oracle.protocol import Oracle
 from vlln.oracle.rule_oracle import RuleOracle
 from vlln.tasks.env import NavigationEnv
@@ -132,9 +135,11 @@ def plan_work(episodes: Sequence[Episode], config: EvalConfig) -> list[WorkItem]
     ]
 
 
-def derive_seed(seed: int, role: str, scene_id: str, episode_id: str, budget: int) -> int:
-    """A 63-bit seed for ``role`` (agent, oracle) in one episode at one budget."""
-    text = f"{seed}|{role}|{scene_id}|{episode_id}|{budget}"
+def derive_seed(seed: int, role: str, scene_id: str, episode_id: str) -> int:
+    """A 63-bit seed for ``role`` (agent, oracle) in one episode, the same at every budget:
+    budgets differ only by their refusals (common random numbers for the MSP's differences,
+    and what lets :mod:`vlln.eval.sweep` share prefixes)."""
+    text = f"{seed}|{role}|{scene_id}|{episode_id}"
     return int.from_bytes(hashlib.sha256(text.encode("utf-8")).digest()[:8], "big") >> 1
 
 
@@ -175,19 +180,15 @@ def play_episode(
     try:
         agent.reset(env.episode_info())
     except Exception as error:
-        return record(_describe(error, "reset"))
+        return record(describe_error(error, "reset"))
     while True:
         try:
             action = agent.act(observation)
         except Exception as error:
-            return record(_describe(error, "act"))
+            return record(describe_error(error, "act"))
         observation, _, terminated, truncated, _ = env.step(action)
         if terminated or truncated:
             return record()
-
-
-def _describe(error: Exception, where: str) -> str:
-    return f"{type(error).__name__} in agent.{where}(): {error}"[:2000]
 
 
 def run_evaluation(
@@ -200,12 +201,15 @@ def run_evaluation(
     agent_factory: AgentFactory | None = None,
     oracle_factory: OracleFactory = RuleOracle,
     scenes: SceneCache | None = None,
+    sweep: bool = True,
 ) -> RunOutcome:
     """Play ``config`` into the run directory ``out``, resuming what is already there.
 
     ``stop_after`` plays at most that many episodes in this call (a later call continues);
-    ``scenes`` shares simulators between calls (it is then not closed here);
-    ``agent_factory`` defaults to the registry with the run's agent options.
+    ``scenes`` shares simulators between calls (it is then not closed here); ``sweep`` plays
+    an episode's budgets together by prefix sharing where the agent allows it
+    (:mod:`vlln.eval.sweep`; the same records, in less time); ``agent_factory`` defaults to
+    the registry with the run's agent options.
     """
     if stop_after is not None and stop_after < 0:
         raise ConfigError(f"stop_after must be >= 0, got {stop_after}")
@@ -237,15 +241,17 @@ def run_evaluation(
             )
             with bar:
                 scene: str | None = None
-                for item in todo:
-                    if scene is not None and item.episode.scene_id != scene:
+                for group in by_episode(todo):
+                    if scene is not None and group[0].episode.scene_id != scene:
                         cache.close()  # episodes come grouped by scene: free the last house
-                    scene = item.episode.scene_id
-                    writer.append(
-                        _play_item(item, config, task, cache, agent_factory, oracle_factory)
+                    scene = group[0].episode.scene_id
+                    plays = _play_group(
+                        group, config, task, cache, agent_factory, oracle_factory, sweep
                     )
-                    played += 1
-                    bar.update(1)
+                    for record in plays:
+                        writer.append(record)
+                        played += 1
+                        bar.update(1)
                     bar.set_postfix(sr=f"{_success_rate(writer.records):.1f}%")
             records = list(writer.records)
     finally:
@@ -256,6 +262,67 @@ def run_evaluation(
     if summary is not None:
         run_dir.write_summary(summary_json(summary), summary_markdown(summary))
     return RunOutcome(out, len(items), played, seconds, records, summary)
+
+
+def play_items(
+    items: Sequence[WorkItem],
+    config: EvalConfig,
+    scenes: SceneCache,
+    agent_factory: AgentFactory = make_agent,
+    oracle_factory: OracleFactory = RuleOracle,
+    sweep: bool = True,
+) -> list[EpisodeRecord]:
+    """The records of ``items`` in order, as :func:`run_evaluation` plays them (without
+    writing them anywhere): what a remote worker runs for its chunk."""
+    task = TaskType.parse(config.task)
+    return [
+        record
+        for group in by_episode(items)
+        for record in _play_group(group, config, task, scenes, agent_factory, oracle_factory, sweep)
+    ]
+
+
+def by_episode(items: Sequence[WorkItem]) -> list[list[WorkItem]]:
+    """Consecutive items of one episode (its budgets) as groups, in order."""
+    groups: list[list[WorkItem]] = []
+    for item in items:
+        if groups and groups[-1][0].episode is item.episode:
+            groups[-1].append(item)
+        else:
+            groups.append([item])
+    return groups
+
+
+def _play_group(
+    group: list[WorkItem],
+    config: EvalConfig,
+    task: TaskType,
+    scenes: SceneCache,
+    agent_factory: AgentFactory,
+    oracle_factory: OracleFactory,
+    sweep: bool,
+) -> list[EpisodeRecord]:
+    """The records of one episode's budgets: by one sweep where possible, else one by one."""
+    episode = group[0].episode
+    budgets = [item.budget for item in group]
+    seed = derive_seed(config.seed, "agent", *_ids(episode))
+    agent = agent_factory(config.agent, seed, config.detector)
+    task_config = TaskConfig(task=task, max_steps=config.max_steps, dialog_budget=max(budgets))
+    oracle = None
+    if task_config.dialog_enabled:
+        oracle = oracle_factory(derive_seed(config.seed, "oracle", *_ids(episode)))
+    oracle_copies = oracle is None or getattr(oracle, "snapshottable", False)
+    if not (sweep and oracle_copies and can_sweep(agent, budgets)):
+        return [
+            _play_item(item, config, task, scenes, agent_factory, oracle_factory) for item in group
+        ]
+    env = NavigationEnv([episode], task_config, scenes, oracle, privileged=agent.privileged)
+    records = play_sweep(env, agent, config.agent, budgets)
+    return [replace(records[budget], detector=config.detector) for budget in budgets]
+
+
+def _ids(episode: Episode) -> tuple[str, str]:
+    return episode.scene_id, episode.episode_id
 
 
 def _play_item(
@@ -269,7 +336,7 @@ def _play_item(
     episode = item.episode
 
     def seed_for(role: str) -> int:
-        return derive_seed(config.seed, role, episode.scene_id, episode.episode_id, item.budget)
+        return derive_seed(config.seed, role, *_ids(episode))
 
     agent = agent_factory(config.agent, seed_for("agent"), config.detector)
     task_config = TaskConfig(task=task, max_steps=config.max_steps, dialog_budget=item.budget)

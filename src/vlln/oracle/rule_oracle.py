@@ -29,6 +29,8 @@ class RuleOracle:
     there" (the benchmark's 0.25 m success radius).
     """
 
+    snapshottable = True  # copy.deepcopy gives an independent oracle (vlln.eval.sweep)
+
     def __init__(self, seed: int = 0, goal_radius: float = 0.25) -> None:
         if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
             raise ConfigError(f"seed must be a whole number >= 0, got {seed!r}")

@@ -172,6 +172,11 @@ class NavigationEnv:
         self._note_target_seen()
         return self._observe(), {"episode_id": episode.episode_id, "house": house.name}
 
+    @property
+    def questions_answered(self) -> int:
+        """Questions the oracle has answered in this episode (refusals not counted)."""
+        return self._questions_answered
+
     def episode_info(self) -> EpisodeInfo:
         episode = self._require_episode()
         return EpisodeInfo(

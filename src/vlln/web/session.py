@@ -321,7 +321,7 @@ class EpisodeSession:
 
     def _seed(self, role: str) -> int:
         spec = self.spec
-        return derive_seed(spec.seed, role, spec.scene_id, spec.episode_id, spec.budget)
+        return derive_seed(spec.seed, role, spec.scene_id, spec.episode_id)
 
 
 def _output_of(step: Step) -> object:

@@ -56,6 +56,9 @@ class FrontierConfig:
     stuck_steps: int = 30  # mostly forward moves over this many steps ...
     stuck_distance: float = 0.6  # ... that got less far than this mean stuck
     max_looks: int = 40  # camera tilts per episode (the task caps them too)
+    # Questions the agent plans with; it learns the real budget from the refusal, as the
+    # reference's agents do, so every budget plays alike until then (vlln.eval.sweep).
+    question_budget: int = 5
 
     def __post_init__(self) -> None:
         if self.scan_turns < 0 or self.stuck_steps < 2 or self.route_after < 1:
@@ -70,6 +73,7 @@ class FrontierAgent:
 
     name = "frontier"
     privileged = True  # the detectors are simulated on the instance-id image
+    snapshottable = True  # deep copies are faithful; the budget is read only from refusals
 
     def __init__(
         self, seed: int = 0, config: FrontierConfig | None = None, detector: str = "truth"
@@ -117,7 +121,7 @@ class FrontierAgent:
         self._pending: tuple[str, int | None] | None = None
         self._asked_attribute = "color" in self.known  # IGN: the instruction may name it
         self._dialog_closed = False
-        self._questions_left = episode.dialog_budget
+        self._questions_left = cfg.question_budget
         self._aim: int | None = None
         self._looks = 0
         self._exhausted = False  # no frontier left: any candidate of the category will do
@@ -142,7 +146,6 @@ class FrontierAgent:
         gps = observation["gps"]
         pose = Pose(float(gps[0]), float(gps[1]), float(observation["compass"]))
         tilt = float(observation["tilt"])
-        self._questions_left = int(observation["questions_left"])
         if self._pending is not None:
             kind, about = self._pending
             self._pending = None
@@ -314,6 +317,7 @@ class FrontierAgent:
         if dialog.is_refusal(answer):
             self._dialog_closed = True
             return
+        self._questions_left -= 1
         if kind == "attribute":
             self.known.update(self._answer_vocabulary.parse(answer))
         elif kind == "disambiguation" and about is not None:

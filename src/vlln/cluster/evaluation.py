@@ -1,0 +1,102 @@
+"""``vlln eval --ray``: the evaluation runner's work as Ray tasks, written by the driver.
+
+Chunks hold whole episodes (all their budgets, so the MSP sweep shares prefixes on the
+worker) in plan order. A worker keeps one scene cache for all the chunks it plays. The driver
+resumes like the local runner (episodes already in the folder are not sent), appends each
+chunk's records in plan order, never a record whose key is already there, and writes the
+summary at the end: the folder is what ``vlln eval`` without ``--ray`` writes.
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+from pathlib import Path
+
+from tqdm import tqdm
+
+from vlln.agents.registry import make_agent
+from vlln.cluster.scheduler import DEFAULT_MAX_RETRIES, collect_in_order, connect, remote_function
+from vlln.errors import ConfigError
+from vlln.eval.config import EvalConfig
+from vlln.eval.results import RunDirectory, record_key
+from vlln.eval.runner import RunOutcome, WorkItem, by_episode, load_episodes, plan_work, play_items
+from vlln.eval.summary import summarize_run, summary_json, summary_markdown
+from vlln.tasks.record import EpisodeRecord
+from vlln.tasks.scenes import SceneCache
+
+_worker_scenes: SceneCache | None = None  # one per worker process, kept between its chunks
+
+
+def play_eval_chunk(config: EvalConfig, items: list[WorkItem], sweep: bool) -> list[EpisodeRecord]:
+    """The Ray task: play one chunk with this worker's scene cache."""
+    global _worker_scenes
+    if _worker_scenes is None:
+        _worker_scenes = SceneCache()
+    return play_items(items, config, _worker_scenes, sweep=sweep)
+
+
+def chunk_work(items: list[WorkItem], episodes_per_chunk: int) -> list[list[WorkItem]]:
+    """Consecutive whole episodes, ``episodes_per_chunk`` to a chunk."""
+    if episodes_per_chunk < 1:
+        raise ConfigError(f"--chunk must be at least 1 episode, got {episodes_per_chunk}")
+    groups = by_episode(items)
+    return [
+        [item for group in groups[start : start + episodes_per_chunk] for item in group]
+        for start in range(0, len(groups), episodes_per_chunk)
+    ]
+
+
+def run_ray_evaluation(
+    config: EvalConfig,
+    out: Path,
+    *,
+    address: str | None = None,
+    cache_dir: Path | None = None,
+    episodes_per_chunk: int = 4,
+    max_retries: int = DEFAULT_MAX_RETRIES,
+    progress: bool = True,
+    sweep: bool = True,
+) -> RunOutcome:
+    """Play ``config`` on a Ray cluster into ``out`` (module doc); resumes like the runner."""
+    make_agent(config.agent, config.seed)  # an unknown agent fails before any work
+    ray = connect(address)  # an unreachable cluster too
+    items = plan_work(load_episodes(config, cache_dir, progress), config)
+    run_dir = RunDirectory(out)
+    run_dir.prepare(config)
+    task = remote_function(play_eval_chunk, max_retries)
+    played = 0
+    started = time.perf_counter()
+    with run_dir.writing() as writer:
+        done = {record_key(record) for record in writer.records}
+        remaining = [item for item in items if item.key(config) not in done]
+        chunks = chunk_work(remaining, episodes_per_chunk)
+        config_ref = ray.put(config)
+        refs = [task.remote(config_ref, chunk, sweep) for chunk in chunks]
+        bar = tqdm(
+            total=len(items),
+            initial=len(done),
+            desc=f"{config.agent} {config.task} on Ray",
+            unit="ep",
+            file=sys.stderr,
+            disable=not progress,
+        )
+
+        def commit(_: int, records: list[EpisodeRecord]) -> None:
+            nonlocal played
+            for record in records:
+                key = record_key(record)
+                if key not in done:
+                    writer.append(record)
+                    done.add(key)
+                    played += 1
+                    bar.update(1)
+
+        with bar:
+            collect_in_order(refs, commit)
+        records = list(writer.records)
+    seconds = time.perf_counter() - started
+    summary = summarize_run(records) if records else None
+    if summary is not None:
+        run_dir.write_summary(summary_json(summary), summary_markdown(summary))
+    return RunOutcome(out, len(items), played, seconds, records, summary)

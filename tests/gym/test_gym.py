@@ -1,0 +1,114 @@
+"""The Gymnasium environments: registration, spaces, the checker, vector determinism."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+from typing import Any
+
+import gymnasium
+import numpy as np
+import pytest
+from gymnasium.utils.env_checker import check_env
+
+import vlln.gym
+from vlln.gym.spaces import TALK
+from vlln.sim.agent import Action
+from vlln.tasks.generation import load_or_build_split
+
+SMALL = {"houses": 1, "width": 64, "height": 48}
+
+
+@pytest.fixture(scope="module")
+def cache_dir(tmp_path_factory: pytest.TempPathFactory) -> str:
+    """The test split's first house, built once for this module."""
+    cache = tmp_path_factory.mktemp("episodes")
+    load_or_build_split("test", "iign", 1, cache, progress=False)
+    return str(cache)
+
+
+def test_registration_happens_only_in_vlln_gym() -> None:
+    code = (
+        "import gymnasium, vlln, vlln.eval.runner, vlln.cli;"
+        "print(any(k.startswith('vlln/') for k in gymnasium.registry))"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"
+    gymnasium.register_envs(vlln.gym)
+    assert set(vlln.gym.ENV_IDS) <= set(gymnasium.registry)
+
+
+def test_module_prefixed_id_needs_no_import(cache_dir: str) -> None:
+    code = (
+        "import gymnasium;"
+        f"env = gymnasium.make('vlln.gym:vlln/IIGN-v0', cache_dir={cache_dir!r}, houses=1,"
+        " width=32, height=24);"
+        "obs, info = env.reset(seed=1); print(obs['instruction']); env.close()"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.startswith("Search for the ")
+
+
+@pytest.mark.parametrize("env_id", sorted(vlln.gym.ENV_IDS))
+def test_check_env_passes(env_id: str, cache_dir: str) -> None:
+    env = gymnasium.make(env_id, cache_dir=cache_dir, max_steps=20, **SMALL)
+    check_env(env.unwrapped, skip_render_check=True)
+    obs, _ = env.reset(seed=3)
+    assert env.observation_space.contains(obs)
+    env.close()
+
+
+def test_question_is_answered_and_budget_counts_down(cache_dir: str) -> None:
+    env = gymnasium.make("vlln/IIGN-v0", cache_dir=cache_dir, dialog_budget=2, **SMALL)
+    obs, _ = env.reset(seed=0)
+    assert obs["questions_left"] == 2
+    obs, *_ = env.step({"action": TALK, "question": "What color is it?"})
+    assert obs["oracle_answer"] and obs["questions_left"] == 1
+    obs, *_ = env.step({"action": int(Action.TURN_LEFT), "question": ""})
+    assert obs["oracle_answer"] == ""
+    env.close()
+
+
+def test_options_choose_episode_file_and_index(cache_dir: str, tmp_path: Path) -> None:
+    from vlln.tasks.episode import write_episodes
+
+    episodes = load_or_build_split("test", "ign", 1, cache_dir, progress=False)
+    path = tmp_path / "two.json.gz"
+    write_episodes(path, episodes[3:5])
+    env = gymnasium.make("vlln/IGN-v0", cache_dir=cache_dir, **SMALL)
+    _, info = env.reset(options={"episode_file": str(path), "episode_index": 1})
+    assert info["episode_id"] == episodes[4].episode_id
+    env.close()
+
+
+def _rollout(env: Any, seeds: list[int], steps: int) -> list[Any]:
+    obs, _ = env.reset(seed=seeds)
+    frames = [obs["rgb"].copy(), obs["gps"].copy()]
+    for step in range(steps):
+        index = [Action.TURN_LEFT, Action.MOVE_FORWARD, Action.TURN_RIGHT][step % 3]
+        actions = {"action": np.full(len(seeds), int(index)), "question": ("",) * len(seeds)}
+        obs, reward, *_ = env.step(actions)
+        frames += [obs["rgb"].copy(), obs["gps"].copy(), np.asarray(reward)]
+    return frames
+
+
+def test_async_vector_rollout_equals_sequential(cache_dir: str) -> None:
+    kwargs = dict(cache_dir=cache_dir, max_steps=50, **SMALL)
+    vector = gymnasium.make_vec(
+        "vlln/IIGN-v0",
+        num_envs=2,
+        vectorization_mode="async",
+        vector_kwargs={"context": "spawn"},
+        **kwargs,
+    )
+    sync = gymnasium.make_vec("vlln/IIGN-v0", num_envs=2, vectorization_mode="sync", **kwargs)
+    try:
+        parallel = _rollout(vector, [5, 9], 6)
+        sequential = _rollout(sync, [5, 9], 6)
+    finally:
+        vector.close()
+        sync.close()
+    assert len(parallel) == len(sequential)
+    for a, b in zip(parallel, sequential, strict=True):
+        np.testing.assert_array_equal(a, b)
