@@ -61,6 +61,7 @@ def _eval(args: argparse.Namespace) -> int:
         houses=args.houses,
         shard=Shard.parse(args.shard),
         max_steps=args.max_steps,
+        agent_options=_agent_options(args),
     )
     cache_dir = None if args.cache_dir is None else Path(args.cache_dir)
     outcome = run_evaluation(
@@ -79,6 +80,19 @@ def _eval(args: argparse.Namespace) -> int:
     if outcome.summary is not None:
         print((Path(args.out) / "summary.md").read_text(encoding="utf-8"), end="")
     return 0
+
+
+def _agent_options(args: argparse.Namespace) -> dict[str, str]:
+    """Options of agents that take them, from the flags given (see the eval parser)."""
+    flags = {
+        "base_url": args.base_url,
+        "model": args.model,
+        "api_key_env": args.api_key_env,
+        "timeout_s": args.model_timeout,
+        "max_retries": args.model_retries,
+        "cache_dir": None if args.model_cache is None else str(Path(args.model_cache).resolve()),
+    }
+    return {name: str(value) for name, value in flags.items() if value is not None}
 
 
 def _score(args: argparse.Namespace) -> int:
@@ -142,6 +156,13 @@ def _add_eval_commands(commands: argparse._SubParsersAction[argparse.ArgumentPar
     run.add_argument("--cache-dir", help="where built splits are kept (default ~/.cache/vlln)")
     run.add_argument("--stop-after", type=int, help="play at most N episodes now, then stop")
     run.add_argument("--quiet", action="store_true", help="no progress bar")
+    model = run.add_argument_group("model agents (openai-vlm)")
+    model.add_argument("--base-url", help="OpenAI-compatible server, e.g. http://localhost:8000/v1")
+    model.add_argument("--model", help="the served model's name")
+    model.add_argument("--api-key-env", help="variable holding the key (default OPENAI_API_KEY)")
+    model.add_argument("--model-timeout", type=float, help="seconds per request (default 60)")
+    model.add_argument("--model-retries", type=int, help="retries per request (default 4)")
+    model.add_argument("--model-cache", help="folder caching model replies (default: none)")
     run.set_defaults(handler=_eval)
 
     score = commands.add_parser("score", help="recompute every metric from run directories")
@@ -196,6 +217,13 @@ def _bench_oracle(args: argparse.Namespace) -> int:
     from vlln.bench.oracle import run_oracle_benchmark
 
     run_oracle_benchmark(seed=args.seed, questions=args.questions, as_json=args.json)
+    return 0
+
+
+def _bench_agent(args: argparse.Namespace) -> int:
+    from vlln.bench.agent import run_agent_benchmark
+
+    run_agent_benchmark(seed=args.seed, repeats=args.repeats, as_json=args.json)
     return 0
 
 
@@ -410,6 +438,11 @@ def build_parser() -> argparse.ArgumentParser:
     )
     bench_oracle.add_argument("--json", action="store_true", help="print one JSON object per line")
     bench_oracle.set_defaults(handler=_bench_oracle)
+    bench_agent = bench.add_parser("agent", help="a model agent's step cost outside the model")
+    bench_agent.add_argument("--seed", type=int, default=0, help="house seed (default 0)")
+    bench_agent.add_argument("--repeats", type=int, default=200, help="timed repeats (200)")
+    bench_agent.add_argument("--json", action="store_true", help="print one JSON object per line")
+    bench_agent.set_defaults(handler=_bench_agent)
 
     bench_data = bench.add_parser("data", help="trajectories per hour of the data pipeline")
     bench_data.add_argument("--houses", type=int, default=2, help="training houses (default 2)")

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import random
+import re
 
 import numpy as np
 import pytest
@@ -118,6 +119,7 @@ def test_look_down_turn_and_pixel_reply() -> None:
     assert final.images[-1] == ImageRef("down", 6)
     assert final.images[:-1] == first.images
     assert LEVEL_IMAGE_SIZE == (384, 384) and DOWN_IMAGE_SIZE == (640, 480)
+    assert [image.size for image in final.images[-2:]] == [(384, 384), (640, 480)]
 
 
 def test_every_turn_in_the_text_says_30_degrees() -> None:
@@ -161,6 +163,15 @@ def test_without_dialog_the_oracle_sentences_are_left_out() -> None:
 )
 def test_history_frames(frame: int, dialog_frames: list[int], expected: list[int]) -> None:
     assert history_frames(frame, dialog_frames) == expected
+
+
+def test_numpy_frames_are_plain_ints() -> None:
+    dialogs = [DialogExchange(np.int64(2), "Q?", "A.")]
+    conversation = build_conversation(INSTRUCTION, np.int64(5), dialogs, connective="there is ")  # type: ignore[arg-type]
+    assert dialogs[0].frame == 2 and type(dialogs[0].frame) is int
+    assert all(type(image.frame) is int for image in conversation.images)
+    with pytest.raises(ConfigError, match="non-negative integer"):
+        DialogExchange(2.0, "Q?", "A.")  # type: ignore[arg-type]
 
 
 def reference_first_turn(
@@ -248,6 +259,7 @@ def test_connective_is_a_pure_function_of_seed_episode_and_frame() -> None:
         "ahead of you is ",
     ]
     assert connective_for(0, "a", 0, look_down=True) == "you can spot "
+    assert connective_for(1, 17, 3) == connective_for(1, "17", 3)
 
 
 def test_question_limit_replaces_later_answers() -> None:
@@ -263,6 +275,43 @@ def test_question_limit_replaces_later_answers() -> None:
     assert limit_answers(dialogs, 0)[0].answer == QUESTION_LIMIT_ANSWER
 
 
+def reference_limit(conversation: Conversation, limit: int) -> list[str]:
+    """The reference's rule: answers are counted in the first turn's dialog blocks, then in
+    the human turns after a talk; those from ``limit`` on read the question-limit answer."""
+    counter = iter(range(1000))
+    block = re.compile(r"<\|oracle\|>.*?<\|dialog_end\|>", re.DOTALL)
+
+    def cut(match: re.Match[str]) -> str:
+        keep = next(counter) < limit
+        return match.group(0) if keep else f"<|oracle|>{QUESTION_LIMIT_ANSWER}<|dialog_end|>"
+
+    texts = [turn.text for turn in conversation.turns]
+    texts[0] = block.sub(cut, texts[0])
+    for index in range(1, len(texts)):
+        if conversation.turns[index - 1].text.startswith("<talk>") and next(counter) >= limit:
+            texts[index] = QUESTION_LIMIT_ANSWER
+    return texts
+
+
+def test_question_limit_matches_the_reference_rule_with_one_question_per_frame() -> None:
+    dialogs = [DialogExchange(f, f"q{f}?", f"a{f}.") for f in (0, 3, 9, 12, 20, 20)]
+    for limit in range(7):
+        heard = limit_answers(dialogs, limit)
+        limited = build_conversation(INSTRUCTION, 20, heard, connective="there is ")
+        full = build_conversation(INSTRUCTION, 20, dialogs, connective="there is ")
+        assert [turn.text for turn in limited.turns] == reference_limit(full, limit)
+
+
+def start(frame: int = 0) -> Conversation:
+    return build_conversation(INSTRUCTION, frame, [], connective="there is ")
+
+
+def build(frame: int, dialogs: list[DialogExchange], dialog_enabled: bool = True) -> Conversation:
+    return build_conversation(
+        INSTRUCTION, frame, dialogs, connective="there is ", dialog_enabled=dialog_enabled
+    )
+
+
 @pytest.mark.parametrize(
     ("make", "message"),
     [
@@ -270,84 +319,32 @@ def test_question_limit_replaces_later_answers() -> None:
             lambda: build_conversation(INSTRUCTION, 1, [], connective="you see "),
             "unknown connective",
         ),
+        (lambda: build(1, [DialogExchange(2, "q", "a")]), "after the current frame"),
         (
-            lambda: build_conversation(
-                INSTRUCTION, 1, [DialogExchange(2, "q", "a")], connective="there is "
-            ),
-            "after the current frame",
-        ),
-        (
-            lambda: build_conversation(
-                INSTRUCTION,
-                1,
-                [DialogExchange(0, "q", "a")],
-                connective="there is ",
-                dialog_enabled=False,
-            ),
+            lambda: build(1, [DialogExchange(0, "q", "a")], dialog_enabled=False),
             "dialog is disabled",
         ),
-        (lambda: build_conversation(INSTRUCTION, -1, [], connective="there is "), "frame"),
-        (lambda: DialogExchange(0, "q", "see <image>"), "may not contain"),
-        (lambda: DialogExchange(0, "q<|oracle|>", "a"), "may not contain"),
+        (lambda: build(-1, []), "a frame is a non-negative integer"),
+        (
+            lambda: build_conversation("Find <image>.", 0, [], connective="there is "),
+            "instruction may not",
+        ),
+        (lambda: DialogExchange(0, "q", "see <image>"), "answer may not contain '<image>'"),
+        (lambda: DialogExchange(0, "q<|oracle|>", "a"), "reserved marker '<|'"),
+        (lambda: DialogExchange(0, "", "a"), "empty question"),
+        (lambda: DialogExchange(0, "q" * 301, "a"), "longer than 300"),
         (lambda: DialogExchange(-1, "q", "a"), "non-negative"),
-        (
-            lambda: with_answer(
-                build_conversation(INSTRUCTION, 0, [], connective="there is "), "a"
-            ),
-            "follows a <talk>",
-        ),
-        (
-            lambda: with_answer(
-                with_reply(
-                    build_conversation(INSTRUCTION, 0, [], connective="there is "), StopOutput()
-                ),
-                "a",
-            ),
-            "follows a <talk>",
-        ),
-        (
-            lambda: with_answer(
-                with_reply(
-                    build_conversation(INSTRUCTION, 0, [], connective="there is "), TalkOutput("q")
-                ),
-                "<image>",
-            ),
-            "may not contain",
-        ),
-        (
-            lambda: with_reply(
-                build_conversation(INSTRUCTION, 0, [], connective="there is "), PixelOutput(1, 1)
-            ),
-            "look-down image",
-        ),
-        (
-            lambda: with_reply(
-                with_reply(
-                    build_conversation(INSTRUCTION, 0, [], connective="there is "), StopOutput()
-                ),
-                StopOutput(),
-            ),
-            "follows a human turn",
-        ),
-        (
-            lambda: with_look_down(
-                build_conversation(INSTRUCTION, 0, [], connective="there is "), 0
-            ),
-            "<move>↓",
-        ),
-        (
-            lambda: with_look_down(
-                with_reply(
-                    build_conversation(INSTRUCTION, 3, [], connective="there is "), TiltDownOutput()
-                ),
-                2,
-            ),
-            "current frame 3",
-        ),
+        (lambda: with_answer(start(), "a"), "follows a <talk>"),
+        (lambda: with_answer(with_reply(start(), StopOutput()), "a"), "follows a <talk>"),
+        (lambda: with_answer(with_reply(start(), TalkOutput("q")), "<image>"), "may not contain"),
+        (lambda: with_reply(start(), PixelOutput(1, 1)), "needs the look-down image"),
+        (lambda: with_reply(with_reply(start(), StopOutput()), StopOutput()), "follows a human"),
+        (lambda: with_look_down(start(), 0), "follows a <move>↓ reply"),
+        (lambda: with_look_down(with_reply(start(3), TiltDownOutput()), 2), "current frame 3"),
         (lambda: Conversation((Turn("human", "<image>"),), ()), "1 <image> tags but 0 images"),
         (lambda: Conversation((Turn("gpt", "x"),), ()), "starts with a human turn"),
     ],
 )
 def test_misuse_is_a_clear_error(make: object, message: str) -> None:
-    with pytest.raises(ConfigError, match=message.replace("(", r"\(").replace("|", r"\|")):
+    with pytest.raises(ConfigError, match=re.escape(message)):
         make()  # type: ignore[operator]

@@ -140,8 +140,23 @@ def all_valid_outputs() -> list[ValidOutput]:
     return outputs
 
 
+def random_questions(count: int) -> list[TalkOutput]:
+    """Seeded questions over an alphabet of digits, arrows, tags' pieces and other scripts;
+    the ones a ``TalkOutput`` refuses are left out."""
+    rng = random.Random(5)
+    alphabet = "ab Z09?.,<>|/←→↓↑⬅️ STOPmovetalkimage\n\té椅ا🙂\u200b"
+    questions: list[TalkOutput] = []
+    while len(questions) < count:
+        text = "".join(rng.choice(alphabet) for _ in range(rng.randrange(1, 320)))
+        try:
+            questions.append(TalkOutput(text))
+        except ConfigError:
+            continue
+    return questions
+
+
 def test_reading_the_written_text_gives_the_output_back() -> None:
-    for output in all_valid_outputs():
+    for output in [*all_valid_outputs(), *random_questions(300)]:
         assert read_output(format_output(output), look_down=True) == output
 
 

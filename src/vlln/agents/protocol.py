@@ -2,9 +2,10 @@
 
 from __future__ import annotations
 
-from typing import Protocol
+from typing import Protocol, runtime_checkable
 
 from vlln.tasks.env import EpisodeInfo, Observation
+from vlln.tasks.record import ModelCall
 from vlln.tasks.spec import AgentOutput
 
 
@@ -18,3 +19,10 @@ class Agent(Protocol):
     def reset(self, episode: EpisodeInfo) -> None: ...
 
     def act(self, observation: Observation) -> AgentOutput: ...
+
+
+@runtime_checkable
+class RecordsModelCalls(Protocol):
+    """An agent that asks a model; its calls of the episode go into the episode record."""
+
+    def model_calls(self) -> list[ModelCall]: ...

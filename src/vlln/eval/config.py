@@ -44,6 +44,9 @@ class EvalConfig:
     houses: int | None = None
     shard: Shard = field(default_factory=lambda: Shard(0, 1))
     max_steps: int = 500
+    # Settings of agents that take them (openai-vlm: server, model, key variable, retries);
+    # never a secret. Run files written before this field read as no options.
+    agent_options: dict[str, str] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         task = TaskType.parse(self.task)
@@ -60,6 +63,8 @@ class EvalConfig:
             raise ConfigError("--houses applies to built-in splits, not to an episode file")
         if self.houses is not None and self.houses < 1:
             raise ConfigError(f"--houses must be at least 1, got {self.houses}")
+        if not all(isinstance(v, str) for v in self.agent_options.values()):
+            raise ConfigError("agent options are NAME=VALUE strings")
         if self.max_steps < 1:
             raise ConfigError(f"--max-steps must be at least 1, got {self.max_steps}")
         if not self.budgets:
@@ -78,6 +83,7 @@ class EvalConfig:
         data = asdict(self)
         data["budgets"] = list(self.budgets)
         data["shard"] = str(self.shard)
+        data["agent_options"] = dict(sorted(self.agent_options.items()))
         return data
 
     @staticmethod

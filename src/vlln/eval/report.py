@@ -18,7 +18,7 @@ from vlln.eval.document import Block, Heading, Image, Paragraph, Table, to_html,
 from vlln.eval.episode_map import draw_episode_map
 from vlln.eval.figures import plot_failure_taxonomy, plot_sr_by_budget
 from vlln.eval.results import RunDirectory, load_run_records
-from vlln.eval.summary import GroupSummary, budget_table, summarize_run
+from vlln.eval.summary import GroupSummary, budget_table, failed_actions_line, summarize_run
 from vlln.files import write_text_atomic
 from vlln.tasks.aggregate import BudgetSweep, MetricSummary, format_table
 from vlln.tasks.metrics import ORACLE_SUCCESS_RADIUS, SUCCESS_RADIUS
@@ -118,6 +118,20 @@ def _metrics_section(
             for budget, summary in group.sweep.by_budget.items():
                 rows[_row_label(run, group, budget, len(runs))] = summary
     table, notes = Table.from_markdown(format_table(rows))
+    failed = [
+        f"{_row_label(run, group, budget, len(runs))}: {failed_actions_line(counts)}"
+        for run in runs
+        for group in run.groups
+        for budget, counts in group.failed_actions.items()
+        if counts
+    ]
+    if failed:
+        notes.append(
+            "Failed actions (parse: unreadable model output; server: no reply after retries; "
+            "goal: a pixel showing no reachable floor), each a wasted step: "
+            + "; ".join(failed)
+            + "."
+        )
     return [
         Heading(2, "Metrics"),
         Paragraph(

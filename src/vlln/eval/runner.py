@@ -27,11 +27,12 @@ import sys
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from functools import partial
 from pathlib import Path
 
 from tqdm import tqdm
 
-from vlln.agents.protocol import Agent
+from vlln.agents.protocol import Agent, RecordsModelCalls
 from vlln.agents.registry import make_agent
 from vlln.errors import ConfigError
 from vlln.eval.config import EvalConfig
@@ -163,20 +164,26 @@ def load_episodes(
 def play_episode(
     env: NavigationEnv, agent: Agent, agent_name: str, episode_index: int = 0
 ) -> EpisodeRecord:
-    """Play one episode to its end; an exception in the agent ends it as an error."""
+    """Play one episode to its end; an exception in the agent ends it as an error. A model
+    agent's calls go into the record."""
     observation, _ = env.reset(options={"episode_index": episode_index})
+
+    def record(error: str | None = None) -> EpisodeRecord:
+        calls = agent.model_calls() if isinstance(agent, RecordsModelCalls) else []
+        return env.record(agent_name, error=error, model_calls=calls)
+
     try:
         agent.reset(env.episode_info())
     except Exception as error:
-        return env.record(agent_name, error=_describe(error, "reset"))
+        return record(_describe(error, "reset"))
     while True:
         try:
             action = agent.act(observation)
         except Exception as error:
-            return env.record(agent_name, error=_describe(error, "act"))
+            return record(_describe(error, "act"))
         observation, _, terminated, truncated, _ = env.step(action)
         if terminated or truncated:
-            return env.record(agent_name)
+            return record()
 
 
 def _describe(error: Exception, where: str) -> str:
@@ -190,17 +197,20 @@ def run_evaluation(
     cache_dir: Path | None = None,
     stop_after: int | None = None,
     progress: bool = True,
-    agent_factory: AgentFactory = make_agent,
+    agent_factory: AgentFactory | None = None,
     oracle_factory: OracleFactory = RuleOracle,
     scenes: SceneCache | None = None,
 ) -> RunOutcome:
     """Play ``config`` into the run directory ``out``, resuming what is already there.
 
     ``stop_after`` plays at most that many episodes in this call (a later call continues);
-    ``scenes`` shares simulators between calls (it is then not closed here).
+    ``scenes`` shares simulators between calls (it is then not closed here);
+    ``agent_factory`` defaults to the registry with the run's agent options.
     """
     if stop_after is not None and stop_after < 0:
         raise ConfigError(f"stop_after must be >= 0, got {stop_after}")
+    if agent_factory is None:
+        agent_factory = partial(_registered_agent, options=config.agent_options)
     agent_factory(config.agent, config.seed)  # an unknown agent fails before any work
     items = plan_work(load_episodes(config, cache_dir, progress), config)
     run_dir = RunDirectory(out)
@@ -265,6 +275,10 @@ def _play_item(
     oracle = oracle_factory(seed_for("oracle")) if task_config.dialog_enabled else None
     env = NavigationEnv([episode], task_config, scenes, oracle, privileged=agent.privileged)
     return play_episode(env, agent, config.agent)
+
+
+def _registered_agent(name: str, seed: int, options: dict[str, str]) -> Agent:
+    return make_agent(name, seed, options)
 
 
 def _success_rate(records: Sequence[EpisodeRecord]) -> float:

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, field
 from typing import Any
 
 from vlln.errors import ConfigError
@@ -37,6 +37,9 @@ class GroupSummary:
     task: str
     sweep: BudgetSweep
     per_category: dict[int, dict[str, MetricSummary]]
+    # Failed actions per budget and kind ("parse", "server", "goal", "invalid"): a model
+    # agent's unreadable replies and server failures, each of which wasted a step.
+    failed_actions: dict[int, dict[str, int]] = field(default_factory=dict)
 
     @property
     def label(self) -> str:
@@ -68,8 +71,30 @@ def summarize_run(
             )
             for budget in sweep.by_budget
         }
-        summaries.append(GroupSummary(agent, task, sweep, per_category))
+        failed = {
+            budget: failed_action_counts(r for r in group if r.budget == budget)
+            for budget in sweep.by_budget
+        }
+        summaries.append(GroupSummary(agent, task, sweep, per_category, failed))
     return summaries
+
+
+def failed_action_counts(records: Iterable[EpisodeRecord]) -> dict[str, int]:
+    """Failed actions by kind over ``records``, kinds sorted; records written before kinds
+    were kept count their failed actions as ``unknown``."""
+    counts: dict[str, int] = {}
+    for record in records:
+        kinds = record.failures or (
+            {"unknown": record.failed_actions} if record.failed_actions else {}
+        )
+        for kind, count in kinds.items():
+            counts[kind] = counts.get(kind, 0) + count
+    return dict(sorted(counts.items()))
+
+
+def failed_actions_line(counts: dict[str, int]) -> str:
+    """``"parse 3, server 1"``, or ``"none"``."""
+    return ", ".join(f"{kind} {count}" for kind, count in counts.items()) or "none"
 
 
 def summary_json(groups: list[GroupSummary]) -> dict[str, Any]:
@@ -87,6 +112,7 @@ def summary_json(groups: list[GroupSummary]) -> dict[str, Any]:
                 "budgets": {
                     str(budget): {
                         "overall": _metrics_json(summary),
+                        "failed_actions": group.failed_actions.get(budget, {}),
                         "per_category": {
                             name: _metrics_json(row)
                             for name, row in group.per_category[budget].items()
@@ -125,6 +151,13 @@ def summary_markdown(groups: list[GroupSummary], title: str = "Evaluation summar
         lines += ["", f"## {group.label}", "", "### Overall", ""]
         rows = {f"budget {b}": s for b, s in group.sweep.by_budget.items()}
         lines.append(format_table(rows))
+        failed = {b: c for b, c in group.failed_actions.items() if c}
+        if failed:
+            lines.append("")
+            lines += [
+                f"Failed actions at budget {b}: {failed_actions_line(c)}."
+                for b, c in failed.items()
+            ]
         if len(group.sweep.by_budget) > 1:
             lines += ["", "### Success rate against dialog budget", ""]
             lines += budget_table(group.sweep)

@@ -18,16 +18,20 @@ from typing import Literal, TypeAlias
 from vlln.errors import ConfigError
 from vlln.prompt.grammar import format_output
 from vlln.prompt.history import (
+    DEFAULT_HISTORY_COUNT,
     DialogExchange,
     check_dialog_text,
+    frame_index,
     history_frames,
     history_text,
 )
-from vlln.prompt.outputs import PixelOutput, TiltDownOutput, ValidOutput
+from vlln.prompt.outputs import PixelOutput, TalkOutput, TiltDownOutput, ValidOutput
 from vlln.prompt.text import (
     CONNECTIVES,
+    DOWN_IMAGE_SIZE,
     HISTORY_INTRO,
     IMAGE_TAG,
+    LEVEL_IMAGE_SIZE,
     SYSTEM_TEXT,
     SYSTEM_TEXT_NO_DIALOG,
     TALK_TAG,
@@ -43,6 +47,11 @@ class ImageRef:
 
     camera: Camera
     frame: int
+
+    @property
+    def size(self) -> tuple[int, int]:
+        """(width, height) the picture is sent at."""
+        return LEVEL_IMAGE_SIZE if self.camera == "level" else DOWN_IMAGE_SIZE
 
 
 @dataclass(frozen=True)
@@ -84,7 +93,7 @@ class Conversation:
         return result
 
 
-def connective_for(seed: int, episode_id: str, frame: int, *, look_down: bool = False) -> str:
+def connective_for(seed: int, episode_id: str | int, frame: int, *, look_down: bool = False) -> str:
     """The reference's randomly chosen connective, as a pure function of its arguments (the
     look-down turn draws its own), so the export and an agent pick the same one."""
     key = f"{seed}\x1f{episode_id}\x1f{frame}\x1f{'down' if look_down else 'level'}"
@@ -99,7 +108,7 @@ def build_conversation(
     *,
     connective: str,
     dialog_enabled: bool = True,
-    history_count: int = 8,
+    history_count: int = DEFAULT_HISTORY_COUNT,
 ) -> Conversation:
     """The conversation for the decision at level frame ``frame``.
 
@@ -108,15 +117,15 @@ def build_conversation(
     in verbatim and should end with its full stop, as the reference's instructions do.
     """
     _check_connective(connective)
-    if frame < 0:
-        raise ConfigError(f"a frame is >= 0, got {frame}")
+    check_dialog_text("instruction", instruction)
+    frame = frame_index(frame)
     if not dialog_enabled and dialogs:
         raise ConfigError("dialogs were given but dialog is disabled")
     later = [d.frame for d in dialogs if d.frame > frame]
     if later:
         raise ConfigError(f"a dialog at frame {later[0]} is after the current frame {frame}")
+    frames = history_frames(frame, (d.frame for d in dialogs), history_count)
     earlier = [d for d in dialogs if d.frame < frame]
-    frames = history_frames(frame, (d.frame for d in earlier), history_count)
     system = SYSTEM_TEXT if dialog_enabled else SYSTEM_TEXT_NO_DIALOG
     text = system.format(instruction=instruction)
     if frames:
@@ -125,7 +134,8 @@ def build_conversation(
     turns = [Turn("human", text)]
     for exchange in dialogs:
         if exchange.frame == frame:
-            turns += [Turn("gpt", TALK_TAG + exchange.question), Turn("human", exchange.answer)]
+            talk = format_output(TalkOutput(exchange.question))
+            turns += [Turn("gpt", talk), Turn("human", exchange.answer)]
     images = [ImageRef("level", f) for f in frames] + [ImageRef("level", frame)]
     return Conversation(tuple(turns), tuple(images))
 

@@ -10,13 +10,14 @@ one block holding all of its exchanges in the order they were asked::
 
 from __future__ import annotations
 
+import operator
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
 
 from vlln.errors import ConfigError
-from vlln.prompt.outputs import reserved_marker_in
+from vlln.prompt.outputs import question_problem, reserved_marker_in
 from vlln.prompt.text import (
     DIALOG_END,
     DIALOG_START,
@@ -31,27 +32,41 @@ DEFAULT_HISTORY_COUNT = 8
 
 @dataclass(frozen=True)
 class DialogExchange:
-    """One question asked at level frame ``frame`` and the oracle's answer to it."""
+    """One question asked at level frame ``frame`` and the oracle's answer to it; the question
+    follows the reader's rules for ``<talk>`` (so the model only ever sees askable ones)."""
 
     frame: int
     question: str
     answer: str
 
     def __post_init__(self) -> None:
-        if isinstance(self.frame, bool) or not isinstance(self.frame, int) or self.frame < 0:
-            raise ConfigError(f"a dialog frame is a non-negative integer, got {self.frame!r}")
-        check_dialog_text("question", self.question)
+        object.__setattr__(self, "frame", frame_index(self.frame))
+        problem = question_problem(self.question)
+        if problem is not None:
+            raise ConfigError(f"invalid dialog question {self.question[:60]!r}: {problem}")
         check_dialog_text("answer", self.answer)
 
 
 def check_dialog_text(name: str, value: str) -> None:
-    """Refuse a question or answer holding a marker that would forge a tag in the prompt."""
+    """Refuse prompt text (question, answer, instruction) holding a marker that would forge
+    a tag, an image or a dialog block in the prompt."""
     marker = reserved_marker_in(value)
     if marker is not None:
         raise ConfigError(
-            f"a dialog {name} may not contain {marker!r} (it would forge a tag in the "
-            f"prompt); remove it from {value[:60]!r}"
+            f"the {name} may not contain {marker!r} (it would forge a tag in the prompt); "
+            f"remove it from {value[:60]!r}"
         )
+
+
+def frame_index(frame: object) -> int:
+    """``frame`` as a plain int (numpy integers from parquet columns are welcome)."""
+    try:
+        index = operator.index(frame)  # type: ignore[arg-type]
+    except TypeError:
+        index = -1
+    if isinstance(frame, bool) or index < 0:
+        raise ConfigError(f"a frame is a non-negative integer, got {frame!r}")
+    return index
 
 
 def history_frames(
@@ -59,12 +74,14 @@ def history_frames(
 ) -> list[int]:
     """The past frames shown at level frame ``frame``: ``count`` evenly spaced ones (the
     reference's linspace, repeats removed) and every dialog frame before ``frame``."""
-    if frame < 0 or count < 1:
-        raise ConfigError(f"history needs frame >= 0 and count >= 1, got {frame}, {count}")
+    frame = frame_index(frame)
+    if count < 1:
+        raise ConfigError(f"history needs at least one frame, got count {count}")
     if frame == 0:
         return []
-    spaced = np.linspace(0, frame - 1, count, dtype=int).tolist()
-    return sorted(set(spaced).union(f for f in dialog_frames if 0 <= f < frame))
+    spaced: list[int] = np.linspace(0, frame - 1, count, dtype=int).tolist()
+    earlier = (int(f) for f in dialog_frames if 0 <= f < frame)
+    return sorted(set(spaced).union(earlier))
 
 
 def history_text(frames: Sequence[int], dialogs: Sequence[DialogExchange]) -> str:

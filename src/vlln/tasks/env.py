@@ -6,17 +6,25 @@ Datasheet
   description that singles out the instance, no dialog), ObjectNav (any instance of the
   category is a goal, no dialog).
 * **Actions**: :class:`vlln.sim.agent.Action` (STOP, MOVE_FORWARD 0.25 m, TURN_LEFT/RIGHT 30°,
-  LOOK_UP/DOWN 30°) or :class:`vlln.tasks.spec.Talk` (a question). Anything else is a failed
-  action: recorded, the agent does not move, and it counts as a step.
+  LOOK_UP/DOWN 30°), :class:`vlln.tasks.spec.Talk` (a question) or
+  :class:`vlln.tasks.spec.PixelGoal` (a pixel of the current frame, normally the look-down one,
+  to walk to: back-projected with depth and tilt, snapped to the navigable area; the camera
+  returns level; counted like a LOOK unless the camera was tilted, whose LOOK_DOWN counted).
+  :class:`vlln.tasks.spec.FailedOutput` (a model's output that could not be read, or a server
+  that gave none), a pixel that shows no reachable floor and anything else are failed
+  actions: recorded by kind, the agent does not move, the camera returns level, and it counts
+  as a step.
 * **Observations** (a dict): ``rgb`` (H, W, 3) uint8; ``depth`` (H, W) float32 metres;
   ``gps`` float32 (x, z) in metres from the start in the start's frame (the start heading looks
   along -z); ``compass`` yaw relative to the start heading (radians, left positive); ``tilt``
   (radians, up positive); ``instruction``; ``oracle_answer`` (the answer to a TALK on the step
-  right after it, else None); ``questions_left``. Privileged agents also get ``instance_ids``
-  (H, W) int32 and ``expert_action`` (the shortest-path follower's next action), and their
-  :class:`EpisodeInfo` carries ``detector``: a ground-truth detector's lookup from instance
-  id to category and attributes (what a perfect object detector with attribute recognition
-  would report), as the reference's data collection uses.
+  right after it, else None); ``questions_left``; ``waypoint_action`` (after a pixel goal: the
+  next action of a shortest-path follower, radius 0.25 m, toward its floor point; None when
+  there is no goal, it is reached, or the agent did something else). Privileged agents also
+  get ``instance_ids`` (H, W) int32 and ``expert_action`` (the shortest-path follower's next
+  action), and their :class:`EpisodeInfo` carries ``detector``: a ground-truth detector's
+  lookup from instance id to category and attributes (what a perfect object detector with
+  attribute recognition would report), as the reference's data collection uses.
 * **Termination**: STOP ends the episode (``terminated``). ``truncated`` at 500 counted steps
   (STOP, FORWARD, TURN and failed actions count; LOOK and TALK do not) or when the LOOK, TALK
   or failed-action caps are reached.
@@ -29,6 +37,7 @@ Datasheet
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -41,10 +50,19 @@ from vlln.sim.camera import CameraSpec
 from vlln.sim.follower import GreedyFollower
 from vlln.sim.simulator import Simulator
 from vlln.tasks.episode import Episode
-from vlln.tasks.record import DialogTurn, EndReason, EpisodeRecord
+from vlln.tasks.record import DialogTurn, EndReason, EpisodeRecord, ModelCall
 from vlln.tasks.scenes import SceneCache
-from vlln.tasks.spec import REFUSAL_MESSAGE, AgentOutput, Talk, TaskConfig, TaskType
+from vlln.tasks.spec import (
+    REFUSAL_MESSAGE,
+    AgentOutput,
+    FailedOutput,
+    PixelGoal,
+    Talk,
+    TaskConfig,
+    TaskType,
+)
 from vlln.tasks.taxonomy import target_observed
+from vlln.tasks.waypoint import Waypoint, waypoint_for_pixel
 from vlln.world.frame import quaternion_to_yaw, wrap_angle
 from vlln.world.model import Attributes, Box3, ObjectInstance
 
@@ -139,6 +157,9 @@ class NavigationEnv:
         self._seen_step: int | None = None
         self._end: EndReason | None = None
         self._answer: str | None = None
+        self._failures: dict[str, int] = {}
+        self._waypoint: Waypoint | None = None
+        self._waypoint_action: Action | None = None
         self._distance = self.field.distance(start.position[0], start.position[2])
         self._d0 = self._distance
         if self.oracle is not None and self.config.dialog_enabled:
@@ -176,15 +197,18 @@ class NavigationEnv:
         self._answer = None
         collided = False
         before = self._distance
+        if self._waypoint_action is None or action != self._waypoint_action:
+            self._waypoint = None  # the agent left the walk to its pixel goal
         if isinstance(action, Talk):
             self._talk(action.text)
         elif isinstance(action, Action):
             collided = self._act(action)
+        elif isinstance(action, PixelGoal):
+            self._pixel_goal(action)
+        elif isinstance(action, FailedOutput):
+            self._fail(f"FAILED:{action.kind}", action.kind)
         else:
-            self._failed += 1
-            self._steps += 1
-            self._actions.append(f"INVALID:{str(action)[:80]}")
-            self._trace.append(self._distance)
+            self._fail(f"INVALID:{str(action)[:80]}", "invalid")
         self._check_caps()
         reward = before - self._distance
         if self._end == EndReason.STOP and self._distance < self.config.success_radius:
@@ -215,6 +239,32 @@ class NavigationEnv:
             self._positions.append([after[0], after[2], observation.state.yaw])
         self._note_target_seen()
         return observation.collided
+
+    def _fail(self, label: str, kind: str) -> None:
+        """A wasted step; the camera returns level (e.g. after ``<move>↓`` and a bad reply)."""
+        self._failed += 1
+        self._failures[kind] = self._failures.get(kind, 0) + 1
+        self._steps += 1
+        self._actions.append(label)
+        self._trace.append(self._distance)
+        self._level_camera()
+
+    def _pixel_goal(self, goal: PixelGoal) -> None:
+        found = waypoint_for_pixel(self.sim, self._frame, goal.col, goal.row)
+        if isinstance(found, str):
+            self._fail(f"FAILED:goal:{goal.col},{goal.row}", "goal")
+            return
+        if self.sim.state.tilt == 0.0:
+            self._looks += 1  # on a tilted frame the LOOK_DOWN before it was counted
+        self._actions.append(f"PIXEL:{goal.col},{goal.row}")
+        self._waypoint = found
+        self._level_camera()
+
+    def _level_camera(self) -> None:
+        state = self.sim.state
+        if state.tilt != 0.0:
+            self._frame = self.sim.reset(AgentState(state.position, state.yaw, 0.0)).frame
+            self._note_target_seen()
 
     def _talk(self, text: str) -> None:
         self._talks += 1
@@ -270,11 +320,19 @@ class NavigationEnv:
             "instruction": self._require_episode().instruction.instruction_text,
             "oracle_answer": self._answer,
             "questions_left": max(0, budget - self._questions_answered),
+            "waypoint_action": self._next_waypoint_action(state),
         }
         if self.privileged:
             obs["instance_ids"] = self._frame.instance_ids
             obs["expert_action"] = self.follower.next_action(state)
         return obs
+
+    def _next_waypoint_action(self, state: AgentState) -> Action | None:
+        action = self._waypoint.next_action(state) if self._waypoint is not None else None
+        if action is None:
+            self._waypoint = None
+        self._waypoint_action = action
+        return action
 
     def _note_target_seen(self) -> None:
         if self._seen_step is not None:
@@ -291,8 +349,14 @@ class NavigationEnv:
                 return
 
     # ----------------------------------------------------------------- the record
-    def record(self, agent_name: str, error: str | None = None) -> EpisodeRecord:
-        """The finished episode as a record; an unfinished one is recorded as an error."""
+    def record(
+        self,
+        agent_name: str,
+        error: str | None = None,
+        model_calls: Sequence[ModelCall] = (),
+    ) -> EpisodeRecord:
+        """The finished episode as a record; an unfinished one is recorded as an error.
+        ``model_calls`` are a model agent's calls, kept in the record as they were."""
         episode = self._require_episode()
         end = self._end or EndReason.ERROR
         stop_id, stop_category = self._stop_instance() if end == EndReason.STOP else (None, None)
@@ -317,6 +381,8 @@ class NavigationEnv:
             dialog=list(self._dialog),
             failed_actions=self._failed,
             error=error,
+            failures=dict(self._failures),
+            model_calls=list(model_calls),
         )
 
     def _stop_instance(self) -> tuple[int | None, str | None]:

@@ -43,6 +43,19 @@ class DialogTurn:
 
 
 @dataclass(frozen=True)
+class ModelCall:
+    """One call of a model agent's model: its raw output (or why there is none) and cost."""
+
+    step: int  # counted steps taken before the call
+    text: str | None  # the raw output, None when the call failed
+    error: str | None = None  # why the server gave no output
+    look_down: bool = False  # the call showed the look-down image (a pixel goal may follow)
+    latency_ms: float = 0.0
+    prompt_tokens: int = 0
+    completion_tokens: int = 0
+
+
+@dataclass(frozen=True)
 class EpisodeRecord:
     """One finished episode of one agent on one task with one dialog budget."""
 
@@ -66,6 +79,10 @@ class EpisodeRecord:
     dialog: list[DialogTurn] = field(default_factory=list)
     failed_actions: int = 0  # unparseable or invalid agent outputs
     error: str | None = None
+    # Failed actions by kind ("parse", "server", "goal", "invalid"); records written before
+    # this field read as empty.
+    failures: dict[str, int] = field(default_factory=dict)
+    model_calls: list[ModelCall] = field(default_factory=list)  # model agents only
 
     @property
     def stopped(self) -> bool:
@@ -86,6 +103,7 @@ class EpisodeRecord:
         try:
             values = dict(data)
             values["dialog"] = [DialogTurn(**turn) for turn in values.get("dialog", [])]
+            values["model_calls"] = [ModelCall(**c) for c in values.get("model_calls", [])]
             values["geodesic_trace"] = [_none_to_inf(d) for d in values["geodesic_trace"]]
             values["geodesic_start"] = _none_to_inf(values["geodesic_start"])
             return EpisodeRecord(**values)

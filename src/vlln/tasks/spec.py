@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from enum import StrEnum
+from typing import Literal
 
 from vlln.errors import ConfigError
 from vlln.sim.agent import Action
@@ -35,7 +36,32 @@ class Talk:
     text: str
 
 
-AgentOutput = Action | Talk
+@dataclass(frozen=True)
+class PixelGoal:
+    """A point to walk to, chosen as pixel ``(col, row)`` of the current look-down frame.
+
+    The environment back-projects it with the frame's depth and the camera tilt, snaps it to
+    the navigable area, levels the camera and offers the next step toward it in the
+    observation (``waypoint_action``)."""
+
+    col: int
+    row: int
+
+
+FailureKind = Literal["parse", "server"]
+
+
+@dataclass(frozen=True)
+class FailedOutput:
+    """A decision the agent could not make: its model's output was unreadable (``parse``) or
+    the model server gave none (``server``). It wastes one step, counts toward the failed-action
+    cap and is recorded with its kind; it is never turned into a move or a STOP."""
+
+    kind: FailureKind
+    detail: str = ""
+
+
+AgentOutput = Action | Talk | PixelGoal | FailedOutput
 
 
 @dataclass(frozen=True)

@@ -28,7 +28,7 @@ class OfflineLanguageModel:
     def complete(
         self, messages: list[Message], *, max_tokens: int, temperature: float
     ) -> Completion:
-        prompt = next((m.content for m in reversed(messages) if m.role == "user"), "")
+        prompt = next((m.text for m in reversed(messages) if m.role == "user"), "")
         if is_classification(prompt):
             question = field_value(prompt, QUESTION_MARKER)
             if question is not None:

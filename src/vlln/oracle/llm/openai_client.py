@@ -9,7 +9,8 @@ crosses a network in clear. The key is never logged and is masked in error messa
 Timeouts, connection errors, 429 and 5xx answers are retried with exponential back-off and
 jitter drawn from the caller's generator; a 429's ``Retry-After`` is waited out (up to the
 back-off cap, so a server cannot stall a run). Other 4xx answers are not retried. Replies
-that are not chat completions raise :class:`LanguageModelReplyError`. Completions are cached
+that are not chat completions raise :class:`LanguageModelReplyError`, or are retried like a
+5xx with ``retry_bad_replies``. Messages may hold images (data URLs). Completions are cached
 on disk when a cache folder is set, and every request is added to a :class:`UsageLedger`.
 """
 
@@ -60,6 +61,9 @@ class OpenAISettings:
     backoff_max_s: float = 30.0  # cap of one wait, Retry-After included
     pricing: Pricing = field(default_factory=Pricing)
     cache_dir: Path | None = None  # None: no disk cache
+    # Retry replies that are not chat completions (a body that is not JSON, no choices), as a
+    # proxy or an overloaded server sometimes sends; off for the oracle, which falls back.
+    retry_bad_replies: bool = False
 
     def __post_init__(self) -> None:
         if not self.model.strip():
@@ -199,7 +203,12 @@ class OpenAIChatClient:
                     f"{self._excerpt(response)}",
                     status,
                 )
-            return _parse_completion(response, self.backend)
+            try:
+                return _parse_completion(response, self.backend)
+            except LanguageModelReplyError as error:
+                if not self.settings.retry_bad_replies:
+                    raise
+                problem, retry_after = str(error), None
         raise LanguageModelUnavailableError(
             f"{self.backend} gave no completion in {attempts} attempts (last: {problem}); check "
             "that the server is up and base_url is right, or raise timeout_s or max_retries"

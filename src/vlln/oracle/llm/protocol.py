@@ -8,7 +8,7 @@ stand in for one another, and lets tests use a scripted server.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Literal, Protocol
+from typing import Any, Literal, Protocol
 
 from vlln.errors import VllnError
 
@@ -16,14 +16,46 @@ Role = Literal["system", "user", "assistant"]
 
 
 @dataclass(frozen=True)
+class TextPart:
+    """A piece of text in a message that also holds images."""
+
+    text: str
+
+
+@dataclass(frozen=True)
+class ImagePart:
+    """A picture in a message: an ``https://`` URL or a ``data:image/jpeg;base64,...`` URL."""
+
+    url: str
+
+
+ContentPart = TextPart | ImagePart
+
+
+@dataclass(frozen=True)
 class Message:
-    """One chat message in the OpenAI chat format."""
+    """One chat message in the OpenAI chat format: plain text, or text and images in order."""
 
     role: Role
-    content: str
+    content: str | tuple[ContentPart, ...]
 
-    def to_json(self) -> dict[str, str]:
-        return {"role": self.role, "content": self.content}
+    @property
+    def text(self) -> str:
+        """The message's text, its images left out."""
+        if isinstance(self.content, str):
+            return self.content
+        return "".join(part.text for part in self.content if isinstance(part, TextPart))
+
+    def to_json(self) -> dict[str, Any]:
+        if isinstance(self.content, str):
+            return {"role": self.role, "content": self.content}
+        parts = [
+            {"type": "text", "text": part.text}
+            if isinstance(part, TextPart)
+            else {"type": "image_url", "image_url": {"url": part.url}}
+            for part in self.content
+        ]
+        return {"role": self.role, "content": parts}
 
 
 @dataclass(frozen=True)

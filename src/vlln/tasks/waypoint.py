@@ -1,0 +1,55 @@
+"""The walk to a pixel goal: where it is, and the next step of a follower toward it.
+
+A :class:`~vlln.tasks.spec.PixelGoal` becomes a navigable floor point
+(:func:`vlln.sim.pixel_goal.pixel_floor_goal`); the environment then offers the shortest-path
+follower's next action toward it in every observation until the agent is within the follower's
+radius (0.25 m, as in the reference), takes another action, or sets another goal. The agent
+decides how many of these steps to take (the model agent: at most 8 before asking again).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from vlln.errors import NavigationError
+from vlln.sim.agent import Action, AgentState
+from vlln.sim.follower import GreedyFollower
+from vlln.sim.pixel_goal import pixel_floor_goal
+from vlln.sim.renderer import Frame
+from vlln.sim.simulator import Simulator
+
+WAYPOINT_RADIUS = 0.25
+
+
+@dataclass(frozen=True)
+class Waypoint:
+    """A floor point to walk to and the follower that leads there."""
+
+    point: tuple[float, float]
+    follower: GreedyFollower
+
+    def next_action(self, state: AgentState) -> Action | None:
+        """The follower's next move, or None once the point is reached or cannot be."""
+        try:
+            action = self.follower.next_action(state)
+        except NavigationError:
+            return None
+        return None if action == Action.STOP else action
+
+
+def waypoint_for_pixel(sim: Simulator, frame: Frame, col: int, row: int) -> Waypoint | str:
+    """The waypoint that pixel ``(col, row)`` of ``frame`` (taken at the simulator's current
+    state) points to, or a short reason why it gives none."""
+    state = sim.state
+    spec = sim.config.camera
+    if not (0 <= col < spec.width and 0 <= row < spec.height):
+        return f"pixel ({col}, {row}) is outside the {spec.width}x{spec.height} image"
+    point = pixel_floor_goal(spec, sim.grid, frame.depth, col, row, state)
+    if point is None:
+        return f"pixel ({col}, {row}) shows nothing"
+    field = sim.geodesic_field([point])
+    x, _, z = state.position
+    if not field.is_reachable(x, z):
+        return f"pixel ({col}, {row}) shows floor that cannot be reached"
+    follower = GreedyFollower(sim.grid, field, WAYPOINT_RADIUS, sim.config.motion)
+    return Waypoint(point, follower)
