@@ -91,6 +91,7 @@ def _agent_options(args: argparse.Namespace) -> dict[str, str]:
         "timeout_s": args.model_timeout,
         "max_retries": args.model_retries,
         "cache_dir": None if args.model_cache is None else str(Path(args.model_cache).resolve()),
+        "device": args.device,
     }
     return {name: str(value) for name, value in flags.items() if value is not None}
 
@@ -156,13 +157,14 @@ def _add_eval_commands(commands: argparse._SubParsersAction[argparse.ArgumentPar
     run.add_argument("--cache-dir", help="where built splits are kept (default ~/.cache/vlln)")
     run.add_argument("--stop-after", type=int, help="play at most N episodes now, then stop")
     run.add_argument("--quiet", action="store_true", help="no progress bar")
-    model = run.add_argument_group("model agents (openai-vlm)")
+    model = run.add_argument_group("model agents (openai-vlm, vlln)")
     model.add_argument("--base-url", help="OpenAI-compatible server, e.g. http://localhost:8000/v1")
-    model.add_argument("--model", help="the served model's name")
+    model.add_argument("--model", help="openai-vlm: the served model's name; vlln: its folder")
     model.add_argument("--api-key-env", help="variable holding the key (default OPENAI_API_KEY)")
     model.add_argument("--model-timeout", type=float, help="seconds per request (default 60)")
     model.add_argument("--model-retries", type=int, help="retries per request (default 4)")
     model.add_argument("--model-cache", help="folder caching model replies (default: none)")
+    model.add_argument("--device", help="vlln: torch device (default cuda if present, else cpu)")
     run.set_defaults(handler=_eval)
 
     score = commands.add_parser("score", help="recompute every metric from run directories")
@@ -222,8 +224,10 @@ def _bench_oracle(args: argparse.Namespace) -> int:
 
 def _bench_agent(args: argparse.Namespace) -> int:
     from vlln.bench.agent import run_agent_benchmark
+    from vlln.bench.agent_model import run_model_benchmark
 
     run_agent_benchmark(seed=args.seed, repeats=args.repeats, as_json=args.json)
+    run_model_benchmark(seed=args.seed, as_json=args.json)
     return 0
 
 
@@ -438,7 +442,9 @@ def build_parser() -> argparse.ArgumentParser:
     )
     bench_oracle.add_argument("--json", action="store_true", help="print one JSON object per line")
     bench_oracle.set_defaults(handler=_bench_oracle)
-    bench_agent = bench.add_parser("agent", help="a model agent's step cost outside the model")
+    bench_agent = bench.add_parser(
+        "agent", help="a model agent's step cost outside the model; the local model's steps/s"
+    )
     bench_agent.add_argument("--seed", type=int, default=0, help="house seed (default 0)")
     bench_agent.add_argument("--repeats", type=int, default=200, help="timed repeats (200)")
     bench_agent.add_argument("--json", action="store_true", help="print one JSON object per line")

@@ -6,6 +6,7 @@ from collections.abc import Callable, Mapping
 
 from vlln.agents.expert import ExpertAgent
 from vlln.agents.frontier import FrontierAgent
+from vlln.agents.local.options import vlln_agent
 from vlln.agents.model.options import openai_vlm_agent
 from vlln.agents.protocol import Agent
 from vlln.agents.random_agent import RandomAgent
@@ -20,6 +21,7 @@ AGENTS: dict[str, Callable[[int], Agent]] = {
 # Agents that take options (which server, which model), stored in run.json.
 CONFIGURED_AGENTS: dict[str, Callable[[int, Mapping[str, str]], Agent]] = {
     "openai-vlm": openai_vlm_agent,
+    "vlln": vlln_agent,
 }
 
 

@@ -1,12 +1,15 @@
-"""A local transformers model that writes the next assistant turn of conversations.
+"""The ``vlln`` agent's model: a local transformers Qwen-VL-style model.
 
-Loaded once per process (:func:`load_backend` keeps it) and reused for every episode;
-``generate`` takes several conversations at once, so episodes played side by side share one
-forward pass. Decoding is greedy with at most 128 new tokens, as the reference evaluates.
+Implements :class:`vlln.agents.model.backend.VisionLanguageModel` for the model-agent loop.
+Loaded once per process (:func:`load_backend`) and reused for every episode. Decoding is
+greedy with at most 128 new tokens, as the reference evaluates. :meth:`generate_batch` answers
+several conversations in one padded forward pass, for callers that play episodes side by side
+(and ``vlln bench agent``); the evaluation runner plays one episode at a time per process.
 """
 
 from __future__ import annotations
 
+import io
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -14,12 +17,15 @@ from functools import lru_cache
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from PIL import Image
+
 from vlln.agents.local.dependencies import require_model_extra
+from vlln.agents.model.backend import ModelReply
 from vlln.errors import ConfigError
-from vlln.prompt import Turn
+from vlln.prompt import Conversation
 
 if TYPE_CHECKING:
-    from PIL.Image import Image
+    import torch
 
 MAX_NEW_TOKENS = 128
 
@@ -28,16 +34,8 @@ MAX_NEW_TOKENS = 128
 class ChatRequest:
     """A conversation ending with a human turn, and its images in ``<image>`` order."""
 
-    turns: tuple[Turn, ...]
-    images: tuple[Image, ...]
-
-
-@dataclass(frozen=True)
-class Completion:
-    text: str
-    prompt_tokens: int
-    completion_tokens: int
-    latency_ms: float  # of the whole batch the request was in
+    conversation: Conversation
+    images: tuple[Image.Image, ...]
 
 
 class TransformersBackend:
@@ -66,39 +64,66 @@ class TransformersBackend:
         self.model = loader.from_pretrained(path, dtype=dtype)
         self.model.to(self.device).eval()
         self.max_new_tokens = max_new_tokens
+        self._name = f"transformers:{path.name}@{self.device}"
 
-    def generate(self, requests: Sequence[ChatRequest]) -> list[Completion]:
+    @property
+    def backend(self) -> str:
+        return self._name
+
+    def generate(self, conversation: Conversation, images: Sequence[bytes]) -> ModelReply:
+        """The reply to one conversation; ``images`` are its JPEGs in ``<image>`` order."""
+        decoded = tuple(_decode(data) for data in images)
+        try:
+            return self.generate_batch([ChatRequest(conversation, decoded)])[0]
+        except RuntimeError as error:  # out of device memory and the like: a failed call
+            return ModelReply(text=None, error=f"{type(error).__name__}: {error}"[:300])
+
+    def generate_batch(self, requests: Sequence[ChatRequest]) -> list[ModelReply]:
         """The model's next turn for every request, decoded greedily in one batch."""
         import torch
 
         if not requests:
             return []
         started = time.perf_counter()
-        texts = [self.encoder.render(r.turns, add_generation_prompt=True) for r in requests]
+        texts = [
+            self.encoder.render(r.conversation.turns, add_generation_prompt=True) for r in requests
+        ]
         batch = self.encoder.encode(texts, [list(r.images) for r in requests], padding_side="left")
-        inputs: dict[str, Any] = {key: value.to(self.device) for key, value in batch.items()}
-        tokenizer = self.encoder.tokenizer
+        inputs: dict[str, torch.Tensor] = {
+            key: value.to(self.device) for key, value in batch.items()
+        }
         with torch.inference_mode():
             output = self.model.generate(
                 **inputs,
                 do_sample=False,
                 max_new_tokens=self.max_new_tokens,
-                pad_token_id=tokenizer.pad_token_id,
+                pad_token_id=self.encoder.tokenizer.pad_token_id,
                 eos_token_id=self.encoder.end_of_turn_id,
             )
-        prompt_length = inputs["input_ids"].shape[1]
-        new_tokens = output[:, prompt_length:].cpu()
+        new_tokens = output[:, inputs["input_ids"].shape[1] :].cpu()
         latency = (time.perf_counter() - started) * 1000.0
         prompt_counts = inputs["attention_mask"].sum(dim=1).tolist()
-        completions = []
-        for row, tokens in enumerate(new_tokens):
-            kept = tokens[tokens != tokenizer.pad_token_id]
-            ended = (kept == self.encoder.end_of_turn_id).nonzero()
-            if len(ended):
-                kept = kept[: int(ended[0]) + 1]
-            text = tokenizer.decode(kept, skip_special_tokens=True)
-            completions.append(Completion(text, int(prompt_counts[row]), len(kept), latency))
-        return completions
+        return [
+            self._reply(tokens, int(prompt_counts[row]), latency)
+            for row, tokens in enumerate(new_tokens)
+        ]
+
+    def _reply(self, tokens: torch.Tensor, prompt_tokens: int, latency_ms: float) -> ModelReply:
+        """The text up to the first end of turn (the rest of a batch row is padding)."""
+        ends = (tokens == self.encoder.end_of_turn_id).nonzero()
+        kept = tokens[: int(ends[0]) + 1] if len(ends) else tokens
+        text = self.encoder.tokenizer.decode(kept, skip_special_tokens=True)
+        return ModelReply(
+            text=text,
+            latency_ms=latency_ms,
+            prompt_tokens=prompt_tokens,
+            completion_tokens=len(kept),
+        )
+
+
+def _decode(data: bytes) -> Image.Image:
+    with Image.open(io.BytesIO(data)) as image:
+        return image.convert("RGB")
 
 
 @lru_cache(maxsize=2)

@@ -1,0 +1,84 @@
+"""`vlln bench agent`, the model part: decisions per second of the ``vlln`` agent's local
+model, measured with the tiny randomly initialised Qwen2.5-VL of :mod:`vlln.train.tiny` on a
+late-episode prompt (8 history frames, 3 dialog frames, the current frame; real renders).
+
+The figures time the backend's whole call (chat template, image processing, greedy decoding
+up to 128 tokens); a random model rarely ends its turn early, so ``tokens_per_s`` is the
+steadier figure. They describe the machine's overhead, not a real model's speed: the
+Qwen2.5-VL-3B figures need a GPU and are only measured when one is present.
+"""
+
+from __future__ import annotations
+
+import io
+import json
+import tempfile
+import time
+
+from PIL import Image
+
+from vlln.agents.local.dependencies import require_model_extra
+from vlln.bench.figures import Figure, emit
+from vlln.errors import ConfigError
+
+BATCH = 4  # conversations answered in one padded forward pass
+
+
+def run_model_benchmark(seed: int = 0, repeats: int = 3, as_json: bool = False) -> list[Figure]:
+    """Measure and print the tiny model's decisions per second (CPU unless a GPU is present)."""
+    try:
+        require_model_extra()
+    except ConfigError as error:
+        _note(f"model figures skipped: {error}", as_json)
+        return []
+    from vlln.agents.local.backend import ChatRequest, TransformersBackend
+    from vlln.agents.model.images import level_image
+    from vlln.bench.agent import DIALOG_FRAMES, FRAME, _rendered_frames
+    from vlln.prompt import DialogExchange, build_conversation, connective_for
+    from vlln.train.tiny import build_tiny_model
+
+    figures: list[Figure] = []
+
+    def record(metric: str, value: float, unit: str) -> None:
+        figure = Figure(metric, value, unit)
+        figures.append(figure)
+        emit(figure, as_json)
+
+    dialogs = [DialogExchange(f, "Which room is it in?", "The kitchen.") for f in DIALOG_FRAMES]
+    connective = connective_for(seed, "bench", FRAME)
+    conversation = build_conversation(
+        "Search for the chair.", FRAME, dialogs, connective=connective
+    )
+    level, _ = _rendered_frames(seed)
+    picture = level_image(level)
+    with tempfile.TemporaryDirectory(prefix="vlln-bench-model-") as folder:
+        backend = TransformersBackend(build_tiny_model(folder, seed=seed))
+    images = [picture] * len(conversation.images)
+    backend.generate(conversation, images)  # warm-up
+    calls, tokens, seconds = 0, 0, 0.0
+    for _ in range(repeats):
+        started = time.perf_counter()
+        reply = backend.generate(conversation, images)
+        seconds += time.perf_counter() - started
+        calls += 1
+        tokens += reply.completion_tokens
+    device = backend.device
+    record(f"tiny_model_steps_per_s_{device}", calls / seconds, "steps/s")
+    record(f"tiny_model_tokens_per_s_{device}", tokens / seconds, "tokens/s")
+    record("tiny_model_prompt_tokens", float(reply.prompt_tokens), "tokens")
+    with Image.open(io.BytesIO(picture)) as opened:
+        shown = tuple(opened.convert("RGB") for _ in images)
+    started = time.perf_counter()
+    backend.generate_batch([ChatRequest(conversation, shown)] * BATCH)
+    batch_rate = BATCH / (time.perf_counter() - started)
+    record(f"tiny_model_batch{BATCH}_steps_per_s_{device}", batch_rate, "steps/s")
+    _note(
+        "no Qwen2.5-VL-3B figures: they need a GPU machine and have not been measured; "
+        "the tiny model's figures show the overhead around a model, not a real model's speed",
+        as_json,
+    )
+    return figures
+
+
+def _note(text: str, as_json: bool) -> None:
+    print(json.dumps({"note": text}) if as_json else f"note: {text}")
