@@ -75,11 +75,17 @@ def test_vision_tower_gets_its_own_learning_rate(tiny_model: Path) -> None:
     assert not is_vision_tower("model.language_model.layers.0.mlp.gate_proj.weight")
 
 
-def test_without_the_model_extra_the_command_says_what_to_install(tmp_path: Path) -> None:
+@pytest.mark.parametrize(
+    "command",
+    [
+        ["train", "sft", "--data", "d", "--model", "m", "--out", "o"],
+        ["eval", "--agent", "vlln", "--model", "m", "--task", "iign", "--out", "o"],
+    ],
+)
+def test_without_the_model_extra_the_command_says_what_to_install(command: list[str]) -> None:
     hide_torch = "import sys; sys.modules['torch'] = None; from vlln.cli import main; "
-    argv = ["train", "sft", "--data", str(tmp_path), "--model", "m", "--out", str(tmp_path)]
     result = subprocess.run(
-        [sys.executable, "-c", hide_torch + f"sys.exit(main({argv!r}))"],
+        [sys.executable, "-c", hide_torch + f"sys.exit(main({command!r}))"],
         capture_output=True,
         text=True,
         check=False,
