@@ -259,7 +259,7 @@ def _add_oracle_commands(commands: argparse._SubParsersAction[argparse.ArgumentP
 
 
 def _data_build(args: argparse.Namespace) -> int:
-    from vlln.datagen.build import BuildConfig, build_dataset
+    from vlln.datagen.build import BuildConfig, build_dataset, summarize
     from vlln.eval.sharding import Shard
 
     config = BuildConfig(
@@ -267,6 +267,7 @@ def _data_build(args: argparse.Namespace) -> int:
     )
     shard = Shard.parse(args.shard) if args.shard else None
     out = build_dataset(Path(args.out), config, shard=shard, progress=not args.quiet)
+    print(summarize(out).line())
     print(f"dataset in {out} (summarise it with: vlln data stats {out})")
     return 0
 
@@ -283,7 +284,7 @@ def _data_export_sft(args: argparse.Namespace) -> int:
     from vlln.datagen.sft.config import SftConfig
     from vlln.datagen.sft.export import export_sft
 
-    config = SftConfig(budget=args.budget, history_frames=args.history)
+    config = SftConfig(seed=args.seed, history_frames=args.history)
     summary = export_sft(Path(args.dataset), Path(args.out), config, progress=not args.quiet)
     print(
         f"wrote {summary.samples} conversations from {summary.trajectories} trajectories "
@@ -328,7 +329,7 @@ def _add_data_commands(commands: argparse._SubParsersAction[argparse.ArgumentPar
     )
     sft.add_argument("dataset", help="a folder made by vlln data build")
     sft.add_argument("--out", required=True, help="output folder (sft.jsonl and images)")
-    sft.add_argument("--budget", type=int, help="oracle answers per trajectory (default: all)")
+    sft.add_argument("--seed", type=int, default=0, help="seed of every random choice")
     sft.add_argument("--history", type=int, default=8, help="history frames (default 8)")
     sft.add_argument("--quiet", action="store_true", help="no progress bar")
     sft.set_defaults(handler=_data_export_sft)

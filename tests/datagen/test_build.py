@@ -12,8 +12,9 @@ from pathlib import Path
 import pytest
 
 from tests.datagen.conftest import SMALL, dataset_files
-from vlln.datagen.build import BuildConfig, build_dataset
-from vlln.datagen.layout import HouseDataset, house_folders
+from vlln.cli import main
+from vlln.datagen.build import BuildConfig, build_dataset, summarize
+from vlln.datagen.reader import HouseDataset, house_folders
 from vlln.errors import ConfigError
 from vlln.eval.sharding import Shard
 from vlln.tasks.episode import read_episodes
@@ -33,8 +34,7 @@ def test_every_stage_is_written(small_dataset: Path) -> None:
         for row in data.episodes:
             frames = data.frames(row["episode_index"])
             assert len(frames["action"]) == row["length"]
-            assert frames["action"][-1] == 0  # STOP
-            assert not frames["collided"].any()
+            assert frames["action"][0] == -1  # no action led to the first frame
             for camera in ("level", "down"):
                 assert data.rgb(camera, row["episode_index"], row["length"] - 1).shape == (
                     480,
@@ -43,6 +43,29 @@ def test_every_stage_is_written(small_dataset: Path) -> None:
                 )
     for task in ("iign", "ign", "objectnav"):
         assert read_episodes(small_dataset / "episodes" / f"train_{task}.json.gz")
+
+
+def test_the_summary_counts_the_houses_and_their_disk(small_dataset: Path) -> None:
+    summary = summarize(small_dataset)
+    infos = [HouseDataset(folder).info for folder in house_folders(small_dataset)]
+    assert summary.attempted == sum(info["attempted"] for info in infos) == 2
+    assert summary.kept == sum(info["total_episodes"] for info in infos) >= 1
+    files = (small_dataset / "trajectories").rglob("*")
+    assert summary.disk_bytes >= sum(p.stat().st_size for p in files if p.is_file())
+    assert f"kept {summary.kept} of 2 trajectories" in summary.line()
+
+
+def test_the_commands_report_what_they_wrote(
+    small_dataset: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """The build (here resuming a finished dataset) ends with kept/attempted and the disk
+    used; the export of what it built writes conversations."""
+    build = ["data", "build", "--houses", "2", "--per-house", "1", "--quiet"]
+    assert main([*build, "--out", str(small_dataset)]) == 0
+    assert summarize(small_dataset).line() in capsys.readouterr().out
+    assert main(["data", "export-sft", str(small_dataset), "--out", str(tmp_path), "--quiet"]) == 0
+    assert "conversations from" in capsys.readouterr().out
+    assert (tmp_path / "export.json").exists() and (tmp_path / "sft.jsonl").stat().st_size > 0
 
 
 def test_a_killed_build_resumes_to_the_same_dataset(small_dataset: Path, tmp_path: Path) -> None:

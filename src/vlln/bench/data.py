@@ -4,6 +4,8 @@ The workload is the pipeline's trajectory stage on the first ``houses`` training
 ``per_house`` episodes each, in one process (so the rate is per core). Scene summaries, episode
 files and the houses' simulators are made before the clock starts; the timed part is
 collection, filtering, rendering both cameras again and encoding every kept frame.
+``mb_per_trajectory`` is the disk the kept trajectories' folders take (as ``du`` counts it),
+per kept trajectory.
 """
 
 from __future__ import annotations
@@ -13,8 +15,13 @@ import time
 from pathlib import Path
 
 from vlln.bench.figures import Figure, emit
-from vlln.datagen.build import BuildConfig, build_house, choose_episodes, prepare_episodes
-from vlln.datagen.layout import HouseDataset, house_folders
+from vlln.datagen.build import (
+    BuildConfig,
+    build_house,
+    choose_episodes,
+    prepare_episodes,
+    summarize,
+)
 from vlln.tasks.scenes import SceneCache, procedural_scene_id
 from vlln.tasks.splits import house_seeds
 
@@ -47,14 +54,14 @@ def run_data_benchmark(houses: int = 2, per_house: int = 6, as_json: bool = Fals
             seconds = time.perf_counter() - started
         finally:
             scenes.close()
-        datasets = [HouseDataset(folder) for folder in house_folders(root)]
-        attempted = sum(int(d.info["attempted"]) for d in datasets)
-        kept = sum(int(d.info["total_episodes"]) for d in datasets)
-        frames = sum(int(d.info["total_frames"]) for d in datasets)
+        summary = summarize(root)
+    attempted, kept, frames = summary.attempted, summary.kept, summary.frames
     note("trajectories_attempted", attempted, "count")
     note("trajectories_per_hour", 3600.0 * attempted / seconds, "trajectories/h/core")
     note("kept_trajectories_per_hour", 3600.0 * kept / seconds, "trajectories/h/core")
     note("seconds_per_trajectory", seconds / attempted, "s")
     note("yield", 100.0 * kept / attempted, "%")
     note("frames_written_per_second", frames / seconds, "frames/s")
+    note("mb_per_trajectory", summary.mb_per_trajectory, "MB")
+    note("frames_per_trajectory", frames / kept if kept else 0.0, "frames")
     return figures

@@ -28,8 +28,10 @@ from vlln import __version__
 from vlln.datagen.collector.collect import CollectorConfig, collect_trajectory
 from vlln.datagen.collector.visibility import DOWN_TILT
 from vlln.datagen.filtering import FilterConfig, rejection_reason
-from vlln.datagen.layout import HouseWriter
+from vlln.datagen.layout import FORMAT_VERSION
+from vlln.datagen.reader import HouseDataset, house_folders
 from vlln.datagen.trajectory import Trajectory
+from vlln.datagen.writer import HouseWriter
 from vlln.errors import ConfigError
 from vlln.eval.sharding import Shard
 from vlln.files import write_text_atomic
@@ -65,7 +67,12 @@ class BuildConfig:
                 raise ConfigError(f"{name} must be a whole number >= {low}, got {value!r}")
 
     def settings(self) -> dict[str, Any]:
-        return {**asdict(self), "oracle": "rules", "vlln_version": __version__}
+        return {
+            **asdict(self),
+            "oracle": "rules",
+            "vlln_version": __version__,
+            "trajectory_format": FORMAT_VERSION,
+        }
 
 
 def build_dataset(
@@ -143,6 +150,41 @@ def build_house(
         else:
             writer.write_rejected(episode.episode_id, reason)
     writer.finish({"generator": config.settings()})
+
+
+@dataclass(frozen=True)
+class BuildSummary:
+    """What the finished houses of a dataset hold, and the disk their trajectories take."""
+
+    attempted: int
+    kept: int
+    frames: int
+    disk_bytes: int  # allocated on disk under trajectories/, as `du` counts it
+
+    @property
+    def mb_per_trajectory(self) -> float:
+        return self.disk_bytes / 1e6 / self.kept if self.kept else 0.0
+
+    def line(self) -> str:
+        return (
+            f"kept {self.kept} of {self.attempted} trajectories ({self.frames} frames); "
+            f"{self.disk_bytes / 1e6:.1f} MB on disk, {self.mb_per_trajectory:.2f} MB per "
+            "kept trajectory"
+        )
+
+
+def summarize(root: str | Path) -> BuildSummary:
+    """Totals over the finished house folders of ``root`` (those with meta/info.json)."""
+    attempted = kept = frames = disk = 0
+    for folder in house_folders(root):
+        if not (folder / "meta" / "info.json").exists():
+            continue
+        info = HouseDataset(folder).info
+        attempted += int(info["attempted"])
+        kept += int(info["total_episodes"])
+        frames += int(info["total_frames"])
+        disk += sum(p.stat().st_blocks * 512 for p in folder.rglob("*") if p.is_file())
+    return BuildSummary(attempted, kept, frames, disk)
 
 
 def _camera_frames(sim: Simulator, trajectory: Trajectory) -> Iterator[tuple[Frame, Frame]]:

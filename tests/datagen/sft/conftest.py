@@ -20,9 +20,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from vlln.datagen.layout import DOWN_TILT_DEG, HouseWriter, house_dir_name
+from vlln.datagen.layout import DOWN_TILT_DEG, house_dir_name
 from vlln.datagen.sft import export_sft
 from vlln.datagen.trajectory import Exchange, Step, Trajectory
+from vlln.datagen.writer import HouseWriter
 from vlln.sim.agent import Action, AgentState
 from vlln.sim.follower import GreedyFollower
 from vlln.sim.renderer import Frame
@@ -49,6 +50,8 @@ class HandDataset:
     root: Path
     house: str  # the house folder name
     states: dict[int, list[AgentState]]  # frame states by episode index
+    actions: dict[int, list[Action]]  # the action done at each frame, by episode index
+    names: dict[int, str]  # episode ids by episode index
     dialogs: dict[int, list[tuple[int, str, str]]]  # (frame, question, answer) by episode
 
 
@@ -78,14 +81,18 @@ def hand_dataset(sim: Simulator, tmp_path_factory: pytest.TempPathFactory) -> Ha
         ("scan", clear_start(sim, turns=5, distance=0.5), SCAN_ACTIONS, SCAN_DIALOG),
     ]
     states: dict[int, list[AgentState]] = {}
+    actions_of: dict[int, list[Action]] = {}
+    names: dict[int, str] = {}
     dialogs: dict[int, list[tuple[int, str, str]]] = {}
     for name, start, actions, dialog in plans:
         trajectory = walk(sim, name, start, actions, dialog)
         index = writer.write_kept(trajectory, camera_frames(sim, trajectory))
         states[index] = [step.state for step in trajectory.steps]
+        actions_of[index] = list(actions)
+        names[index] = name
         dialogs[index] = list(dialog)
     writer.finish({})
-    return HandDataset(root, house_dir_name(scene_id), states, dialogs)
+    return HandDataset(root, house_dir_name(scene_id), states, actions_of, names, dialogs)
 
 
 def clear_start(sim: Simulator, turns: int, distance: float) -> AgentState:

@@ -21,15 +21,19 @@ def test_a_missing_folder_is_a_config_error(tmp_path: Path) -> None:
 
 def test_a_folder_without_trajectories_is_not_a_dataset(tmp_path: Path) -> None:
     (tmp_path / "data" / "episodes").mkdir(parents=True)
-    with pytest.raises(DataFormatError, match="not a vlln trajectory dataset"):
+    with pytest.raises(DataFormatError, match="not a trajectory dataset"):
         export_sft(tmp_path / "data", tmp_path / "out", progress=False)
     assert not (tmp_path / "out").exists()
 
 
-def test_an_unfinished_house_is_refused(tmp_path: Path) -> None:
-    (tmp_path / "data" / "trajectories" / "house_00000" / "meta").mkdir(parents=True)
-    with pytest.raises(DataFormatError, match="not a finished trajectory folder"):
-        export_sft(tmp_path / "data", tmp_path / "out", progress=False)
+def test_a_house_of_another_format_version_is_refused(
+    hand_dataset: HandDataset, tmp_path: Path
+) -> None:
+    copy = copy_dataset(hand_dataset, tmp_path)
+    info = copy / "trajectories" / hand_dataset.house / "meta" / "info.json"
+    info.write_text(json.dumps({"format_version": "vlln-trajectories/1.0"}), encoding="utf-8")
+    with pytest.raises(DataFormatError, match="rebuild the data"):
+        export_sft(copy, tmp_path / "out", progress=False)
 
 
 def copy_dataset(hand_dataset: HandDataset, tmp_path: Path) -> Path:
@@ -48,7 +52,7 @@ def test_malformed_dialog_rows_name_the_file_and_episode(
     episodes.write_text("".join(json.dumps(row) + "\n" for row in rows), encoding="utf-8")
     with pytest.raises(DataFormatError, match=r"episodes.jsonl, episode 1: .*pairs"):
         export_sft(copy, tmp_path / "out", progress=False)
-    del rows[1]["target"]
+    del rows[1]["tasks"]
     episodes.write_text("".join(json.dumps(row) + "\n" for row in rows), encoding="utf-8")
     with pytest.raises(DataFormatError, match="episode 1: unreadable"):
         export_sft(copy, tmp_path / "out", progress=False)
@@ -59,12 +63,12 @@ def test_missing_images_and_frames_are_data_format_errors(
 ) -> None:
     copy = copy_dataset(hand_dataset, tmp_path)
     house = copy / "trajectories" / hand_dataset.house
-    depth = house / "images" / "down_depth" / "episode_000001" / "frame_000001.png"
-    kept = depth.read_bytes()
-    depth.unlink()
-    with pytest.raises(DataFormatError, match=r"episode 1: .*frame_000001\.png.*incomplete"):
+    image = house / "videos/chunk-000/observation.images.rgb.125cm_0deg/episode_000001_1.jpg"
+    kept = image.read_bytes()
+    image.unlink()
+    with pytest.raises(DataFormatError, match=r"episode 1: .*episode_000001_1\.jpg.*incomplete"):
         export_sft(copy, tmp_path / "out", progress=False)
-    depth.write_bytes(kept)
+    image.write_bytes(kept)
     (house / "data" / "chunk-000" / "episode_000002.parquet").unlink()
     with pytest.raises(DataFormatError, match="episode 2: unreadable"):
         export_sft(copy, tmp_path / "out", progress=False)
@@ -86,12 +90,12 @@ def test_the_output_folder_must_be_new_empty_or_an_export(
 @pytest.mark.parametrize(
     "settings",
     [
-        {"budget": -1},
+        {"seed": -1},
+        {"sample_step": 0},
+        {"repeats": True},
+        {"max_answers": -1},
         {"history_frames": 2.5},
-        {"max_turn_run": 0},
-        {"max_goal_steps": True},
-        {"depth_tolerance": 0.0},
-        {"image_size": 8},
+        {"max_turn_run": 5},
         {"jpeg_quality": 100},
     ],
 )

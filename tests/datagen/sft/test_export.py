@@ -1,11 +1,12 @@
-"""export_sft on a hand-made dataset of real renders: the exact format, the pixel goals, the
-files it writes, and its settings."""
+"""export_sft on a hand-made dataset of real renders: the reference's sampling, conversations
+that are exactly what vlln.prompt builds for the same states, the images, and the files."""
 
 from __future__ import annotations
 
-import itertools
 import json
 import math
+import shutil
+from collections import Counter
 from pathlib import Path
 from typing import Any
 
@@ -13,148 +14,161 @@ import numpy as np
 import pytest
 from PIL import Image
 from tests.datagen.sft.conftest import HandDataset
-from tests.datagen.sft.samples import (
-    PIXEL_OUTPUT,
-    episode_samples,
-    read_samples,
-    sample_frame,
-)
+from tests.datagen.sft.samples import episode_samples, read_samples, sample_key
 
-from vlln.datagen.layout import HouseDataset
+from vlln.datagen.reader import HouseDataset
 from vlln.datagen.sft import SftConfig, export_sft
-from vlln.sim.agent import AgentState
-from vlln.sim.camera import CameraSpec
-from vlln.tasks.spec import REFUSAL_MESSAGE
-from vlln.world.frame import quaternion_to_yaw
-
-DOWN_TILT = math.radians(-30.0)
-INTRO = (
-    "You are an autonomous navigation assistant. Your task is to search for the bathtub. You "
-    "may either move or talk to an oracle. If you choose to move, first output TILT DOWN (↓), "
-    "and then predict the next waypoint coordinates on the floor-view image. If the target is "
-    "reached, output STOP."
+from vlln.prompt import (
+    QUESTION_LIMIT_ANSWER,
+    Conversation,
+    DialogExchange,
+    PixelOutput,
+    StopOutput,
+    TiltDownOutput,
+    TurnOutput,
+    build_conversation,
+    connective_for,
+    limit_answers,
+    with_look_down,
+    with_reply,
 )
+from vlln.sim.agent import Action, AgentState
+from vlln.sim.camera import CameraSpec
 
-
-def human(value: str) -> dict[str, str]:
-    return {"from": "human", "value": value}
-
-
-def gpt(value: str) -> dict[str, str]:
-    return {"from": "gpt", "value": value}
+SEED = 0
+DOWN = "125cm_30deg"
 
 
 def projected_pixel(at: AgentState, later: AgentState) -> tuple[int, int]:
-    """Where the feet at ``later`` show on the look-down image taken at ``at``: the camera's
-    view matrix and pinhole intrinsics, nearest pixel centre with halves rounded up."""
+    """Where the feet at ``later`` show on the look-down image taken at ``at``."""
     spec = CameraSpec()
-    view = spec.view_matrix(at.position, at.yaw, DOWN_TILT)
+    view = spec.view_matrix(at.position, at.yaw, math.radians(-30.0))
     x, y, z = view[:3, :3] @ np.asarray(later.position) + view[:3, 3]
     fx, fy, cx, cy = spec.intrinsics()
     u, v = cx + fx * x / -z, cy - fy * y / -z
     return math.floor(u + 0.5 + 1e-6), math.floor(v + 0.5 + 1e-6)
 
 
-def test_golden_trajectory_is_exported_in_the_prompt_format(
+def goals_of(hand_dataset: HandDataset, episode: int) -> list[tuple[int, list[int]]]:
+    frames = HouseDataset(hand_dataset.root / "trajectories" / hand_dataset.house).frames(episode)
+    relative = frames[f"relative_goal_frame_id.{DOWN}"].tolist()
+    return list(zip(relative, frames[f"goal.{DOWN}"].tolist(), strict=True))
+
+
+def expected_move(
+    actions: list[Action], goals: list[tuple[int, list[int]]], frame: int, kind: str
+) -> PixelOutput | TurnOutput | StopOutput:
+    """The reference's choice: STOP, the pixel goal where there is one, else the turn run."""
+    if kind == "stop" or actions[frame] == Action.STOP:
+        return StopOutput()
+    relative, pixel = goals[frame]
+    if relative >= 0:
+        return PixelOutput(pixel[0], pixel[1])
+    run = 1
+    while run < 4 and actions[frame + run] == actions[frame]:
+        run += 1
+    return TurnOutput("left" if actions[frame] == Action.TURN_LEFT else "right", run)
+
+
+def agent_conversation(
+    instruction: str,
+    episode_id: str,
+    frame: int,
+    heard: list[DialogExchange],
+    answers_left: int,
+    move: PixelOutput | TurnOutput | StopOutput,
+) -> Conversation:
+    """What an agent sends and answers in this state, through the shared prompt functions."""
+    conversation = build_conversation(
+        instruction,
+        frame,
+        limit_answers(heard, answers_left),
+        connective=connective_for(SEED, episode_id, frame),
+    )
+    if isinstance(move, PixelOutput):
+        conversation = with_reply(conversation, TiltDownOutput())
+        down = connective_for(SEED, episode_id, frame, look_down=True)
+        conversation = with_look_down(conversation, frame, connective=down)
+    return with_reply(conversation, move)
+
+
+def test_conversations_are_the_prompt_the_agent_builds(
     hand_dataset: HandDataset, default_export: Path
 ) -> None:
-    house, states = hand_dataset.house, hand_dataset.states[0]
-    walked = np.subtract(states[6].position, states[2].position)
-    assert np.hypot(walked[0], walked[2]) == pytest.approx(1.0)  # four 0.25 m steps
-    u, v = projected_pixel(states[2], states[6])
-    assert u == 320  # straight ahead: the tie between columns 319 and 320 goes up
-
-    def level(frame: int) -> str:
-        return f"images/{house}/episode_000000/level_{frame:06d}.jpg"
-
-    def down(frame: int) -> str:
-        return f"images/{house}/episode_000000/down_{frame:06d}.jpg"
-
-    first = "<|navigator|> What colour is the bathtub? <|oracle|> It is white."
-    second = "<|navigator|> Is the bathtub in the room on my right? <|oracle|> Yes, it is."
-    expected = [
-        {
-            "id": f"{house}/episode_000000/frame_000000",
-            "images": [level(0)],
-            "conversations": [
-                human(
-                    f"{INTRO} You have no historical observations yet. You have no previous "
-                    "look-down image. In front of you is <image>."
-                ),
-                gpt("<talk>What colour is the bathtub?"),
-                human("It is white."),
-                gpt("<move>←←"),
-            ],
-        },
-        {
-            "id": f"{house}/episode_000000/frame_000002",
-            "images": [level(0), level(1), level(2), down(2)],
-            "conversations": [
-                human(
-                    f"{INTRO} These are your historical observations: <image> <image> "
-                    f"<dialog> {first}</dialog>. You have no previous look-down image. "
-                    "In front of you is <image>."
-                ),
-                gpt("<move>↓"),
-                human("You can see <image>. Locate the goal location on the floor in this image."),
-                gpt(f"<move>{u} {v}"),
-            ],
-        },
-        {
-            "id": f"{house}/episode_000000/frame_000006",
-            "images": [*(level(f) for f in range(6)), down(2), level(6)],
-            "conversations": [
-                human(
-                    f"{INTRO} These are your historical observations: <image> <image> <image> "
-                    f"<image> <image> <image> <dialog> {first}</dialog>. Your previous "
-                    "look-down image is <image>. In front of you is <image>."
-                ),
-                gpt("<talk>Is the bathtub in the room on my right?"),
-                human("Yes, it is."),
-                gpt("<move>→"),
-            ],
-        },
-        {
-            "id": f"{house}/episode_000000/frame_000007",
-            "images": [*(level(f) for f in range(7)), down(2), level(7)],
-            "conversations": [
-                human(
-                    f"{INTRO} These are your historical observations: <image> <image> <image> "
-                    f"<image> <image> <image> <image> <dialog> {first} {second}</dialog>. Your "
-                    "previous look-down image is <image>. In front of you is <image>."
-                ),
-                gpt("<move>STOP"),
-            ],
-        },
-    ]
-    assert episode_samples(read_samples(default_export), 0) == expected
-
-
-def test_every_pixel_goal_back_projects_onto_where_the_agent_went(
-    hand_dataset: HandDataset, default_export: Path
-) -> None:
-    dataset = HouseDataset(hand_dataset.root / "trajectories" / hand_dataset.house)
-    spec = CameraSpec()
+    """Token for token: each sample equals the prompt functions' conversation for its
+    recorded state, with one of the 0..6 answer limits the export may draw."""
     samples = read_samples(default_export)
     checked = 0
-    for sample, after in itertools.pairwise(samples):
-        match = PIXEL_OUTPUT.fullmatch(sample["conversations"][-1]["value"])
-        if match is None:
+    for episode, actions in hand_dataset.actions.items():
+        goals = goals_of(hand_dataset, episode)
+        exchanges = [DialogExchange(f, q, a) for f, q, a in hand_dataset.dialogs[episode]]
+        for sample in episode_samples(samples, episode):
+            _, frame, kind = sample_key(sample)
+            heard = [
+                e for e in exchanges if e.frame < frame or (kind == "dialog" and e.frame == frame)
+            ]
+            move = expected_move(actions, goals, frame, kind)
+            candidates = [
+                agent_conversation(
+                    "Search for the bathtub.",
+                    hand_dataset.names[episode],
+                    frame,
+                    heard,
+                    left,
+                    move,
+                )
+                for left in range(7)
+            ]
+            matches = [c for c in candidates if c.as_sharegpt() == sample["conversations"]]
+            assert matches, sample["id"]
+            prefix = f"images/{hand_dataset.house}/episode_{episode:06d}"
+            paths = [f"{prefix}/{ref.camera}_{ref.frame:06d}.jpg" for ref in matches[0].images]
+            assert sample["images"] == paths
+            checked += 1
+    assert checked == len(samples)
+
+
+def test_golden_trajectory_is_sampled_as_the_reference_does(default_export: Path) -> None:
+    """L L F F F F R S with questions at frames 0 and 6: frame 0 every 4 frames (frame 4 steps
+    forward without a visible goal: skipped), STOP x10, both question frames x10."""
+    golden = episode_samples(read_samples(default_export), 0)
+    assert [sample_key(s)[1:] for s in golden] == (
+        [(0, "step")] + [(7, "stop")] * 10 + [(0, "dialog")] * 10 + [(6, "dialog")] * 10
+    )
+    finals = [s["conversations"][-1]["value"] for s in golden]
+    assert finals == ["<move>←←"] + ["<move>STOP"] * 10 + ["<move>←←"] * 10 + ["<move>→"] * 10
+    first = golden[11]["conversations"]
+    assert first[1] == {"from": "gpt", "value": "<talk>What colour is the bathtub?"}
+    assert first[2]["value"] in ("It is white.", QUESTION_LIMIT_ANSWER)
+    answers = Counter(s["conversations"][2]["value"] for s in golden[11:21])
+    assert set(answers) == {"It is white.", QUESTION_LIMIT_ANSWER}  # drawn limits vary
+
+
+def test_scan_turn_runs_are_at_most_four(default_export: Path) -> None:
+    scan = episode_samples(read_samples(default_export), 2)
+    steps = {sample_key(s)[1]: s["conversations"][-1]["value"] for s in scan if "/step/" in s["id"]}
+    assert steps == {0: "<move>←←←←", 4: "<move>←←←←", 8: "<move>→→→", 12: "<move>→"}
+    dialog = [s["conversations"][-1]["value"] for s in scan if "/dialog/" in s["id"]]
+    assert dialog == ["<move>→→"] * 10
+
+
+def test_pixel_goals_are_where_the_agent_stands_later(
+    hand_dataset: HandDataset, default_export: Path
+) -> None:
+    pixels = 0
+    for sample in read_samples(default_export):
+        episode, frame, _ = sample_key(sample)
+        turns = sample["conversations"]
+        if not turns[-1]["value"][6:7].isdigit():
             continue
-        (episode, frame), (next_episode, goal_frame) = sample_frame(sample), sample_frame(after)
-        assert next_episode == episode  # a trajectory never ends on a pixel goal
+        assert turns[-3]["value"] == "<move>↓" and turns[-2]["value"].endswith("<image>.")
+        col, row = (int(v) for v in turns[-1]["value"].removeprefix("<move>").split())
+        relative, _ = goals_of(hand_dataset, episode)[frame]
+        states = hand_dataset.states[episode]
+        assert (col, row) == projected_pixel(states[frame], states[frame + relative])
         assert sample["images"][-1].endswith(f"/down_{frame:06d}.jpg")
-        u, v = int(match[1]), int(match[2])
-        frames = dataset.frames(episode)
-        depth = dataset.depth("down", episode, frame)[v, u]
-        feet = frames["agent_position"][frame]
-        yaw = quaternion_to_yaw(list(frames["agent_rotation"][frame]))
-        point = spec.unproject(u, v, depth, feet, yaw, DOWN_TILT)
-        target = frames["agent_position"][goal_frame]
-        assert np.linalg.norm(point - target) < 0.3, sample["id"]
-        assert np.linalg.norm(target - feet) > 0.5  # nearer floor is out of the image
-        checked += 1
-    assert checked >= 5
+        pixels += 1
+    assert pixels >= 2
 
 
 def test_output_loads_with_hugging_face_datasets(default_export: Path, tmp_path: Path) -> None:
@@ -170,8 +184,7 @@ def test_output_loads_with_hugging_face_datasets(default_export: Path, tmp_path:
     assert table.num_rows == len(read_samples(default_export)) > 0
     for row in table:
         turns = row["conversations"]
-        speakers = [turn["from"] for turn in turns]
-        assert speakers == ["human", "gpt"] * (len(turns) // 2)
+        assert [t["from"] for t in turns] == ["human", "gpt"] * (len(turns) // 2)
         assert sum(turn["value"].count("<image>") for turn in turns) == len(row["images"])
         for path in row["images"]:
             with Image.open(default_export / path) as image:
@@ -183,20 +196,19 @@ def test_output_loads_with_hugging_face_datasets(default_export: Path, tmp_path:
 def test_export_json_counts_what_was_written(default_export: Path) -> None:
     summary = json.loads((default_export / "export.json").read_text(encoding="utf-8"))
     samples = read_samples(default_export)
-    outputs = [t["value"] for s in samples for t in s["conversations"] if t["from"] == "gpt"]
-    expected = {
-        "talk": sum(o.startswith("<talk>") for o in outputs),
-        "move": sum(PIXEL_OUTPUT.fullmatch(o) is not None for o in outputs),
-        "forward": outputs.count("<move>↑"),
-        "turn": sum(o.startswith(("<move>←", "<move>→")) for o in outputs),
-        "stop": outputs.count("<move>STOP"),
-    }
+    kinds = Counter(sample_key(s)[2] for s in samples)
+    finals = [s["conversations"][-1]["value"] for s in samples if "/step/" in s["id"]]
     referenced = {path for s in samples for path in s["images"]}
     on_disk = {p.relative_to(default_export).as_posix() for p in default_export.rglob("*.jpg")}
     counts = summary["counts"]
-    assert counts["decisions"] == expected
-    assert expected["forward"] >= 1 and expected["move"] >= 5 and expected["talk"] == 6
     assert counts["samples"] == len(samples)
+    assert counts["samples_by_kind"] == {
+        "pixel": sum(f[6:7].isdigit() for f in finals),
+        "turn": sum(f.startswith(("<move>←", "<move>→")) for f in finals),
+        "stop": kinds["stop"],
+        "dialog": kinds["dialog"],
+    }
+    assert kinds["stop"] == 30 and kinds["dialog"] % 10 == 0 and kinds["dialog"] >= 40
     assert counts["images"] == len(referenced) == len(on_disk)
     assert referenced == on_disk
     assert counts["trajectories"] == 3
@@ -220,25 +232,24 @@ def test_export_is_deterministic_and_reruns_replace_an_earlier_export(
     assert tree(out) == tree(default_export)
 
 
-def refused_exports(hand_dataset: HandDataset, out: Path, budget: int) -> list[dict[str, Any]]:
-    summary = export_sft(hand_dataset.root, out, SftConfig(budget=budget), progress=False)
-    asked = [len(d) for d in hand_dataset.dialogs.values()]
-    assert summary.refused_questions == sum(max(0, n - budget) for n in asked)
-    return read_samples(out)
-
-
-def test_questions_beyond_the_budget_get_the_refusal(
+def test_no_answers_left_means_every_answer_is_the_limit_answer(
     hand_dataset: HandDataset, tmp_path: Path
 ) -> None:
-    golden = episode_samples(refused_exports(hand_dataset, tmp_path / "one", 1), 0)
-    assert golden[0]["conversations"][2] == human("It is white.")
-    assert golden[2]["conversations"][2] == human(REFUSAL_MESSAGE)
-    assert (
-        "<|navigator|> Is the bathtub in the room on my right? <|oracle|> "
-        f"{REFUSAL_MESSAGE}</dialog>" in golden[3]["conversations"][0]["value"]
-    )
-    none = episode_samples(refused_exports(hand_dataset, tmp_path / "none", 0), 0)
-    assert none[0]["conversations"][2] == human(REFUSAL_MESSAGE)
+    export_sft(hand_dataset.root, tmp_path / "none", SftConfig(max_answers=0), progress=False)
+    samples = read_samples(tmp_path / "none")
+    texts: list[Any] = [t["value"] for s in samples for t in s["conversations"]]
+    assert not any("It is white." in text for text in texts)
+    dialog = [s for s in samples if "/dialog/" in s["id"]]
+    assert all(s["conversations"][2]["value"] == QUESTION_LIMIT_ANSWER for s in dialog)
+
+
+def test_another_seed_draws_other_limits_and_connectives(
+    hand_dataset: HandDataset, default_export: Path, tmp_path: Path
+) -> None:
+    export_sft(hand_dataset.root, tmp_path / "other", SftConfig(seed=7), progress=False)
+    other, default = read_samples(tmp_path / "other"), read_samples(default_export)
+    assert [s["id"] for s in other] == [s["id"] for s in default]
+    assert [s["conversations"] for s in other] != [s["conversations"] for s in default]
 
 
 def test_progress_bar_can_be_shown(
@@ -248,3 +259,15 @@ def test_progress_bar_can_be_shown(
     assert "export-sft" in capsys.readouterr().err
     export_sft(hand_dataset.root, tmp_path / "hidden", progress=False)
     assert "export-sft" not in capsys.readouterr().err
+
+
+def test_a_folder_in_the_reference_layout_without_info_json_exports_the_same(
+    hand_dataset: HandDataset, default_export: Path, tmp_path: Path
+) -> None:
+    copy = tmp_path / "reference"
+    shutil.copytree(hand_dataset.root, copy)
+    (copy / "trajectories" / hand_dataset.house / "meta" / "info.json").unlink()
+    export_sft(copy, tmp_path / "out", progress=False)
+    assert (tmp_path / "out" / "sft.jsonl").read_bytes() == (
+        default_export / "sft.jsonl"
+    ).read_bytes()

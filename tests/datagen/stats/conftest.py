@@ -9,8 +9,8 @@ from pathlib import Path
 
 import pytest
 
-from vlln.datagen.layout import HouseWriter
 from vlln.datagen.trajectory import Exchange, Step, Trajectory
+from vlln.datagen.writer import HouseWriter
 from vlln.sim.agent import Action, AgentState
 from vlln.sim.camera import CameraSpec
 from vlln.sim.renderer import Frame

@@ -22,9 +22,10 @@ def _rows(house: Path) -> list[dict[str, Any]]:
 
 
 def _walked(parquet: Path) -> float:
-    """Metres walked, from the agent positions stored per frame."""
-    positions = np.asarray(pq.read_table(parquet).column("agent_position").to_pylist())
-    return float(np.linalg.norm(np.diff(positions[:, [0, 2]], axis=0), axis=1).sum())
+    """Metres walked, from the level camera poses stored per frame (z-up world: x, y on the
+    floor plane)."""
+    poses = np.asarray(pq.read_table(parquet).column("pose.125cm_0deg").to_pylist())
+    return float(np.linalg.norm(np.diff(poses[:, :2, 3], axis=0), axis=1).sum())
 
 
 def test_counts_agree_with_a_recount_of_the_files(dataset: Dataset) -> None:

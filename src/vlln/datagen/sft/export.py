@@ -1,18 +1,22 @@
-"""``vlln data export-sft``: a trajectory dataset as multi-image, multi-turn conversations.
+"""``vlln data export-sft``: a trajectory dataset as multi-image conversations for training.
 
 ::
 
-    <out>/sft.jsonl        one sample per line, in house, episode and frame order:
+    <out>/sft.jsonl        one sample per line, in house, episode and sample order:
                            {"id", "images": [paths in <image> order], "conversations":
                             [{"from": "human" | "gpt", "value": ...}, ...]}
-    <out>/images/<house>/episode_<i>/{level,down}_<frame>.jpg
+    <out>/images/<house>/episode_<i>/{level,down}_<frame>.jpg   level 384x384, down 640x480
     <out>/export.json      format, settings, houses and counts; written last, so its presence
                            marks a complete export
 
-Images are written plainly, ``sft.jsonl`` through a temporary file and a rename, and
-``export.json`` (removed first when an earlier export is overwritten) atomically at the end: a
-killed export leaves a folder without ``export.json`` that a rerun overwrites. The output
-depends only on the dataset and the settings: the same input gives the same bytes.
+Which frames become samples is the reference's sampling (:mod:`vlln.datagen.sft.sampling`);
+the text of every sample is made by :mod:`vlln.prompt`, the functions the model agents call,
+so a sample is exactly what an agent would send in the same state. Random choices (the answers
+left before the question limit, the connectives) come from the seed only: the same dataset and
+settings give the same bytes. Images are written plainly, ``sft.jsonl`` through a temporary
+file and a rename, and ``export.json`` (removed first when an earlier export is overwritten)
+atomically at the end: a killed export leaves a folder without ``export.json`` that a rerun
+overwrites.
 """
 
 from __future__ import annotations
@@ -21,28 +25,36 @@ import json
 import os
 import shutil
 import tempfile
+import zlib
 from collections.abc import Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import IO, Any
 
+import numpy as np
 from tqdm import tqdm
 
 from vlln import __version__
-from vlln.datagen.layout import HouseDataset
+from vlln.datagen.reader import HouseDataset
 from vlln.datagen.sft.config import SftConfig
-from vlln.datagen.sft.conversation import Sample, build_samples
-from vlln.datagen.sft.decisions import Decision, ForwardStep, PixelGoal, Stop, cut_decisions
-from vlln.datagen.sft.dialog import apply_budget
 from vlln.datagen.sft.images import IMAGES_DIR, ImageStore
-from vlln.datagen.sft.pixel_goals import GoalLocator
-from vlln.datagen.sft.source import SourceTrajectory, down_camera, open_houses, read_trajectories
+from vlln.datagen.sft.sampling import SamplePlan, plan_samples
+from vlln.datagen.sft.source import SourceTrajectory, open_houses, read_trajectories
 from vlln.errors import ConfigError, DataFormatError
 from vlln.files import write_text_atomic
-from vlln.sim.camera import CameraSpec
+from vlln.prompt import (
+    Conversation,
+    PixelOutput,
+    TiltDownOutput,
+    build_conversation,
+    connective_for,
+    limit_answers,
+    with_look_down,
+    with_reply,
+)
 
-FORMAT_VERSION = "vlln-sft/1.0"
+FORMAT_VERSION = "vlln-sft/2.0"
 SFT_FILE = "sft.jsonl"
 SUMMARY_FILE = "export.json"
 _OWN_ENTRIES = {SFT_FILE, SUMMARY_FILE, IMAGES_DIR}
@@ -56,9 +68,8 @@ class SftSummary:
     trajectories: int = 0
     samples: int = 0
     images: int = 0
-    refused_questions: int = 0
-    decisions: dict[str, int] = field(
-        default_factory=lambda: {"talk": 0, "move": 0, "forward": 0, "turn": 0, "stop": 0}
+    by_kind: dict[str, int] = field(
+        default_factory=lambda: {"pixel": 0, "turn": 0, "stop": 0, "dialog": 0}
     )
 
     def counts(self) -> dict[str, Any]:
@@ -66,8 +77,7 @@ class SftSummary:
             "trajectories": self.trajectories,
             "samples": self.samples,
             "images": self.images,
-            "refused_questions": self.refused_questions,
-            "decisions": dict(self.decisions),
+            "samples_by_kind": dict(self.by_kind),
         }
 
 
@@ -77,12 +87,12 @@ def export_sft(
     config: SftConfig | None = None,
     progress: bool = True,
 ) -> SftSummary:
-    """Export every kept trajectory of a built dataset into ``out_dir``."""
+    """Export every trajectory of a built dataset into ``out_dir``."""
     config = config or SftConfig()
     houses = open_houses(dataset_root)
     out = Path(out_dir)
     _prepare_out(out)
-    store = ImageStore(out, config.image_size, config.jpeg_quality)
+    store = ImageStore(out, config.jpeg_quality)
     summary = SftSummary(out)
     bar = tqdm(
         total=sum(len(house.episodes) for house in houses),
@@ -92,13 +102,9 @@ def export_sft(
     )
     with bar, _lines_atomic(out / SFT_FILE) as sink:
         for house in houses:
-            spec = down_camera(house)
             for trajectory in read_trajectories(house):
                 try:
-                    for sample in _samples(house, spec, trajectory, config, summary):
-                        index = trajectory.episode_index
-                        paths = [store.add(house, index, ref) for ref in sample.images]
-                        sink.write(_sample_line(trajectory, sample, paths))
+                    _export_trajectory(house, trajectory, config, store, sink, summary)
                 except FileNotFoundError as error:
                     raise DataFormatError(
                         f"{house.root}, episode {trajectory.episode_index}: {error}; the "
@@ -119,60 +125,66 @@ def export_sft(
     return summary
 
 
-def _samples(
+def sample_conversation(
+    trajectory: SourceTrajectory, plan: SamplePlan, answers_left: int, config: SftConfig
+) -> Conversation:
+    """The conversation of one sample, built by the prompt functions the agents call: the
+    questions heard before the frame (and, for a dialog sample, those asked at it), answers
+    after the first ``answers_left`` replaced by the question-limit answer, then the move."""
+    frame = plan.frame
+    heard = [
+        exchange
+        for exchange in trajectory.exchanges
+        if exchange.frame < frame or (plan.with_dialog and exchange.frame == frame)
+    ]
+    key = trajectory.episode_key
+    conversation = build_conversation(
+        trajectory.instruction,
+        frame,
+        limit_answers(heard, answers_left),
+        connective=connective_for(config.seed, key, frame),
+        history_count=config.history_frames,
+    )
+    if isinstance(plan.move, PixelOutput):
+        conversation = with_reply(conversation, TiltDownOutput())
+        down = connective_for(config.seed, key, frame, look_down=True)
+        conversation = with_look_down(conversation, frame, connective=down)
+    return with_reply(conversation, plan.move)
+
+
+def _answers_left_draws(trajectory: SourceTrajectory, config: SftConfig) -> np.random.Generator:
+    """The generator of one trajectory's question-limit draws: from the seed and the
+    trajectory alone, so an export is the same whatever else the dataset holds."""
+    name = zlib.crc32(f"{trajectory.house}/{trajectory.episode_index}".encode())
+    return np.random.default_rng(np.random.SeedSequence([config.seed, name, 11]))
+
+
+def _export_trajectory(
     house: HouseDataset,
-    spec: CameraSpec,
     trajectory: SourceTrajectory,
     config: SftConfig,
+    store: ImageStore,
+    sink: IO[str],
     summary: SftSummary,
-) -> list[Sample]:
-    """The trajectory's samples; counts its decisions into ``summary``."""
-    index = trajectory.episode_index
-    locator = GoalLocator(
-        spec,
-        trajectory.feet,
-        trajectory.down_eyes,
-        trajectory.down_rotations,
-        lambda frame: house.depth("down", index, frame),
-        config.depth_tolerance,
-    )
-    exchanges = apply_budget(trajectory.exchanges, config.budget)
-    decisions = cut_decisions(
-        trajectory.actions,
-        trajectory.feet,
-        exchanges,
-        locator,
-        config.max_turn_run,
-        config.max_goal_steps,
-    )
-    _count(decisions, summary)
-    return build_samples(trajectory.category, decisions, exchanges, config.history_frames)
-
-
-def _count(decisions: list[Decision], summary: SftSummary) -> None:
-    counts = summary.decisions
-    for decision in decisions:
-        counts["talk"] += len(decision.talks)
-        summary.refused_questions += sum(talk.refused for talk in decision.talks)
-        move = decision.move
-        if isinstance(move, PixelGoal):
-            counts["move"] += 1
-        elif isinstance(move, ForwardStep):
-            counts["forward"] += 1
-        elif isinstance(move, Stop):
-            counts["stop"] += 1
-        else:
-            counts["turn"] += 1
-    summary.samples += len(decisions)
-
-
-def _sample_line(trajectory: SourceTrajectory, sample: Sample, paths: list[str]) -> str:
-    record = {
-        "id": f"{trajectory.house}/episode_{trajectory.episode_index:06d}/frame_{sample.frame:06d}",
-        "images": paths,
-        "conversations": [{"from": turn.speaker, "value": turn.value} for turn in sample.turns],
-    }
-    return json.dumps(record, ensure_ascii=False) + "\n"
+) -> None:
+    rng = _answers_left_draws(trajectory, config)
+    for plan in plan_samples(trajectory, config):
+        kind: str = plan.kind
+        if kind == "step":
+            kind = "pixel" if isinstance(plan.move, PixelOutput) else "turn"
+        for copy in range(plan.copies):
+            answers_left = int(rng.integers(0, config.max_answers + 1))
+            conversation = sample_conversation(trajectory, plan, answers_left, config)
+            paths = [store.add(house, trajectory.episode_index, ref) for ref in conversation.images]
+            record = {
+                "id": f"{trajectory.house}/episode_{trajectory.episode_index:06d}/"
+                f"frame_{plan.frame:06d}/{plan.kind}/{copy}",
+                "images": paths,
+                "conversations": conversation.as_sharegpt(),
+            }
+            sink.write(json.dumps(record, ensure_ascii=False) + "\n")
+            summary.samples += 1
+            summary.by_kind[kind] += 1
 
 
 def _prepare_out(out: Path) -> None:

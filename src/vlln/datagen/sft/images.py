@@ -1,9 +1,9 @@
-"""The exported images: each written once, under a name that says which frame it is.
+"""The exported images: each written once, at the size the prompt shows it.
 
-History and current views are the level camera's frames resized to a square (the paper's
-384x384), re-encoded as JPEG; look-down images keep their size, so their bytes are copied from
-the dataset unchanged and pixel goals stay in the dataset camera's pixels. Paths are relative
-to the export folder, as LLaVA/Qwen-VL fine-tuning scripts expect (``image_folder`` + path).
+Level (history and current) views are resized to ``LEVEL_IMAGE_SIZE`` (384x384) and
+re-encoded; look-down views are ``DOWN_IMAGE_SIZE`` (640x480), their bytes copied when the
+dataset's camera already has that size. Paths are relative to the export folder, as
+LLaVA/Qwen-VL fine-tuning scripts expect (``image_folder`` + path).
 """
 
 from __future__ import annotations
@@ -13,8 +13,8 @@ from pathlib import Path
 
 from PIL import Image
 
-from vlln.datagen.layout import HouseDataset
-from vlln.datagen.sft.conversation import DOWN, ImageRef
+from vlln.datagen.reader import HouseDataset
+from vlln.prompt import DOWN_IMAGE_SIZE, LEVEL_IMAGE_SIZE, ImageRef
 
 IMAGES_DIR = "images"
 
@@ -26,9 +26,8 @@ def image_name(house: str, episode_index: int, ref: ImageRef) -> str:
 class ImageStore:
     """Writes the images samples refer to into ``out``, skipping those already written."""
 
-    def __init__(self, out: Path, size: int, quality: int) -> None:
+    def __init__(self, out: Path, quality: int) -> None:
         self.out = out
-        self.size = size
         self.quality = quality
         self.written: set[str] = set()
 
@@ -36,17 +35,19 @@ class ImageStore:
         """The image's path relative to ``out``; written on first use."""
         name = image_name(house.root.name, episode_index, ref)
         if name not in self.written:
-            source = house.image_file(ref.camera, "rgb", episode_index, ref.frame)
-            data = source.read_bytes() if ref.camera == DOWN else self._resized(source)
+            source = house.image_file(ref.camera, episode_index, ref.frame)
+            size = LEVEL_IMAGE_SIZE if ref.camera == "level" else DOWN_IMAGE_SIZE
             path = self.out / name
             path.parent.mkdir(parents=True, exist_ok=True)
-            path.write_bytes(data)
+            path.write_bytes(self._sized(source, size))
             self.written.add(name)
         return name
 
-    def _resized(self, source: Path) -> bytes:
+    def _sized(self, source: Path, size: tuple[int, int]) -> bytes:
         with Image.open(source) as image:
-            square = image.convert("RGB").resize((self.size, self.size), Image.Resampling.BICUBIC)
+            if image.size == size and image.format == "JPEG":
+                return source.read_bytes()
+            resized = image.convert("RGB").resize(size, Image.Resampling.BICUBIC)
         buffer = io.BytesIO()
-        square.save(buffer, "JPEG", quality=self.quality)
+        resized.save(buffer, "JPEG", quality=self.quality)
         return buffer.getvalue()

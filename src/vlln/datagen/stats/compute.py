@@ -16,7 +16,7 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
 
-from vlln.datagen.layout import HouseDataset, house_folders
+from vlln.datagen.reader import HouseDataset, house_folders
 from vlln.datagen.stats.episodes import EpisodeStageStats, read_episode_stage
 from vlln.errors import DataFormatError
 

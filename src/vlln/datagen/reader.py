@@ -1,0 +1,90 @@
+"""Reading a house's trajectory folder: ours, or one in the reference's layout.
+
+``meta/info.json`` is optional, as for the reference's readers: without it the cameras are
+the reference's (``125cm_0deg`` and ``125cm_30deg``). With it, its format version must be the
+one this vlln writes.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pyarrow.parquet as pq
+from numpy.typing import NDArray
+from PIL import Image
+
+from vlln.datagen.layout import (
+    CAMERAS,
+    FORMAT_VERSION,
+    camera_setting,
+    data_path,
+    frame_image_path,
+)
+from vlln.errors import DataFormatError
+from vlln.sim.camera import CameraSpec
+
+
+class HouseDataset:
+    """A house folder: its info (if any), its episodes, their frames and images."""
+
+    def __init__(self, root: str | Path) -> None:
+        self.root = Path(root)
+        info_path = self.root / "meta" / "info.json"
+        self.info: dict[str, Any] = {}
+        self.settings = {camera: camera_setting(CameraSpec(), camera) for camera in CAMERAS}
+        if info_path.exists():
+            self.info = json.loads(info_path.read_text(encoding="utf-8"))
+            if self.info.get("format_version") != FORMAT_VERSION:
+                raise DataFormatError(
+                    f"{info_path}: format {self.info.get('format_version')!r}, this vlln reads "
+                    f"{FORMAT_VERSION!r}; rebuild the data with this version"
+                )
+            self.settings = _settings(self.info, info_path)
+        episodes_path = self.root / "meta" / "episodes.jsonl"
+        if not episodes_path.exists():
+            raise DataFormatError(
+                f"{self.root} is not a finished trajectory folder (no meta/episodes.jsonl); "
+                "run or resume `vlln data build` to finish it"
+            )
+        lines = episodes_path.read_text(encoding="utf-8").splitlines()
+        self.episodes: list[dict[str, Any]] = [json.loads(line) for line in lines if line]
+
+    def frames(self, episode_index: int) -> dict[str, NDArray[Any]]:
+        """The parquet columns of one episode as arrays (a 4x4 pose per frame: (n, 4, 4))."""
+        table = pq.read_table(self.root / data_path(episode_index))
+        return {name: np.asarray(table.column(name).to_pylist()) for name in table.column_names}
+
+    def image_file(self, camera: str, episode_index: int, frame_index: int) -> Path:
+        """``camera`` is "level" or "down"."""
+        return self.root / frame_image_path(self.settings[camera], episode_index, frame_index)
+
+    def rgb(self, camera: str, episode_index: int, frame_index: int) -> NDArray[np.uint8]:
+        with Image.open(self.image_file(camera, episode_index, frame_index)) as image:
+            return np.asarray(image.convert("RGB"))
+
+
+def instruction_of(row: dict[str, Any]) -> str:
+    """The instruction of an episodes.jsonl row, as the reference reads it."""
+    return str(row["tasks"][0]).split(";")[0]
+
+
+def _settings(info: dict[str, Any], info_path: Path) -> dict[str, str]:
+    """Camera -> setting name, from the pitches recorded in info.json."""
+    try:
+        by_pitch = {float(c["pitch_deg"]): name for name, c in info["cameras"].items()}
+        return {"level": by_pitch[0.0], "down": next(n for p, n in by_pitch.items() if p > 0)}
+    except (KeyError, TypeError, ValueError, StopIteration) as error:
+        raise DataFormatError(
+            f"{info_path}: no usable cameras entry ({error!r}); rebuild the house"
+        ) from error
+
+
+def house_folders(dataset_root: str | Path) -> Iterator[Path]:
+    """The house folders under ``<root>/trajectories`` in name order (finished or not)."""
+    base = Path(dataset_root) / "trajectories"
+    if base.is_dir():
+        yield from sorted(p for p in base.iterdir() if p.is_dir())

@@ -1,0 +1,93 @@
+"""Which decisions of a trajectory become training samples: the reference's sampling.
+
+With ``actions[t]`` the action done at frame ``t`` (the last is STOP) and ``n`` frames:
+
+* every ``sample_step``-th frame ``t`` but the last: a pixel-goal sample where the
+  frame has a goal, a turn sample where it turns, nothing where it steps forward without one;
+* the last frame: a STOP sample, ``repeats`` times;
+* every frame where questions were asked: the same choice (a forward frame without a goal
+  gives nothing), with those questions as ``<talk>`` turns first, ``repeats`` times.
+
+A turn sample turns as many times as the same turn repeats from ``t``, at most
+``max_turn_run``. Trajectories shorter than 4 frames give no samples, as in the reference.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Literal
+
+from vlln.datagen.sft.config import SftConfig
+from vlln.datagen.sft.source import SourceTrajectory
+from vlln.errors import DataFormatError
+from vlln.prompt import PixelOutput, StopOutput, TurnOutput
+from vlln.sim.agent import Action
+
+MIN_FRAMES = 4
+Move = PixelOutput | TurnOutput | StopOutput
+Kind = Literal["step", "stop", "dialog"]
+_DIRECTIONS: dict[int, Literal["left", "right"]] = {
+    Action.TURN_LEFT: "left",
+    Action.TURN_RIGHT: "right",
+}
+
+
+@dataclass(frozen=True)
+class SamplePlan:
+    """A decision to train on: the frame, why it was picked, the move the model makes there
+    (a pixel of the 640x480 look-down image for a pixel goal), and how many copies."""
+
+    frame: int
+    kind: Kind
+    move: Move
+    copies: int
+
+    @property
+    def with_dialog(self) -> bool:
+        return self.kind == "dialog"
+
+
+def plan_samples(trajectory: SourceTrajectory, config: SftConfig) -> list[SamplePlan]:
+    """The trajectory's samples in the order written: steps by frame, STOP, dialog frames."""
+    actions = trajectory.actions
+    n = len(actions)
+    if n < MIN_FRAMES:
+        return []
+    plans: list[SamplePlan] = []
+    for frame in range(0, n, config.sample_step):
+        if frame == n - 1:
+            continue  # the STOP frame has samples of its own
+        move = _move(trajectory, frame, config)
+        if move is not None:
+            plans.append(SamplePlan(frame, "step", move, 1))
+    plans.append(SamplePlan(n - 1, "stop", StopOutput(), config.repeats))
+    for frame in sorted({exchange.frame for exchange in trajectory.exchanges}):
+        if not 0 <= frame < n:
+            raise DataFormatError(f"a question is asked at frame {frame}, outside 0..{n - 1}")
+        move = _move(trajectory, frame, config)
+        if move is not None:
+            plans.append(SamplePlan(frame, "dialog", move, config.repeats))
+    return plans
+
+
+def _move(trajectory: SourceTrajectory, frame: int, config: SftConfig) -> Move | None:
+    """The move the model is trained to make at ``frame``, None where the reference skips."""
+    actions = trajectory.actions
+    action = actions[frame]
+    frames_ahead, (col, row) = trajectory.goals[frame]
+    if frames_ahead >= 0 and action != Action.STOP:
+        return PixelOutput(col, row)
+    if action == Action.STOP:
+        return StopOutput()
+    if action == Action.MOVE_FORWARD:
+        return None
+    if action not in _DIRECTIONS:
+        raise DataFormatError(f"action {action} at frame {frame} is not a move, turn or STOP")
+    count = 1
+    while (
+        count < config.max_turn_run
+        and frame + count < len(actions)
+        and actions[frame + count] == action
+    ):
+        count += 1
+    return TurnOutput(_DIRECTIONS[action], count)
