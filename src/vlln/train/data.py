@@ -11,11 +11,9 @@ from typing import Any
 from PIL import Image
 
 from vlln.agents.local.encoding import ChatEncoder
+from vlln.datagen.sft.export import SFT_FILE, SUMMARY_FILE
 from vlln.errors import DataFormatError
 from vlln.prompt import IMAGE_TAG, Turn
-
-SFT_FILE = "sft.jsonl"
-SUMMARY_FILE = "export.json"
 
 
 @dataclass(frozen=True)

@@ -75,8 +75,6 @@ def build_tiny_model(out_dir: str | Path, seed: int = 0, max_pixels: int = 56 * 
         PreTrainedTokenizerFast,
         Qwen2_5_VLConfig,
         Qwen2_5_VLForConditionalGeneration,
-    )
-    from transformers.models.qwen2_vl.image_processing_pil_qwen2_vl import (
         Qwen2VLImageProcessorPil,
     )
 
