@@ -11,6 +11,7 @@ from PIL import Image
 from vlln.agents.local.encoding import IGNORE_INDEX, ChatEncoder, to_messages
 from vlln.errors import ConfigError
 from vlln.prompt import Turn
+from vlln.train.data import SftCollator, read_export
 
 TURNS = (
     Turn("human", "Find the chair. <image> In front of you is <image>."),
@@ -36,10 +37,7 @@ def test_image_tags_become_image_parts_in_place() -> None:
             {"type": "text", "text": "."},
         ],
     }
-    assert messages[1] == {
-        "role": "assistant",
-        "content": [{"type": "text", "text": "<talk>Which room is it in?"}],
-    }
+    assert messages[1] == {"role": "assistant", "content": "<talk>Which room is it in?"}
     with pytest.raises(ConfigError, match="'human' or 'gpt'"):
         to_messages([Turn("system", "hi")])  # type: ignore[arg-type]
 
@@ -81,3 +79,17 @@ def test_a_conversation_needs_one_image_per_tag(tiny_model: Path) -> None:
     text = encoder.render(TURNS, add_generation_prompt=False)
     with pytest.raises(ConfigError, match="2 image placeholders but 1 images"):
         encoder.encode([text], [_images(1)])
+
+
+def test_export_samples_train_on_exactly_their_assistant_turns(
+    sft_export: Path, tiny_model: Path
+) -> None:
+    samples = read_export(sft_export)
+    collate = SftCollator(ChatEncoder.load(tiny_model))
+    chosen = [samples[0], *[s for s in samples if len(s.turns) > 2][:2], samples[-1]]
+    batch = collate(chosen)
+    assert len(batch["image_grid_thw"]) == sum(len(sample.images) for sample in chosen)
+    tokenizer = collate.encoder.tokenizer
+    for row, sample in zip(batch["labels"], chosen, strict=True):
+        learnt = "".join(turn.text + "<|im_end|>" for turn in sample.turns if turn.role == "gpt")
+        assert tokenizer.decode(row[row != IGNORE_INDEX]) == learnt

@@ -34,12 +34,17 @@ Turns = Sequence[Turn]
 
 
 def to_messages(turns: Turns) -> list[dict[str, Any]]:
-    """Chat-template messages: each ``<image>`` tag becomes an image part, in place."""
+    """Chat-template messages: in user turns each ``<image>`` tag becomes an image part, in
+    place; assistant turns (which show no images) stay plain strings, the form every Qwen-VL
+    template renders the same way."""
     messages: list[dict[str, Any]] = []
     for turn in turns:
         role = _ROLES.get(turn.role)
         if role is None:
             raise ConfigError(f"a turn's role must be 'human' or 'gpt', got {turn.role!r}")
+        if role == "assistant":
+            messages.append({"role": role, "content": turn.text})
+            continue
         parts: list[dict[str, Any]] = []
         for index, piece in enumerate(turn.text.split(IMAGE_TAG)):
             if index:
