@@ -20,6 +20,11 @@ def test_data_benchmark_prints_json_lines(capsys: pytest.CaptureFixture[str]) ->
     )
     kept = values["kept_trajectories_per_hour"]
     assert kept == pytest.approx(values["trajectories_per_hour"] * values["yield"] / 100, rel=1e-3)
+    if values["yield"] > 0:  # a kept trajectory: JPEG frames of both cameras, 0.02-0.1 MB each
+        per_frame = values["mb_per_trajectory"] / values["frames_per_trajectory"]
+        assert 0.02 < per_frame < 0.1
+    else:
+        assert values["mb_per_trajectory"] == values["frames_per_trajectory"] == 0
 
 
 def test_a_bad_workload_is_refused() -> None:

@@ -46,10 +46,10 @@ from vlln.sim.camera import CameraSpec, Position
 
 FORMAT_VERSION = "vlln-trajectories/2.0"
 CHUNK_SIZE = 1000
-# The reference saves its frames with PIL's default quality (75). Our flat-shaded renders
-# with fine floor textures cost ~40 % more bytes than 50 at 75 for no visible gain at the
-# 384x384 and 640x480 the model is shown; at 50, with optimised Huffman tables, a kept
-# trajectory takes about 5-6 MB instead of 11.
+# The reference saves its frames with PIL's default quality (75). On our renders, with their
+# fine floor textures, 75 costs 1.6x the bytes of 50 for no difference visible at the
+# 384x384 and 640x480 the model is shown: a kept trajectory of the data benchmark takes
+# 7.2 MB at 50 (with optimised Huffman tables) and 11.4 MB at 75.
 JPEG_QUALITY = 50
 NO_ACTION = -1  # action[0]: no action led to the first frame
 CAMERAS = ("level", "down")
