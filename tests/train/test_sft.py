@@ -95,3 +95,14 @@ def test_without_the_model_extra_the_command_says_what_to_install(command: list[
         "error: the local model needs torch, which is not installed; install the model "
         "extra with: pip install 'vlln[model]'"
     ]
+
+
+def test_a_model_that_cannot_be_loaded_is_one_clear_error(
+    sft_export: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    for model in (tmp_path / "missing", tmp_path):
+        argv = ["train", "sft", "--data", str(sft_export), "--model", str(model)]
+        assert main([*argv, "--out", str(tmp_path / "out")]) == 2
+        error = capsys.readouterr().err.strip()
+        assert error.startswith(f"error: cannot load the model '{model}'")
+        assert len(error.splitlines()) == 1

@@ -43,7 +43,7 @@ def train_sft(config: TrainConfig) -> TrainOutcome:
     from transformers import AutoModelForImageTextToText, Trainer, TrainerCallback
     from transformers.trainer_utils import get_last_checkpoint
 
-    from vlln.agents.local.encoding import ChatEncoder
+    from vlln.agents.local.encoding import ChatEncoder, model_loading
     from vlln.train.data import SftCollator, read_export
     from vlln.train.optim import parameter_groups
 
@@ -52,7 +52,8 @@ def train_sft(config: TrainConfig) -> TrainOutcome:
     resume = _resume_point(config, get_last_checkpoint)
     encoder = ChatEncoder.load(config.model, max_pixels=config.max_pixels)
     on_gpu = torch.cuda.is_available()
-    model = AutoModelForImageTextToText.from_pretrained(config.model, dtype=torch.float32)
+    with model_loading(config.model):
+        model = AutoModelForImageTextToText.from_pretrained(config.model, dtype=torch.float32)
     if config.lora:
         model = _with_lora(model, config.lora_rank)
     arguments = _training_arguments(config, on_gpu)

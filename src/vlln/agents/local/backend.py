@@ -48,7 +48,7 @@ class TransformersBackend:
         import torch
         from transformers import AutoModelForImageTextToText
 
-        from vlln.agents.local.encoding import ChatEncoder
+        from vlln.agents.local.encoding import ChatEncoder, model_loading
 
         path = Path(model_dir)
         if not (path / "config.json").is_file():
@@ -61,7 +61,8 @@ class TransformersBackend:
         dtype = torch.bfloat16 if on_gpu and torch.cuda.is_bf16_supported() else torch.float32
         self.encoder = ChatEncoder.load(path)
         loader: Any = AutoModelForImageTextToText
-        self.model = loader.from_pretrained(path, dtype=dtype)
+        with model_loading(path):
+            self.model = loader.from_pretrained(path, dtype=dtype)
         self.model.to(self.device).eval()
         self.max_new_tokens = max_new_tokens
         self._name = f"transformers:{path.name}@{self.device}"

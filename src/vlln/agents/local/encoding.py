@@ -13,7 +13,8 @@ steps are done here with the model's own tokenizer, image processor and chat tem
 from __future__ import annotations
 
 import json
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -72,9 +73,10 @@ class ChatEncoder:
         """``max_pixels`` caps the pixels of every image (fewer vision tokens)."""
         from transformers import AutoImageProcessor, AutoTokenizer
 
-        tokenizer = AutoTokenizer.from_pretrained(model_dir)
         options = {} if max_pixels is None else {"max_pixels": max_pixels}
-        image_processor = AutoImageProcessor.from_pretrained(model_dir, **options)
+        with model_loading(model_dir):
+            tokenizer = AutoTokenizer.from_pretrained(model_dir)
+            image_processor = AutoImageProcessor.from_pretrained(model_dir, **options)
         return cls(tokenizer, image_processor, _chat_template(Path(model_dir), tokenizer))
 
     def save(self, out_dir: str | Path) -> None:
@@ -153,6 +155,19 @@ class ChatEncoder:
                     inside = ids[position] != self.end_of_turn_id
                 position += 1
         return labels.masked_fill(attention_mask == 0, IGNORE_INDEX)
+
+
+@contextmanager
+def model_loading(model: str | Path) -> Iterator[None]:
+    """Turns the loaders' errors for a missing or unreadable model into one clear line."""
+    try:
+        yield
+    except (OSError, ValueError) as error:
+        first_line = str(error).strip().splitlines()[0] if str(error).strip() else ""
+        raise ConfigError(
+            f"cannot load the model {str(model)!r} ({first_line}); pass a model folder "
+            "(the --out of vlln train sft) or a Hugging Face name available on this machine"
+        ) from error
 
 
 def _token_id(tokenizer: Any, token: str) -> int:
