@@ -49,5 +49,8 @@ if [ ! -x .venv/bin/python ]; then
   "$PYTHON" -m venv .venv
 fi
 .venv/bin/python -m pip install -q --upgrade pip
+# torch first, pinned to the CPU build, so the model extra in .[dev] finds it installed and
+# pulls no CUDA build.
+.venv/bin/python -m pip install -q torch==2.13.0
 .venv/bin/python -m pip install -q -e '.[dev]'
 echo "vlln is installed in .venv (activate with: source .venv/bin/activate)"

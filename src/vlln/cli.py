@@ -154,6 +154,7 @@ def _agent_options(args: argparse.Namespace) -> dict[str, str]:
         "timeout_s": args.model_timeout,
         "max_retries": args.model_retries,
         "cache_dir": None if args.model_cache is None else str(Path(args.model_cache).resolve()),
+        "device": args.device,
     }
     return {name: str(value) for name, value in flags.items() if value is not None}
 
@@ -243,9 +244,9 @@ def _add_eval_commands(commands: argparse._SubParsersAction[argparse.ArgumentPar
     run.add_argument("--cache-dir", help="where built splits are kept (default ~/.cache/vlln)")
     run.add_argument("--stop-after", type=int, help="play at most N episodes now, then stop")
     run.add_argument("--quiet", action="store_true", help="no progress bar")
-    model = run.add_argument_group("model agents (openai-vlm)")
+    model = run.add_argument_group("model agents (openai-vlm, vlln)")
     model.add_argument("--base-url", help="OpenAI-compatible server, e.g. http://localhost:8000/v1")
-    model.add_argument("--model", help="the served model's name")
+    model.add_argument("--model", help="openai-vlm: the served model's name; vlln: its folder")
     model.add_argument("--api-key-env", help="variable holding the key (default OPENAI_API_KEY)")
     model.add_argument("--model-timeout", type=float, help="seconds per request (default 60)")
     model.add_argument("--model-retries", type=int, help="retries per request (default 4)")
@@ -257,6 +258,7 @@ def _add_eval_commands(commands: argparse._SubParsersAction[argparse.ArgumentPar
         help="play every budget on its own instead of sharing prefixes (same records, slower)",
     )
     _add_ray_options(run, chunks=True)
+    model.add_argument("--device", help="vlln: torch device (default cuda if present, else cpu)")
     run.set_defaults(handler=_eval)
 
     score = commands.add_parser("score", help="recompute every metric from run directories")
@@ -319,8 +321,10 @@ def _bench_oracle(args: argparse.Namespace) -> int:
 
 def _bench_agent(args: argparse.Namespace) -> int:
     from vlln.bench.agent import run_agent_benchmark
+    from vlln.bench.agent_model import run_model_benchmark
 
     run_agent_benchmark(seed=args.seed, repeats=args.repeats, as_json=args.json)
+    run_model_benchmark(seed=args.seed, as_json=args.json)
     return 0
 
 
@@ -460,6 +464,73 @@ def _add_data_commands(commands: argparse._SubParsersAction[argparse.ArgumentPar
     sft.set_defaults(handler=_data_export_sft)
 
 
+def _train_sft(args: argparse.Namespace) -> int:
+    from vlln.train.config import TrainConfig
+    from vlln.train.sft import train_sft
+
+    config = TrainConfig(
+        data_dir=Path(args.data),
+        model=args.model,
+        out_dir=Path(args.out),
+        epochs=args.epochs,
+        learning_rate=args.lr,
+        vision_learning_rate=args.vision_lr,
+        batch_size=args.batch_size,
+        grad_accumulation=args.grad_accum,
+        max_steps=args.max_steps,
+        save_steps=args.save_steps,
+        logging_steps=args.logging_steps,
+        workers=args.workers,
+        seed=args.seed,
+        lora=args.lora,
+        lora_rank=args.lora_rank,
+        max_pixels=args.max_pixels,
+        gradient_checkpointing=args.gradient_checkpointing,
+        resume=None if args.resume is None else Path(args.resume),
+    )
+    outcome = train_sft(config)
+    resumed = f", resumed from {outcome.resumed_from}" if outcome.resumed_from else ""
+    curve = " -> ".join(f"{loss:.3f}" for _, loss in outcome.losses) or "no new steps"
+    print(
+        f"trained to step {outcome.steps} on {outcome.samples} samples in "
+        f"{outcome.seconds:.1f} s{resumed}; loss {curve}; model in {args.out}"
+    )
+    return 0
+
+
+def _add_train_commands(commands: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
+    train = commands.add_parser("train", help="fine-tuning").add_subparsers(
+        dest="train_command", required=True
+    )
+    sft = train.add_parser("sft", help="supervised fine-tuning on a training export")
+    sft.add_argument("--data", required=True, help="a folder made by vlln data export-sft")
+    sft.add_argument("--model", required=True, help="model folder or Hugging Face name")
+    sft.add_argument("--out", required=True, help="output folder (a rerun resumes it)")
+    sft.add_argument("--epochs", type=float, default=5.0, help="epochs (default 5)")
+    sft.add_argument("--lr", type=float, default=2e-5, help="learning rate (default 2e-5)")
+    sft.add_argument(
+        "--vision-lr", type=float, default=5e-6, help="vision tower's rate (default 5e-6)"
+    )
+    sft.add_argument("--batch-size", type=int, default=2, help="per device (default 2)")
+    sft.add_argument("--grad-accum", type=int, default=1, help="accumulation steps (default 1)")
+    sft.add_argument("--max-steps", type=int, default=-1, help="stop after N optimizer steps")
+    sft.add_argument("--save-steps", type=int, default=500, help="checkpoint every N steps")
+    sft.add_argument("--logging-steps", type=int, default=10, help="log loss every N steps")
+    sft.add_argument("--workers", type=int, default=4, help="data-loader workers (default 4)")
+    sft.add_argument("--seed", type=int, default=0, help="seed (default 0)")
+    sft.add_argument("--lora", action="store_true", help="train LoRA adapters (small GPUs)")
+    sft.add_argument("--lora-rank", type=int, default=16, help="LoRA rank (default 16)")
+    sft.add_argument("--max-pixels", type=int, help="cap on pixels per image (fewer tokens)")
+    sft.add_argument(
+        "--gradient-checkpointing",
+        action=argparse.BooleanOptionalAction,
+        default=None,
+        help="recompute activations (default: on with a GPU)",
+    )
+    sft.add_argument("--resume", help="a checkpoint folder (default: the newest in --out)")
+    sft.set_defaults(handler=_train_sft)
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="vlln", description=__doc__)
     commands = parser.add_subparsers(dest="command", required=True)
@@ -516,7 +587,9 @@ def build_parser() -> argparse.ArgumentParser:
     )
     bench_oracle.add_argument("--json", action="store_true", help="print one JSON object per line")
     bench_oracle.set_defaults(handler=_bench_oracle)
-    bench_agent = bench.add_parser("agent", help="a model agent's step cost outside the model")
+    bench_agent = bench.add_parser(
+        "agent", help="a model agent's step cost outside the model; the local model's steps/s"
+    )
     bench_agent.add_argument("--seed", type=int, default=0, help="house seed (default 0)")
     bench_agent.add_argument("--repeats", type=int, default=200, help="timed repeats (200)")
     bench_agent.add_argument("--json", action="store_true", help="print one JSON object per line")
@@ -539,6 +612,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_data_commands(commands)
     add_serve_commands(commands)
     _add_video_command(commands)
+    _add_train_commands(commands)
     return parser
 
 

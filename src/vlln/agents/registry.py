@@ -7,6 +7,7 @@ from collections.abc import Callable, Mapping
 from vlln.agents.expert import ExpertAgent
 from vlln.agents.frontier import FrontierAgent
 from vlln.agents.frontier.perception import check_detector
+from vlln.agents.local.options import vlln_agent
 from vlln.agents.model.options import openai_vlm_agent
 from vlln.agents.protocol import Agent
 from vlln.agents.random_agent import RandomAgent
@@ -21,6 +22,7 @@ AGENTS: dict[str, Callable[[int], Agent]] = {
 # Agents that take options (which server, which model), stored in run.json.
 CONFIGURED_AGENTS: dict[str, Callable[[int, Mapping[str, str]], Agent]] = {
     "openai-vlm": openai_vlm_agent,
+    "vlln": vlln_agent,
 }
 
 DETECTING_AGENTS: dict[str, Callable[[int, str], Agent]] = {

@@ -1,0 +1,83 @@
+"""The training export as model inputs: samples read from ``sft.jsonl``, batched with the
+model's chat template, loss only on the assistant's tokens."""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from PIL import Image
+
+from vlln.agents.local.encoding import ChatEncoder
+from vlln.datagen.sft.export import SFT_FILE, SUMMARY_FILE
+from vlln.errors import DataFormatError
+from vlln.prompt import IMAGE_TAG, Turn
+
+
+@dataclass(frozen=True)
+class SftSample:
+    """One conversation of the export; ``images`` are absolute paths in ``<image>`` order."""
+
+    sample_id: str
+    images: tuple[Path, ...]
+    turns: tuple[Turn, ...]
+
+
+def read_export(data_dir: Path) -> list[SftSample]:
+    """Every sample of a complete export, checked: known roles, one image per tag, files
+    present, at least one assistant turn."""
+    if not (data_dir / SUMMARY_FILE).is_file():
+        raise DataFormatError(
+            f"{data_dir} is not a finished training export (no {SUMMARY_FILE}); "
+            "write one with: vlln data export-sft DATASET --out DIR"
+        )
+    samples: list[SftSample] = []
+    with (data_dir / SFT_FILE).open(encoding="utf-8") as lines:
+        for number, line in enumerate(lines, 1):
+            where = f"{data_dir / SFT_FILE}, line {number}"
+            try:
+                samples.append(_sample(json.loads(line), data_dir))
+            except (ValueError, KeyError, TypeError) as error:
+                raise DataFormatError(f"{where}: {error}") from error
+    if not samples:
+        raise DataFormatError(f"{data_dir / SFT_FILE} has no samples; export more trajectories")
+    return samples
+
+
+def _sample(record: dict[str, Any], data_dir: Path) -> SftSample:
+    turns = tuple(Turn(turn["from"], turn["value"]) for turn in record["conversations"])
+    if any(turn.role not in ("human", "gpt") for turn in turns):
+        raise ValueError("a turn's 'from' must be 'human' or 'gpt'")
+    if not any(turn.role == "gpt" for turn in turns):
+        raise ValueError("the conversation has no 'gpt' turn to learn")
+    images = tuple(data_dir / path for path in record["images"])
+    tags = sum(turn.text.count(IMAGE_TAG) for turn in turns)
+    if tags != len(images):
+        raise ValueError(f"{tags} <image> tags but {len(images)} images")
+    missing = [str(path) for path in images if not path.is_file()]
+    if missing:
+        raise ValueError(f"missing image {missing[0]}; re-run the export")
+    return SftSample(str(record["id"]), images, turns)
+
+
+class SftCollator:
+    """Turns samples into a padded batch with labels (picklable for data-loader workers)."""
+
+    def __init__(self, encoder: ChatEncoder) -> None:
+        self.encoder = encoder
+
+    def __call__(self, samples: list[SftSample]) -> dict[str, Any]:
+        texts = [
+            self.encoder.render(sample.turns, add_generation_prompt=False) for sample in samples
+        ]
+        images = [[_load_rgb(path) for path in sample.images] for sample in samples]
+        batch = self.encoder.encode(texts, images, padding_side="right")
+        batch["labels"] = self.encoder.assistant_labels(batch["input_ids"], batch["attention_mask"])
+        return batch
+
+
+def _load_rgb(path: Path) -> Image.Image:
+    with Image.open(path) as image:
+        return image.convert("RGB")

@@ -1,0 +1,178 @@
+"""``vlln train sft``: supervised fine-tuning of a Qwen-VL-style model on a training export,
+with Hugging Face's Trainer.
+
+The out folder holds ``checkpoint-N/`` folders while training (a rerun with the same out
+folder resumes from the newest one), then the final model with its tokenizer, image
+processor and chat template, loadable by ``vlln eval --agent vlln --model OUT``, and
+``training.json`` with the settings and the loss curve. LoRA adapters are merged into the
+final model. Under ``accelerate launch`` or ``torchrun`` every process trains on its share of
+each batch (see docs/training.md).
+"""
+
+from __future__ import annotations
+
+import json
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from vlln.agents.local.dependencies import MODEL_PACKAGES, require_model_extra
+from vlln.errors import ConfigError
+from vlln.files import write_text_atomic
+from vlln.train.config import TrainConfig
+
+SUMMARY_FILE = "training.json"
+LORA_TARGETS = r".*language_model.*\.(q_proj|k_proj|v_proj|o_proj|gate_proj|up_proj|down_proj)"
+
+
+@dataclass
+class TrainOutcome:
+    out_dir: Path
+    samples: int
+    steps: int
+    seconds: float
+    losses: list[tuple[int, float]] = field(default_factory=list)  # (step, training loss)
+    resumed_from: str | None = None
+
+
+def train_sft(config: TrainConfig) -> TrainOutcome:
+    """Fine-tune ``config.model`` on ``config.data_dir`` into ``config.out_dir``."""
+    require_model_extra((*MODEL_PACKAGES, "peft") if config.lora else MODEL_PACKAGES)
+    import torch
+    from transformers import AutoModelForImageTextToText, Trainer, TrainerCallback
+    from transformers.trainer_utils import get_last_checkpoint
+
+    from vlln.agents.local.encoding import ChatEncoder, model_loading
+    from vlln.train.data import SftCollator, read_export
+    from vlln.train.optim import parameter_groups
+
+    samples = read_export(config.data_dir)
+    config.out_dir.mkdir(parents=True, exist_ok=True)
+    resume = _resume_point(config, get_last_checkpoint)
+    encoder = ChatEncoder.load(config.model, max_pixels=config.max_pixels)
+    on_gpu = torch.cuda.is_available()
+    with model_loading(config.model):
+        model = AutoModelForImageTextToText.from_pretrained(config.model, dtype=torch.float32)
+    if config.lora:
+        model = _with_lora(model, config.lora_rank)
+    arguments = _training_arguments(config, on_gpu)
+
+    class SftTrainer(Trainer):
+        def create_optimizer(self, model: Any = None) -> Any:
+            if self.optimizer is None:
+                trained: Any = self.model
+                optimizer_class, options = Trainer.get_optimizer_cls_and_kwargs(self.args, trained)
+                groups = parameter_groups(
+                    trained, config.learning_rate, config.vision_learning_rate
+                )
+                self.optimizer = optimizer_class(groups, **options)
+            return self.optimizer
+
+    class SaveEncoder(TrainerCallback):
+        """Each checkpoint also gets the tokenizer, image processor and template."""
+
+        def on_save(self, args: Any, state: Any, control: Any, **kwargs: Any) -> None:
+            if state.is_world_process_zero and not config.lora:
+                encoder.save(Path(args.output_dir) / f"checkpoint-{state.global_step}")
+
+    trainer = SftTrainer(
+        model=model,
+        args=arguments,
+        train_dataset=samples,
+        data_collator=SftCollator(encoder),
+        callbacks=[SaveEncoder()],
+    )
+    started = time.perf_counter()
+    trainer.train(resume_from_checkpoint=resume)
+    seconds = time.perf_counter() - started
+    losses = [
+        (int(entry["step"]), float(entry["loss"]))
+        for entry in trainer.state.log_history
+        if "loss" in entry
+    ]
+    outcome = TrainOutcome(
+        config.out_dir, len(samples), trainer.state.global_step, seconds, losses, resume
+    )
+    _save_final(trainer, encoder, config)
+    if trainer.is_world_process_zero():
+        _write_summary(config, outcome)
+    return outcome
+
+
+def _resume_point(config: TrainConfig, last_checkpoint: Any) -> str | None:
+    if config.resume is not None:
+        if not (config.resume / "trainer_state.json").is_file():
+            raise ConfigError(
+                f"{config.resume} is not a training checkpoint (no trainer_state.json); "
+                f"pass one of the checkpoint-N folders in {config.out_dir}"
+            )
+        return str(config.resume)
+    found = last_checkpoint(str(config.out_dir))
+    return None if found is None else str(found)
+
+
+def _with_lora(model: Any, rank: int) -> Any:
+    from peft import LoraConfig, get_peft_model
+
+    settings = LoraConfig(
+        r=rank, lora_alpha=2 * rank, lora_dropout=0.05, target_modules=LORA_TARGETS
+    )
+    return get_peft_model(model, settings)
+
+
+def _training_arguments(config: TrainConfig, on_gpu: bool) -> Any:
+    import torch
+    from transformers import TrainingArguments
+
+    bf16 = on_gpu and torch.cuda.is_bf16_supported()
+    checkpointing = (
+        on_gpu if config.gradient_checkpointing is None else config.gradient_checkpointing
+    )
+    return TrainingArguments(
+        output_dir=str(config.out_dir),
+        num_train_epochs=config.epochs,
+        max_steps=config.max_steps,
+        per_device_train_batch_size=config.batch_size,
+        gradient_accumulation_steps=config.grad_accumulation,
+        learning_rate=config.learning_rate,
+        lr_scheduler_type="cosine",
+        warmup_steps=config.warmup_ratio,  # a value below 1 is a fraction of the steps
+        weight_decay=0.0,
+        max_grad_norm=config.max_grad_norm,
+        bf16=bf16,
+        activation_checkpointing=checkpointing,
+        activation_checkpointing_kwargs={"use_reentrant": False} if checkpointing else None,
+        logging_steps=config.logging_steps,
+        save_strategy="steps",
+        save_steps=config.save_steps,
+        save_total_limit=config.save_limit,
+        dataloader_num_workers=config.workers,
+        dataloader_pin_memory=on_gpu,
+        remove_unused_columns=False,
+        report_to="none",
+        seed=config.seed,
+        disable_tqdm=False,
+    )
+
+
+def _save_final(trainer: Any, encoder: Any, config: TrainConfig) -> None:
+    """The final model in ``out_dir`` (called on every process: a sharded model is gathered)."""
+    if not config.lora:
+        trainer.save_model(str(config.out_dir))
+    elif trainer.is_world_process_zero():
+        trainer.model.merge_and_unload().save_pretrained(config.out_dir)
+    if trainer.is_world_process_zero():
+        encoder.save(config.out_dir)
+
+
+def _write_summary(config: TrainConfig, outcome: TrainOutcome) -> None:
+    document = {
+        "settings": config.settings(),
+        "samples": outcome.samples,
+        "steps": outcome.steps,
+        "seconds": round(outcome.seconds, 3),
+        "resumed_from": outcome.resumed_from,
+        "losses": [{"step": step, "loss": loss} for step, loss in outcome.losses],
+    }
+    write_text_atomic(config.out_dir / SUMMARY_FILE, json.dumps(document, indent=2) + "\n")
