@@ -3,6 +3,7 @@ and the agent's next prompt carries the person's answer."""
 
 from __future__ import annotations
 
+import time
 from pathlib import Path
 
 import httpx
@@ -32,10 +33,13 @@ def test_the_agents_next_prompt_contains_the_persons_answer(study: Study, tmp_pa
                 code = client.post("/api/sessions", json=body).json()["oracle_code"]
                 headers = {"X-Session-Code": code}
                 view = client.get("/api/oracle", headers=headers).json()
-                while view["question"] is None:
+                deadline = time.monotonic() + 120.0
+                while view["question"] is None and view["result"] is None:
+                    assert time.monotonic() < deadline, f"no question came: {view}"
                     view = client.get(
                         f"/api/oracle?after={view['version']}", headers=headers
                     ).json()
+                assert view["question"] is not None, f"the episode ended unasked: {view}"
                 assert view["question"]["text"] == "What color is it?"
                 answer = {"number": view["question"]["number"], "answer": ANSWER}
                 assert (
@@ -43,6 +47,7 @@ def test_the_agents_next_prompt_contains_the_persons_answer(study: Study, tmp_pa
                     == 200
                 )
                 while view["result"] is None:
+                    assert time.monotonic() < deadline, f"the episode did not end: {view}"
                     view = client.get(
                         f"/api/oracle?after={view['version']}", headers=headers
                     ).json()
