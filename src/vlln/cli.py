@@ -71,11 +71,14 @@ def _eval(args: argparse.Namespace) -> int:
         progress=not args.quiet,
     )
     state = "complete" if outcome.complete else "incomplete: rerun the same command to go on"
+    for line in outcome.repaired:
+        print(f"repaired: {line.describe()}", file=sys.stderr)
     print(
         f"{len(outcome.records)} of {outcome.planned} episodes in {args.out} ({state}); "
         f"played {outcome.played} in {outcome.seconds:.1f} s",
         file=sys.stderr,
     )
+    print(outcome.health.line(), file=sys.stderr)
     if outcome.summary is not None:
         print((Path(args.out) / "summary.md").read_text(encoding="utf-8"), end="")
     return 0
@@ -84,15 +87,20 @@ def _eval(args: argparse.Namespace) -> int:
 def _score(args: argparse.Namespace) -> int:
     import json
 
-    from vlln.eval.results import load_run_records
+    from vlln.eval.health import run_health
+    from vlln.eval.results import load_runs
     from vlln.eval.summary import summarize_run, summary_json, summary_markdown
 
-    records = load_run_records(Path(path) for path in args.dirs)
-    groups = summarize_run(records, args.success_radius, args.os_radius)
+    contents = load_runs(Path(path) for path in args.dirs)
+    health = run_health(contents)
+    print(health.line(), file=sys.stderr)
+    groups = summarize_run(contents.records, args.success_radius, args.os_radius)
     if args.json:
-        print(json.dumps(summary_json(groups), indent=2, allow_nan=False))
+        data = summary_json(groups) | {"health": health.to_json()}
+        print(json.dumps(data, indent=2, allow_nan=False))
     else:
-        print(summary_markdown(groups, "Scores of " + ", ".join(args.dirs)), end="")
+        markdown = summary_markdown(groups, "Scores of " + ", ".join(args.dirs))
+        print(markdown + f"\n{health.line()}\n", end="")
     return 0
 
 

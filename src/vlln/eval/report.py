@@ -17,7 +17,8 @@ from vlln.errors import ConfigError
 from vlln.eval.document import Block, Heading, Image, Paragraph, Table, to_html, to_markdown
 from vlln.eval.episode_map import draw_episode_map
 from vlln.eval.figures import plot_failure_taxonomy, plot_sr_by_budget
-from vlln.eval.results import RunDirectory, load_run_records
+from vlln.eval.health import RunHealth, run_health
+from vlln.eval.results import RunDirectory, load_runs
 from vlln.eval.summary import GroupSummary, budget_table, summarize_run
 from vlln.files import write_text_atomic
 from vlln.tasks.aggregate import BudgetSweep, MetricSummary, format_table
@@ -41,6 +42,7 @@ class ReportRun:
     path: Path
     records: list[EpisodeRecord]
     groups: list[GroupSummary]
+    health: RunHealth
 
 
 def write_report(
@@ -54,13 +56,15 @@ def write_report(
     """Write report.md, report.html and their PNGs into ``out``; returns the files written."""
     if not run_dirs:
         raise ConfigError("give at least one run directory to report on")
+    if out.exists() and not out.is_dir():
+        raise ConfigError(f"--out {out} is a file, not a directory; give a directory")
     labels = _labels(run_dirs)
     runs = []
     for label, path in zip(labels, run_dirs, strict=True):
-        records = load_run_records([path])
-        runs.append(
-            ReportRun(label, path, records, summarize_run(records, success_radius, os_radius))
-        )
+        contents = load_runs([path])
+        records = contents.records
+        groups = summarize_run(records, success_radius, os_radius)
+        runs.append(ReportRun(label, path, records, groups, run_health(contents)))
     out.mkdir(parents=True, exist_ok=True)
     written: list[Path] = []
     blocks: list[Block] = [Heading(1, "Evaluation report")]
@@ -100,7 +104,27 @@ def _runs_section(runs: Sequence[ReportRun]) -> list[Block]:
             [run.label, str(run.path), agents, source, str(len(run.records)), _ranges(budgets)]
         )
     header = ["run", "directory", "agent on task", "episodes from", "episode lines", "budgets"]
-    return [Heading(2, "Runs"), Table(header, rows)]
+    return [Heading(2, "Runs"), Table(header, rows), *_health_section(runs)]
+
+
+def _health_section(runs: Sequence[ReportRun]) -> list[Block]:
+    """Whether each run is complete, what was skipped and what failed, per kind."""
+    blocks: list[Block] = [Heading(2, "Run health")]
+    blocks += [Paragraph(f"{run.label}: {run.health.line()}") for run in runs]
+    kinds = sorted({kind for run in runs for kind in run.health.failures})
+    skipped = sorted({kind for run in runs for kind in run.health.skipped})
+    header = ["run", "finished", "planned", *[f"skipped: {k}" for k in skipped], *kinds]
+    rows = [
+        [
+            run.label,
+            str(run.health.finished),
+            "?" if run.health.planned is None else str(run.health.planned),
+            *[str(run.health.skipped.get(kind, 0)) for kind in skipped],
+            *[str(run.health.failures.get(kind, 0)) for kind in kinds],
+        ]
+        for run in runs
+    ]
+    return [*blocks, Table(header, rows)]
 
 
 def _ranges(values: list[int]) -> str:

@@ -35,7 +35,8 @@ from vlln.agents.protocol import Agent
 from vlln.agents.registry import make_agent
 from vlln.errors import ConfigError
 from vlln.eval.config import EvalConfig
-from vlln.eval.results import RecordKey, RunDirectory, record_key
+from vlln.eval.health import RunHealth, run_health
+from vlln.eval.results import RecordKey, RunDirectory, SkippedLine, load_runs, record_key
 from vlln.eval.summary import GroupSummary, summarize_run, summary_json, summary_markdown
 from vlln.oracle.protocol import Oracle
 from vlln.oracle.rule_oracle import RuleOracle
@@ -79,6 +80,8 @@ class RunOutcome:
     seconds: float  # wall time of this call's episodes
     records: list[EpisodeRecord]  # every record in the directory
     summary: list[GroupSummary] | None  # None while no episode has finished
+    health: RunHealth  # complete or not, lines skipped, failures by kind
+    repaired: list[SkippedLine]  # lines this call cut (torn) or set aside (invalid, repeated)
 
     @property
     def complete(self) -> bool:
@@ -148,7 +151,12 @@ def load_episodes(
 ) -> list[Episode]:
     """The run's episode source: an episode file, or a built-in split (built once, cached)."""
     if config.episode_file is not None:
-        return read_episodes(config.episode_file)
+        episodes = read_episodes(config.episode_file)
+        if not episodes:
+            raise ConfigError(
+                f"{config.episode_file} holds no episodes; pass an episode file with at least one"
+            )
+        return episodes
     if config.split is None or config.houses is None:
         raise ConfigError("the run names no episode source; give a split or an episode file")
     return load_or_build_split(
@@ -193,18 +201,21 @@ def run_evaluation(
     agent_factory: AgentFactory = make_agent,
     oracle_factory: OracleFactory = RuleOracle,
     scenes: SceneCache | None = None,
+    provenance: dict[str, str | None] | None = None,
 ) -> RunOutcome:
     """Play ``config`` into the run directory ``out``, resuming what is already there.
 
     ``stop_after`` plays at most that many episodes in this call (a later call continues);
-    ``scenes`` shares simulators between calls (it is then not closed here).
+    ``scenes`` shares simulators between calls (it is then not closed here); ``provenance``
+    (agent, oracle, backend, model) goes into run.json, by default the rule oracle's.
     """
     if stop_after is not None and stop_after < 0:
         raise ConfigError(f"stop_after must be >= 0, got {stop_after}")
+    RunDirectory(out).check_is_directory()
     agent_factory(config.agent, config.seed)  # an unknown agent fails before any work
     items = plan_work(load_episodes(config, cache_dir, progress), config)
     run_dir = RunDirectory(out)
-    run_dir.prepare(config)
+    run_dir.prepare(config, len(items), provenance or default_provenance(config, oracle_factory))
     task = TaskType.parse(config.task)
     own_scenes = scenes is None
     cache = scenes if scenes is not None else SceneCache()
@@ -212,6 +223,7 @@ def run_evaluation(
     started = time.perf_counter()
     try:
         with run_dir.writing() as writer:
+            repaired = list(writer.skipped)
             done = {record_key(record) for record in writer.records}
             remaining = [item for item in items if item.key(config) not in done]
             todo = remaining if stop_after is None else remaining[:stop_after]
@@ -241,10 +253,27 @@ def run_evaluation(
         if own_scenes:
             cache.close()
     seconds = time.perf_counter() - started
+    health = run_health(load_runs([out]))
     summary = summarize_run(records) if records else None
     if summary is not None:
-        run_dir.write_summary(summary_json(summary), summary_markdown(summary))
-    return RunOutcome(out, len(items), played, seconds, records, summary)
+        run_dir.write_summary(
+            summary_json(summary) | {"health": health.to_json()},
+            summary_markdown(summary) + f"\n{health.line()}\n",
+        )
+    return RunOutcome(out, len(items), played, seconds, records, summary, health, repaired)
+
+
+def default_provenance(config: EvalConfig, oracle_factory: OracleFactory) -> dict[str, str | None]:
+    """Who played and who answered: the agent, and the oracle when any budget has dialog."""
+    dialog = any(budget > 0 for budget in config.budgets)
+    oracle = getattr(oracle_factory, "__name__", type(oracle_factory).__name__)
+    rules = oracle_factory is RuleOracle
+    return {
+        "agent": config.agent,
+        "oracle": (oracle if dialog else "none"),
+        "backend": ("rules" if rules else None) if dialog else "none",
+        "model": None,
+    }
 
 
 def _play_item(
