@@ -20,7 +20,7 @@ from vlln.eval.figures import plot_failure_taxonomy, plot_sr_by_budget
 from vlln.eval.health import RunHealth, run_health
 from vlln.eval.results import RunDirectory, load_runs
 from vlln.eval.summary import GroupSummary, budget_table, summarize_run
-from vlln.files import write_text_atomic
+from vlln.files import replace_folder, write_text_atomic
 from vlln.tasks.aggregate import BudgetSweep, MetricSummary, format_table
 from vlln.tasks.metrics import ORACLE_SUCCESS_RADIUS, SUCCESS_RADIUS
 from vlln.tasks.record import EpisodeRecord
@@ -53,7 +53,8 @@ def write_report(
     success_radius: float = SUCCESS_RADIUS,
     os_radius: float = ORACLE_SUCCESS_RADIUS,
 ) -> list[Path]:
-    """Write report.md, report.html and their PNGs into ``out``; returns the files written."""
+    """Write report.md, report.html and their PNGs into ``out``, replacing an earlier report
+    there (:func:`vlln.files.replace_folder`); returns the files written."""
     if not run_dirs:
         raise ConfigError("give at least one run directory to report on")
     if out.exists() and not out.is_dir():
@@ -65,7 +66,25 @@ def write_report(
         records = contents.records
         groups = summarize_run(records, success_radius, os_radius)
         runs.append(ReportRun(label, path, records, groups, run_health(contents)))
-    out.mkdir(parents=True, exist_ok=True)
+
+    def write(folder: Path) -> list[Path]:
+        return _write_report(runs, folder, samples_per_run, success_radius, os_radius)
+
+    written = replace_folder(out, write, _is_report_file)
+    return [out / path.name for path in written]
+
+
+def _is_report_file(path: Path) -> bool:
+    return path.is_file() and path.suffix in (".md", ".html", ".png")
+
+
+def _write_report(
+    runs: Sequence[ReportRun],
+    out: Path,
+    samples_per_run: int,
+    success_radius: float,
+    os_radius: float,
+) -> list[Path]:
     written: list[Path] = []
     blocks: list[Block] = [Heading(1, "Evaluation report")]
     blocks += _runs_section(runs)
