@@ -9,9 +9,10 @@ import sys
 from collections.abc import Callable, Sequence
 from pathlib import Path
 
-from vlln.errors import VllnError
+from vlln.errors import ConfigError, VllnError
 
 Handler = Callable[[argparse.Namespace], int]
+DEFAULT_TOKEN_ENV = "VLLN_ORACLE_TOKEN"
 
 
 def _world_show(args: argparse.Namespace) -> int:
@@ -179,7 +180,7 @@ def _add_eval_commands(commands: argparse._SubParsersAction[argparse.ArgumentPar
 def _oracle_serve(args: argparse.Namespace) -> int:
     from vlln.oracle.service.server import serve
 
-    token = os.environ.get(args.token_env) or None
+    token = _service_token(args.token_env)
     serve(
         host=args.host,
         port=args.port,
@@ -188,8 +189,27 @@ def _oracle_serve(args: argparse.Namespace) -> int:
         allow_remote=args.allow_remote,
         max_sessions=args.max_sessions,
         oracle_seed=args.oracle_seed,
+        builds_per_minute=args.builds_per_minute,
+        client_builds_per_minute=args.client_builds_per_minute,
+        log_level=args.log_level,
     )
     return 0
+
+
+def _service_token(token_env: str | None) -> str | None:
+    """The bearer token: a variable named with --token-env must hold one; without the flag,
+    VLLN_ORACLE_TOKEN is used when it is set (and must then not be empty)."""
+    name = token_env or DEFAULT_TOKEN_ENV
+    value = os.environ.get(name)
+    if value is None and token_env is None:
+        return None
+    if not value or not value.strip():
+        state = "is not set" if value is None else "is empty"
+        raise ConfigError(
+            f"the token variable {name} {state}; export {name}=<token> before starting the "
+            "service, or leave out --token-env to serve loopback without a token"
+        )
+    return value
 
 
 def _oracle_classify_report(args: argparse.Namespace) -> int:
@@ -203,7 +223,12 @@ def _oracle_classify_report(args: argparse.Namespace) -> int:
 def _bench_oracle(args: argparse.Namespace) -> int:
     from vlln.bench.oracle import run_oracle_benchmark
 
-    run_oracle_benchmark(seed=args.seed, questions=args.questions, as_json=args.json)
+    run_oracle_benchmark(
+        seed=args.seed,
+        questions=args.questions,
+        as_json=args.json,
+        service_scenes=args.service_scenes,
+    )
     return 0
 
 
@@ -216,9 +241,8 @@ def _add_oracle_commands(commands: argparse._SubParsersAction[argparse.ArgumentP
     serve.add_argument("--port", type=int, default=8765, help="port (default 8765)")
     serve.add_argument(
         "--token-env",
-        default="VLLN_ORACLE_TOKEN",
-        help="environment variable holding the bearer token; unset = no token "
-        "(default VLLN_ORACLE_TOKEN)",
+        help="environment variable holding the bearer token; it must be set and not empty "
+        f"(without the flag: {DEFAULT_TOKEN_ENV} when set, else no token, loopback only)",
     )
     serve.add_argument("--episodes", help="an episode file whose episodes sessions can name")
     serve.add_argument(
@@ -226,6 +250,20 @@ def _add_oracle_commands(commands: argparse._SubParsersAction[argparse.ArgumentP
     )
     serve.add_argument("--max-sessions", type=int, default=64, help="sessions kept (default 64)")
     serve.add_argument("--oracle-seed", type=int, default=0, help="paraphrase seed (default 0)")
+    serve.add_argument(
+        "--builds-per-minute", type=int, default=60, help="house builds, all clients (default 60)"
+    )
+    serve.add_argument(
+        "--client-builds-per-minute",
+        type=int,
+        default=20,
+        help="house builds one client address may cause (default 20)",
+    )
+    serve.add_argument(
+        "--log-level",
+        default="warning",
+        help="uvicorn log level (default warning: no line per request)",
+    )
     serve.set_defaults(handler=_oracle_serve)
     report = oracle.add_parser(
         "classify-report", help="accuracy and confusion matrix of the offline classifier"
@@ -350,6 +388,13 @@ def build_parser() -> argparse.ArgumentParser:
         "--questions", type=int, default=2000, help="questions (default 2000)"
     )
     bench_oracle.add_argument("--json", action="store_true", help="print one JSON object per line")
+    bench_oracle.add_argument(
+        "--service-scenes",
+        type=int,
+        default=64,
+        help="houses given a session each for the service's memory figure (default 64; "
+        "0 = no service figures)",
+    )
     bench_oracle.set_defaults(handler=_bench_oracle)
 
     bench_data = bench.add_parser("data", help="trajectories per hour of the data pipeline")
