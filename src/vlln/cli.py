@@ -274,12 +274,21 @@ def _add_oracle_commands(commands: argparse._SubParsersAction[argparse.ArgumentP
 
 def _data_build(args: argparse.Namespace) -> int:
     from vlln.datagen.build import BuildConfig, build_dataset
+    from vlln.datagen.cost import build_cost
     from vlln.eval.sharding import Shard
 
     config = BuildConfig(
         houses=args.houses, split=args.split, seed=args.seed, per_house=args.per_house
     )
     shard = Shard.parse(args.shard) if args.shard else None
+    houses = -(-config.houses // shard.count) if shard else config.houses
+    cost = build_cost(houses, config.per_house)
+    print(cost.line(), file=sys.stderr)
+    if cost.large and not args.yes and sys.stdin.isatty():
+        answer = input("this is a large build; start it? [y/N] ")
+        if answer.strip().lower() not in ("y", "yes"):
+            print("not started (pass --yes to skip this question)", file=sys.stderr)
+            return 1
     out = build_dataset(Path(args.out), config, shard=shard, progress=not args.quiet)
     print(f"dataset in {out} (summarise it with: vlln data stats {out})")
     return 0
@@ -332,6 +341,9 @@ def _add_data_commands(commands: argparse._SubParsersAction[argparse.ArgumentPar
     build.add_argument("--seed", type=int, default=0, help="seed of every random choice")
     build.add_argument("--shard", help="i/n: build every n-th house, starting at the i-th")
     build.add_argument("--quiet", action="store_true", help="no progress bars")
+    build.add_argument(
+        "--yes", action="store_true", help="start a large build without asking (it states its cost)"
+    )
     build.set_defaults(handler=_data_build)
     stats = data.add_parser("stats", help="statistics, figure and report of a built dataset")
     stats.add_argument("dataset", help="a folder made by vlln data build")

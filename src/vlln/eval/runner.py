@@ -35,6 +35,7 @@ from vlln.agents.protocol import Agent
 from vlln.agents.registry import make_agent
 from vlln.errors import ConfigError
 from vlln.eval.config import EvalConfig
+from vlln.eval.cost import eval_cost_line
 from vlln.eval.health import RunHealth, run_health
 from vlln.eval.results import RecordKey, RunDirectory, SkippedLine, load_runs, record_key
 from vlln.eval.summary import GroupSummary, summarize_run, summary_json, summary_markdown
@@ -227,6 +228,8 @@ def run_evaluation(
             done = {record_key(record) for record in writer.records}
             remaining = [item for item in items if item.key(config) not in done]
             todo = remaining if stop_after is None else remaining[:stop_after]
+            if progress:
+                print(eval_cost_line(len(items), len(items) - len(remaining)), file=sys.stderr)
             bar = tqdm(
                 total=len(items),
                 initial=len(items) - len(remaining),
