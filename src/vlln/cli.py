@@ -280,6 +280,8 @@ def _data_build(args: argparse.Namespace) -> int:
     config = BuildConfig(
         houses=args.houses, split=args.split, seed=args.seed, per_house=args.per_house
     )
+    if Path(args.out).exists() and not Path(args.out).is_dir():
+        raise ConfigError(f"--out {args.out} is a file, not a folder; give a dataset folder")
     shard = Shard.parse(args.shard) if args.shard else None
     houses = -(-config.houses // shard.count) if shard else config.houses
     cost = build_cost(houses, config.per_house)

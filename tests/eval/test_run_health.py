@@ -126,3 +126,37 @@ def test_an_empty_episode_file_is_an_error(
     assert main([*args, "--out", str(tmp_path / "run")]) == 2
     error = capsys.readouterr().err
     assert "holds no episodes" in error and error.count("\n") == 1
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        [
+            "eval",
+            "--agent",
+            "random",
+            "--task",
+            "iign",
+            "--episode-file",
+            "{dir}",
+            "--out",
+            "{new}",
+        ],
+        ["data", "build", "--houses", "1", "--out", "{file}", "--yes"],
+        ["score", "{file}"],
+        ["world", "show", "--out", "{file}"],
+    ],
+)
+def test_every_path_of_the_wrong_kind_is_one_line(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], args: list[str]
+) -> None:
+    """Reproductions 2 and 10: a folder for a file, a file for a folder."""
+    (tmp_path / "file").write_text("x")
+    places = {
+        "{dir}": str(tmp_path),
+        "{file}": str(tmp_path / "file"),
+        "{new}": str(tmp_path / "n"),
+    }
+    assert main([places.get(arg, arg) for arg in args]) == 2
+    error = capsys.readouterr().err
+    assert error.startswith("error: ") and error.count("\n") == 1

@@ -13,6 +13,7 @@ context on one thread.
 from __future__ import annotations
 
 import math
+from functools import lru_cache
 
 import numpy as np
 
@@ -283,7 +284,7 @@ def _view(sim: Simulator, state: AgentState, question: str) -> Frame:
     those are rendered; the colour and depth images are read-only zeros of the right shape
     and every other question is answered without drawing anything."""
     height, width = sim.config.camera.height, sim.config.camera.width
-    if analyse_question(question).question_type in _LOOKING:
+    if _looks(question):
         ids = sim.render_instance_ids(state)
     else:
         ids = np.broadcast_to(np.zeros(1, np.int32), (height, width))
@@ -295,3 +296,10 @@ def _view(sim: Simulator, state: AgentState, question: str) -> Frame:
 
 
 _LOOKING = (QuestionType.DISAMBIGUATION, QuestionType.OTHER)
+
+
+@lru_cache(maxsize=4096)
+def _looks(question: str) -> bool:
+    """Whether the answer to ``question`` reads the view (agents repeat their phrasings, so
+    the classification is kept for the oracle's own, uncached, analysis to follow)."""
+    return analyse_question(question).question_type in _LOOKING
