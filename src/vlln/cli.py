@@ -4,7 +4,6 @@ errors raised on purpose (vlln.errors.VllnError) are printed as one line, not a 
 from __future__ import annotations
 
 import argparse
-import os
 import sys
 from collections.abc import Callable, Sequence
 from pathlib import Path
@@ -12,7 +11,6 @@ from pathlib import Path
 from vlln.errors import ConfigError, VllnError
 
 Handler = Callable[[argparse.Namespace], int]
-DEFAULT_TOKEN_ENV = "VLLN_ORACLE_TOKEN"
 
 
 def _world_show(args: argparse.Namespace) -> int:
@@ -178,9 +176,9 @@ def _add_eval_commands(commands: argparse._SubParsersAction[argparse.ArgumentPar
 
 
 def _oracle_serve(args: argparse.Namespace) -> int:
-    from vlln.oracle.service.server import serve
+    from vlln.oracle.service.server import serve, token_from_environment
 
-    token = _service_token(args.token_env)
+    token = token_from_environment(args.token_env)
     serve(
         host=args.host,
         port=args.port,
@@ -194,22 +192,6 @@ def _oracle_serve(args: argparse.Namespace) -> int:
         log_level=args.log_level,
     )
     return 0
-
-
-def _service_token(token_env: str | None) -> str | None:
-    """The bearer token: a variable named with --token-env must hold one; without the flag,
-    VLLN_ORACLE_TOKEN is used when it is set (and must then not be empty)."""
-    name = token_env or DEFAULT_TOKEN_ENV
-    value = os.environ.get(name)
-    if value is None and token_env is None:
-        return None
-    if not value or not value.strip():
-        state = "is not set" if value is None else "is empty"
-        raise ConfigError(
-            f"the token variable {name} {state}; export {name}=<token> before starting the "
-            "service, or leave out --token-env to serve loopback without a token"
-        )
-    return value
 
 
 def _oracle_classify_report(args: argparse.Namespace) -> int:
@@ -242,7 +224,7 @@ def _add_oracle_commands(commands: argparse._SubParsersAction[argparse.ArgumentP
     serve.add_argument(
         "--token-env",
         help="environment variable holding the bearer token; it must be set and not empty "
-        f"(without the flag: {DEFAULT_TOKEN_ENV} when set, else no token, loopback only)",
+        "(without the flag: VLLN_ORACLE_TOKEN when set, else no token, loopback only)",
     )
     serve.add_argument("--episodes", help="an episode file whose episodes sessions can name")
     serve.add_argument(

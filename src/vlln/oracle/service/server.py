@@ -9,6 +9,7 @@ announced with a warning on stderr.
 from __future__ import annotations
 
 import ipaddress
+import os
 import sys
 from pathlib import Path
 
@@ -21,6 +22,7 @@ from vlln.tasks.episode import read_episodes
 
 DEFAULT_HOST = "127.0.0.1"
 DEFAULT_PORT = 8765
+DEFAULT_TOKEN_ENV = "VLLN_ORACLE_TOKEN"
 LOG_LEVELS = ("critical", "error", "warning", "info", "debug")
 
 
@@ -32,6 +34,22 @@ def is_loopback(host: str) -> bool:
         return ipaddress.ip_address(host).is_loopback
     except ValueError:
         return False
+
+
+def token_from_environment(token_env: str | None) -> str | None:
+    """The bearer token: a variable named with --token-env must hold one; without the flag,
+    VLLN_ORACLE_TOKEN is used when it is set (and must then not be empty)."""
+    name = token_env or DEFAULT_TOKEN_ENV
+    value = os.environ.get(name)
+    if value is None and token_env is None:
+        return None
+    if not value or not value.strip():
+        state = "is not set" if value is None else "is empty"
+        raise ConfigError(
+            f"the token variable {name} {state}; export {name}=<token> before starting the "
+            "service, or leave out --token-env to serve loopback without a token"
+        )
+    return value
 
 
 def build_server(
