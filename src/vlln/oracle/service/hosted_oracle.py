@@ -13,13 +13,12 @@ context on one thread.
 from __future__ import annotations
 
 import math
-from functools import lru_cache
 
 import numpy as np
 
 from vlln import __version__
 from vlln.errors import VllnError
-from vlln.oracle.classify import analyse_question
+from vlln.oracle.classify import analysed
 from vlln.oracle.protocol import EpisodeContext, Question, QuestionType
 from vlln.oracle.rule_oracle import RuleOracle
 from vlln.oracle.service.config import ServiceConfig
@@ -284,7 +283,7 @@ def _view(sim: Simulator, state: AgentState, question: str) -> Frame:
     those are rendered; the colour and depth images are read-only zeros of the right shape
     and every other question is answered without drawing anything."""
     height, width = sim.config.camera.height, sim.config.camera.width
-    if _looks(question):
+    if analysed(question).question_type in _LOOKING:
         ids = sim.render_instance_ids(state)
     else:
         ids = np.broadcast_to(np.zeros(1, np.int32), (height, width))
@@ -296,10 +295,3 @@ def _view(sim: Simulator, state: AgentState, question: str) -> Frame:
 
 
 _LOOKING = (QuestionType.DISAMBIGUATION, QuestionType.OTHER)
-
-
-@lru_cache(maxsize=4096)
-def _looks(question: str) -> bool:
-    """Whether the answer to ``question`` reads the view (agents repeat their phrasings, so
-    the classification is kept for the oracle's own, uncached, analysis to follow)."""
-    return analyse_question(question).question_type in _LOOKING
