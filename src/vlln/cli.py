@@ -4,7 +4,6 @@ errors raised on purpose (vlln.errors.VllnError) are printed as one line, not a 
 from __future__ import annotations
 
 import argparse
-import os
 import sys
 from collections.abc import Callable, Sequence
 from pathlib import Path
@@ -135,11 +134,14 @@ def _eval(args: argparse.Namespace) -> int:
         finally:
             scenes.close()
     state = "complete" if outcome.complete else "incomplete: rerun the same command to go on"
+    for line in outcome.repaired:
+        print(f"repaired: {line.describe()}", file=sys.stderr)
     print(
         f"{len(outcome.records)} of {outcome.planned} episodes in {args.out} ({state}); "
         f"played {outcome.played} in {outcome.seconds:.1f} s",
         file=sys.stderr,
     )
+    print(outcome.health.line(), file=sys.stderr)
     if outcome.summary is not None:
         print((Path(args.out) / "summary.md").read_text(encoding="utf-8"), end="")
     return 0
@@ -162,15 +164,20 @@ def _agent_options(args: argparse.Namespace) -> dict[str, str]:
 def _score(args: argparse.Namespace) -> int:
     import json
 
-    from vlln.eval.results import load_run_records
+    from vlln.eval.health import run_health
+    from vlln.eval.results import load_runs
     from vlln.eval.summary import summarize_run, summary_json, summary_markdown
 
-    records = load_run_records(Path(path) for path in args.dirs)
-    groups = summarize_run(records, args.success_radius, args.os_radius)
+    contents = load_runs(Path(path) for path in args.dirs)
+    health = run_health(contents)
+    print(health.line(), file=sys.stderr)
+    groups = summarize_run(contents.records, args.success_radius, args.os_radius)
     if args.json:
-        print(json.dumps(summary_json(groups), indent=2, allow_nan=False))
+        data = summary_json(groups) | {"health": health.to_json()}
+        print(json.dumps(data, indent=2, allow_nan=False))
     else:
-        print(summary_markdown(groups, "Scores of " + ", ".join(args.dirs)), end="")
+        markdown = summary_markdown(groups, "Scores of " + ", ".join(args.dirs))
+        print(markdown + f"\n{health.line()}\n", end="")
     return 0
 
 
@@ -289,9 +296,9 @@ def _add_eval_commands(commands: argparse._SubParsersAction[argparse.ArgumentPar
 
 
 def _oracle_serve(args: argparse.Namespace) -> int:
-    from vlln.oracle.service.server import serve
+    from vlln.oracle.service.server import serve, token_from_environment
 
-    token = os.environ.get(args.token_env) or None
+    token = token_from_environment(args.token_env)
     serve(
         host=args.host,
         port=args.port,
@@ -300,6 +307,9 @@ def _oracle_serve(args: argparse.Namespace) -> int:
         allow_remote=args.allow_remote,
         max_sessions=args.max_sessions,
         oracle_seed=args.oracle_seed,
+        builds_per_minute=args.builds_per_minute,
+        client_builds_per_minute=args.client_builds_per_minute,
+        log_level=args.log_level,
     )
     return 0
 
@@ -315,7 +325,12 @@ def _oracle_classify_report(args: argparse.Namespace) -> int:
 def _bench_oracle(args: argparse.Namespace) -> int:
     from vlln.bench.oracle import run_oracle_benchmark
 
-    run_oracle_benchmark(seed=args.seed, questions=args.questions, as_json=args.json)
+    run_oracle_benchmark(
+        seed=args.seed,
+        questions=args.questions,
+        as_json=args.json,
+        service_scenes=args.service_scenes,
+    )
     return 0
 
 
@@ -355,9 +370,8 @@ def _add_oracle_commands(commands: argparse._SubParsersAction[argparse.ArgumentP
     serve.add_argument("--port", type=int, default=8765, help="port (default 8765)")
     serve.add_argument(
         "--token-env",
-        default="VLLN_ORACLE_TOKEN",
-        help="environment variable holding the bearer token; unset = no token "
-        "(default VLLN_ORACLE_TOKEN)",
+        help="environment variable holding the bearer token; it must be set and not empty "
+        "(without the flag: VLLN_ORACLE_TOKEN when set, else no token, loopback only)",
     )
     serve.add_argument("--episodes", help="an episode file whose episodes sessions can name")
     serve.add_argument(
@@ -365,6 +379,20 @@ def _add_oracle_commands(commands: argparse._SubParsersAction[argparse.ArgumentP
     )
     serve.add_argument("--max-sessions", type=int, default=64, help="sessions kept (default 64)")
     serve.add_argument("--oracle-seed", type=int, default=0, help="paraphrase seed (default 0)")
+    serve.add_argument(
+        "--builds-per-minute", type=int, default=60, help="house builds, all clients (default 60)"
+    )
+    serve.add_argument(
+        "--client-builds-per-minute",
+        type=int,
+        default=20,
+        help="house builds one client address may cause (default 20)",
+    )
+    serve.add_argument(
+        "--log-level",
+        default="warning",
+        help="uvicorn log level (default warning: no line per request)",
+    )
     serve.set_defaults(handler=_oracle_serve)
     report = oracle.add_parser(
         "classify-report", help="accuracy and confusion matrix of the offline classifier"
@@ -375,12 +403,23 @@ def _add_oracle_commands(commands: argparse._SubParsersAction[argparse.ArgumentP
 
 def _data_build(args: argparse.Namespace) -> int:
     from vlln.datagen.build import BuildConfig, build_dataset, summarize
+    from vlln.datagen.cost import build_cost
     from vlln.eval.sharding import Shard
 
     config = BuildConfig(
         houses=args.houses, split=args.split, seed=args.seed, per_house=args.per_house
     )
+    if Path(args.out).exists() and not Path(args.out).is_dir():
+        raise ConfigError(f"--out {args.out} is a file, not a folder; give a dataset folder")
     shard = Shard.parse(args.shard) if args.shard else None
+    houses = -(-config.houses // shard.count) if shard else config.houses
+    cost = build_cost(houses, config.per_house)
+    print(cost.line(), file=sys.stderr)
+    if cost.large and not args.yes and sys.stdin.isatty():
+        answer = input("this is a large build; start it? [y/N] ")
+        if answer.strip().lower() not in ("y", "yes"):
+            print("not started (pass --yes to skip this question)", file=sys.stderr)
+            return 1
     if args.ray is not None:
         from vlln.cluster.data import build_dataset_ray
 
@@ -448,6 +487,9 @@ def _add_data_commands(commands: argparse._SubParsersAction[argparse.ArgumentPar
     build.add_argument("--shard", help="i/n: build every n-th house, starting at the i-th")
     build.add_argument("--quiet", action="store_true", help="no progress bars")
     _add_ray_options(build, chunks=False)
+    build.add_argument(
+        "--yes", action="store_true", help="start a large build without asking (it states its cost)"
+    )
     build.set_defaults(handler=_data_build)
     stats = data.add_parser("stats", help="statistics, figure and report of a built dataset")
     stats.add_argument("dataset", help="a folder made by vlln data build")
@@ -586,6 +628,13 @@ def build_parser() -> argparse.ArgumentParser:
         "--questions", type=int, default=2000, help="questions (default 2000)"
     )
     bench_oracle.add_argument("--json", action="store_true", help="print one JSON object per line")
+    bench_oracle.add_argument(
+        "--service-scenes",
+        type=int,
+        default=64,
+        help="houses given a session each for the service's memory figure (default 64; "
+        "0 = no service figures)",
+    )
     bench_oracle.set_defaults(handler=_bench_oracle)
     bench_agent = bench.add_parser(
         "agent", help="a model agent's step cost outside the model; the local model's steps/s"

@@ -3,8 +3,15 @@
 from __future__ import annotations
 
 import os
+import shutil
 import tempfile
+from collections.abc import Callable
 from pathlib import Path
+from typing import TypeVar
+
+from vlln.errors import ConfigError
+
+T = TypeVar("T")
 
 # Files are written for the user and their collaborators to read, like any other output.
 _MODE = 0o644
@@ -30,3 +37,39 @@ def write_bytes_atomic(path: Path, data: bytes) -> None:
 def write_text_atomic(path: Path, text: str) -> None:
     """:func:`write_bytes_atomic` for UTF-8 text with Unix line endings."""
     write_bytes_atomic(path, text.encode("utf-8"))
+
+
+def replace_folder(out: Path, write: Callable[[Path], T], owned: Callable[[Path], bool]) -> T:
+    """Run ``write`` into a fresh folder beside ``out``, then put it in ``out``'s place.
+
+    A second run of a command never leaves the first run's files among its own. Only a
+    folder whose every entry ``owned`` accepts (files the command itself writes) is
+    replaced; a file, or a folder holding anything else, is refused before any work.
+    """
+    if out.exists() and not out.is_dir():
+        raise ConfigError(
+            f"--out {out} is a file, not a folder; give a new or earlier output folder"
+        )
+    if out.is_dir():
+        foreign = [entry.name for entry in out.iterdir() if not owned(entry)]
+        if foreign:
+            raise ConfigError(
+                f"--out {out} holds files this command did not write ({', '.join(foreign[:3])}); "
+                "give a new folder or an earlier output folder of the same command"
+            )
+    out.parent.mkdir(parents=True, exist_ok=True)
+    fresh = Path(tempfile.mkdtemp(dir=out.parent, prefix=f".{out.name}.", suffix=".new"))
+    try:
+        result = write(fresh)
+        os.chmod(fresh, 0o755)
+        if out.is_dir():
+            old = Path(tempfile.mkdtemp(dir=out.parent, prefix=f".{out.name}.", suffix=".old"))
+            os.replace(out, old / out.name)
+            os.replace(fresh, out)
+            shutil.rmtree(old)
+        else:
+            os.replace(fresh, out)
+    except BaseException:
+        shutil.rmtree(fresh, ignore_errors=True)
+        raise
+    return result

@@ -5,6 +5,7 @@ import json
 import pytest
 
 from vlln.bench.oracle import run_oracle_benchmark
+from vlln.bench.service import run_service_benchmark
 from vlln.errors import ConfigError
 
 REQUIRED = {"answer_p50_ms", "answer_p99_ms", "classify_us", "oracle_start_ms"}
@@ -28,3 +29,12 @@ def test_oracle_benchmark_prints_json_lines(capsys: pytest.CaptureFixture[str]) 
 def test_a_non_positive_question_count_is_refused() -> None:
     with pytest.raises(ConfigError, match="questions"):
         run_oracle_benchmark(seed=1, questions=0, as_json=True)
+
+
+def test_service_benchmark_measures_a_running_service() -> None:
+    figures: dict[str, float] = {}
+    run_service_benchmark(lambda metric, value, unit: figures.update({metric: value}), 1, 2, 1)
+    assert figures["service_clients"] == 30 and figures["service_errors"] == 0
+    assert figures["service_requests_per_s"] > 0
+    assert 0 < figures["service_p50_ms"] <= figures["service_p99_ms"]
+    assert 50 < figures["service_rss_2_scenes_mb"] < 2000

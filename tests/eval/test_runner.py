@@ -12,7 +12,8 @@ import pytest
 from tests.eval.runs import evaluate, lines, summary
 from vlln.errors import ConfigError
 from vlln.eval.config import EvalConfig
-from vlln.eval.results import load_run_records
+from vlln.eval.health import run_health
+from vlln.eval.results import load_runs
 from vlln.eval.runner import (
     derive_seed,
     load_episodes,
@@ -82,8 +83,10 @@ def test_two_shards_equal_one_full_run(
         outcome = evaluate(out, split_cache, scenes, shard=Shard(index, 2))
         assert outcome.played == 4
     assert sorted(lines(shards[0]) + lines(shards[1])) == sorted(lines(full_run))
-    merged = summary_json(summarize_run(load_run_records(shards)))
-    assert merged == summary(full_run)
+    contents = load_runs(shards)
+    merged = summary_json(summarize_run(contents.records))
+    assert merged | {"health": run_health(contents).to_json()} == summary(full_run)
+    assert summary(full_run)["health"]["complete"] and contents.planned == 8
     assert set(keys(shards[0])).isdisjoint(keys(shards[1]))
 
 

@@ -75,3 +75,31 @@ def test_no_egl_gives_the_install_hint(tmp_path: Path) -> None:
     assert result.returncode == 2
     assert "apt-get install libegl1 libgl1-mesa-dri" in result.stderr
     assert "Traceback" not in result.stderr
+
+
+def test_world_show_replaces_its_output_folder(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Reproduction 8: a second run leaves no file of the first one behind."""
+    out = tmp_path / "show"
+    args = ["world", "show", "--out", str(out), "--param", "max_rooms=4", "--param", "max_area=70"]
+    assert main([*args, "--seed", "1", "--views", "1"]) == 0
+    assert len(list(out.glob("view0_*.png"))) == 6
+    assert main([*args, "--seed", "2", "--views", "0"]) == 0
+    assert sorted(path.name for path in out.iterdir()) == ["map.png"]
+    assert not [path for path in tmp_path.iterdir() if path.name != "show"]  # no temp left
+
+
+def test_world_show_out_of_the_wrong_kind_is_one_line(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Reproduction 10: --out naming a file, or a folder holding other files."""
+    file = tmp_path / "notes.txt"
+    file.write_text("mine")
+    (tmp_path / "mine").mkdir()
+    (tmp_path / "mine" / "thesis.tex").write_text("mine")
+    for out in (file, tmp_path / "mine"):
+        assert main(["world", "show", "--out", str(out), "--views", "0"]) == 2
+        error = capsys.readouterr().err
+        assert error.startswith("error: ") and error.count("\n") == 1 and str(out) in error
+    assert file.read_text() == "mine" and (tmp_path / "mine" / "thesis.tex").exists()

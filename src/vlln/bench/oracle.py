@@ -15,6 +15,7 @@ import time
 import numpy as np
 
 from vlln.bench.figures import Figure, emit, median_seconds
+from vlln.bench.service import run_service_benchmark
 from vlln.errors import ConfigError
 from vlln.oracle.classify import analyse_question
 from vlln.oracle.protocol import EpisodeContext, Question, QuestionType
@@ -31,9 +32,10 @@ QUESTIONS_PER_POSE = 4  # questions asked from each rendered pose
 
 
 def run_oracle_benchmark(
-    seed: int = 0, questions: int = 2000, as_json: bool = False
+    seed: int = 0, questions: int = 2000, as_json: bool = False, service_scenes: int = 0
 ) -> list[Figure]:
-    """Measure and print the oracle's answer latency over ``questions`` questions."""
+    """Measure and print the oracle's answer latency over ``questions`` questions and, when
+    ``service_scenes`` > 0, the HTTP service under load (:mod:`vlln.bench.service`)."""
     if questions < 1:
         raise ConfigError(f"questions must be a positive count, got {questions}")
     figures: list[Figure] = []
@@ -67,6 +69,8 @@ def run_oracle_benchmark(
         record(f"{group}_p50_ms", float(np.percentile(latencies[group], 50)), "ms")
         record(f"{group}_p99_ms", float(np.percentile(latencies[group], 99)), "ms")
     record("oracle_start_ms", float(np.median(start_ms)), "ms")
+    if service_scenes > 0:
+        run_service_benchmark(record, seed, service_scenes)
     return figures
 
 

@@ -19,9 +19,19 @@ from vlln.agents.registry import make_agent
 from vlln.cluster.scheduler import DEFAULT_MAX_RETRIES, collect_in_order, connect, remote_function
 from vlln.errors import ConfigError
 from vlln.eval.config import EvalConfig
-from vlln.eval.results import RunDirectory, record_key
-from vlln.eval.runner import RunOutcome, WorkItem, by_episode, load_episodes, plan_work, play_items
+from vlln.eval.health import run_health
+from vlln.eval.results import RunDirectory, load_runs, record_key
+from vlln.eval.runner import (
+    RunOutcome,
+    WorkItem,
+    by_episode,
+    default_provenance,
+    load_episodes,
+    plan_work,
+    play_items,
+)
 from vlln.eval.summary import summarize_run, summary_json, summary_markdown
+from vlln.oracle.rule_oracle import RuleOracle
 from vlln.tasks.record import EpisodeRecord
 from vlln.tasks.scenes import SceneCache
 
@@ -59,15 +69,17 @@ def run_ray_evaluation(
     sweep: bool = True,
 ) -> RunOutcome:
     """Play ``config`` on a Ray cluster into ``out`` (module doc); resumes like the runner."""
-    make_agent(config.agent, config.seed)  # an unknown agent fails before any work
+    make_agent(config.agent, config.seed, config.detector, config.agent_options)  # fail early
     ray = connect(address)  # an unreachable cluster too
     items = plan_work(load_episodes(config, cache_dir, progress), config)
     run_dir = RunDirectory(out)
-    run_dir.prepare(config)
+    run_dir.check_is_directory()
+    run_dir.prepare(config, len(items), default_provenance(config, RuleOracle))
     task = remote_function(play_eval_chunk, max_retries)
     played = 0
     started = time.perf_counter()
     with run_dir.writing() as writer:
+        repaired = list(writer.skipped)
         done = {record_key(record) for record in writer.records}
         remaining = [item for item in items if item.key(config) not in done]
         chunks = chunk_work(remaining, episodes_per_chunk)
@@ -96,7 +108,11 @@ def run_ray_evaluation(
             collect_in_order(refs, commit)
         records = list(writer.records)
     seconds = time.perf_counter() - started
+    health = run_health(load_runs([out]))
     summary = summarize_run(records) if records else None
     if summary is not None:
-        run_dir.write_summary(summary_json(summary), summary_markdown(summary))
-    return RunOutcome(out, len(items), played, seconds, records, summary)
+        run_dir.write_summary(
+            summary_json(summary) | {"health": health.to_json()},
+            summary_markdown(summary) + f"\n{health.line()}\n",
+        )
+    return RunOutcome(out, len(items), played, seconds, records, summary, health, repaired)

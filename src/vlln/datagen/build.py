@@ -85,7 +85,7 @@ def build_dataset(
     cache = SceneCache(capacity=1)
     try:
         by_house = prepare_episodes(root, config, mine, cache, progress)
-        for seed in mine:
+        for seed in tqdm(mine, desc="trajectories", unit="house", disable=not progress):
             scene_id = procedural_scene_id(seed)
             chosen = choose_episodes(by_house.get(scene_id, []), config, seed)
             build_house(root, cache.get(scene_id), chosen, config, progress)
@@ -99,7 +99,7 @@ def prepare_episodes(
 ) -> dict[str, list[Episode]]:
     """Stages 1 and 2: scene summaries of ``seeds``, the split's episode files (built once;
     every shard builds the same bytes), and the IIGN episodes grouped by scene."""
-    for seed in seeds:
+    for seed in tqdm(seeds, desc="scene summaries", unit="house", disable=not progress):
         export_scene_summary(cache.get(procedural_scene_id(seed)).house, root / "scene_summary")
     episodes_dir = root / "episodes"
     path = episode_path(episodes_dir, config.split, TaskType.IIGN)

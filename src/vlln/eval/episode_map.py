@@ -4,8 +4,8 @@ The record stores the pose after every movement step (``positions``: x, z, yaw) 
 action, so the map needs no replay: the trajectory is the positions, and a question's place is
 the position at the moment its TALK action was issued. The floor plan comes from
 :func:`vlln.viz.topdown.draw_house` with the target highlighted; same-category distractors,
-the object the agent stopped at, the start and the end are marked on top. The map's vertical
-axis is -z, as in every top-down view of the project.
+the object the agent stopped at, the start and the end are marked on top. The map uses pose
+coordinates (x to the right, z downwards, so -z is up), as every top-down view of the project.
 """
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ from matplotlib.patches import Rectangle
 
 from vlln.sim.agent import Action
 from vlln.tasks.record import EpisodeRecord
-from vlln.viz.topdown import draw_house
+from vlln.viz.topdown import draw_house, north_up
 from vlln.world.model import House, ObjectInstance
 
 _MOVES = {Action.MOVE_FORWARD.name, Action.TURN_LEFT.name, Action.TURN_RIGHT.name}
@@ -63,17 +63,18 @@ def draw_episode_map(
         _outline(ax, house.instance(stop_id), "#000000", "stopped at")
     if record.positions:
         path_x = [p[0] for p in record.positions]
-        path_z = [-p[1] for p in record.positions]
+        path_z = [p[1] for p in record.positions]
         ax.plot(path_x, path_z, color="#1f3fbf", linewidth=1.6, alpha=0.9, label="trajectory")
         ax.plot(path_x[0], path_z[0], "o", color="#2ca02c", markersize=10, label="start", zorder=5)
         ax.plot(path_x[-1], path_z[-1], "X", color="#111111", markersize=9, label="end", zorder=5)
     for k, ((x, z), turn) in enumerate(
         zip(question_positions(record), record.dialog, strict=False), start=1
     ):
-        ax.plot(x, -z, "D", color="#e377c2" if turn.answered else "#aaaaaa", markersize=6)
-        ax.annotate(f"Q{k}", (x, -z), textcoords="offset points", xytext=(5, 5), fontsize=8)
+        ax.plot(x, z, "D", color="#e377c2" if turn.answered else "#aaaaaa", markersize=6)
+        ax.annotate(f"Q{k}", (x, z), textcoords="offset points", xytext=(5, 5), fontsize=8)
     if record.dialog:
         ax.plot([], [], "D", color="#e377c2", label="question (answered)")
+    north_up(ax)
     ax.set_title(title, fontsize=9)
     ax.legend(loc="upper left", bbox_to_anchor=(1.0, 1.0), fontsize=7)
     fig.tight_layout()
@@ -83,7 +84,7 @@ def draw_episode_map(
 def _outline(ax: Axes, inst: ObjectInstance, color: str, label: str | None) -> None:
     (x0, _, z0), (x1, _, z1) = inst.box.min, inst.box.max
     patch = Rectangle(
-        (x0 - 0.1, -z1 - 0.1),
+        (x0 - 0.1, z0 - 0.1),
         x1 - x0 + 0.2,
         z1 - z0 + 0.2,
         fill=False,

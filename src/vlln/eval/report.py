@@ -26,10 +26,11 @@ from vlln.eval.document import (
 )
 from vlln.eval.episode_map import draw_episode_map
 from vlln.eval.figures import plot_failure_taxonomy, plot_sr_by_budget
+from vlln.eval.health import RunHealth, run_health
 from vlln.eval.pairings import people_section
-from vlln.eval.results import RunDirectory, load_run_records
+from vlln.eval.results import RunDirectory, load_runs
 from vlln.eval.summary import GroupSummary, budget_table, failed_actions_line, summarize_run
-from vlln.files import write_text_atomic
+from vlln.files import replace_folder, write_text_atomic
 from vlln.tasks.aggregate import BudgetSweep, MetricSummary, format_table
 from vlln.tasks.metrics import ORACLE_SUCCESS_RADIUS, SUCCESS_RADIUS
 from vlln.tasks.record import EpisodeRecord
@@ -51,6 +52,7 @@ class ReportRun:
     path: Path
     records: list[EpisodeRecord]
     groups: list[GroupSummary]
+    health: RunHealth
 
 
 def write_report(
@@ -62,18 +64,42 @@ def write_report(
     os_radius: float = ORACLE_SUCCESS_RADIUS,
     videos_per_run: int = 0,
 ) -> list[Path]:
-    """Write report.md, report.html and their PNGs into ``out``; returns the files written.
+    """Write report.md, report.html and their PNGs into ``out``, replacing an earlier report
+    there (:func:`vlln.files.replace_folder`); returns the files written.
     ``videos_per_run`` adds that many episode videos per run (MP4, PyAV needed)."""
     if not run_dirs:
         raise ConfigError("give at least one run directory to report on")
+    if out.exists() and not out.is_dir():
+        raise ConfigError(f"--out {out} is a file, not a directory; give a directory")
     labels = _labels(run_dirs)
     runs = []
     for label, path in zip(labels, run_dirs, strict=True):
-        records = load_run_records([path])
-        runs.append(
-            ReportRun(label, path, records, summarize_run(records, success_radius, os_radius))
+        contents = load_runs([path])
+        records = contents.records
+        groups = summarize_run(records, success_radius, os_radius)
+        runs.append(ReportRun(label, path, records, groups, run_health(contents)))
+
+    def write(folder: Path) -> list[Path]:
+        return _write_report(
+            runs, folder, samples_per_run, success_radius, os_radius, videos_per_run
         )
-    out.mkdir(parents=True, exist_ok=True)
+
+    written = replace_folder(out, write, _is_report_file)
+    return [out / path.name for path in written]
+
+
+def _is_report_file(path: Path) -> bool:
+    return path.is_file() and path.suffix in (".md", ".html", ".png", ".mp4")
+
+
+def _write_report(
+    runs: Sequence[ReportRun],
+    out: Path,
+    samples_per_run: int,
+    success_radius: float,
+    os_radius: float,
+    videos_per_run: int,
+) -> list[Path]:
     written: list[Path] = []
     blocks: list[Block] = [Heading(1, "Evaluation report")]
     blocks += _runs_section(runs)
@@ -115,7 +141,27 @@ def _runs_section(runs: Sequence[ReportRun]) -> list[Block]:
             [run.label, str(run.path), agents, source, str(len(run.records)), _ranges(budgets)]
         )
     header = ["run", "directory", "agent on task", "episodes from", "episode lines", "budgets"]
-    return [Heading(2, "Runs"), Table(header, rows)]
+    return [Heading(2, "Runs"), Table(header, rows), *_health_section(runs)]
+
+
+def _health_section(runs: Sequence[ReportRun]) -> list[Block]:
+    """Whether each run is complete, what was skipped and what failed, per kind."""
+    blocks: list[Block] = [Heading(2, "Run health")]
+    blocks += [Paragraph(f"{run.label}: {run.health.line()}") for run in runs]
+    kinds = sorted({kind for run in runs for kind in run.health.failures})
+    skipped = sorted({kind for run in runs for kind in run.health.skipped})
+    header = ["run", "finished", "planned", *[f"skipped: {k}" for k in skipped], *kinds]
+    rows = [
+        [
+            run.label,
+            str(run.health.finished),
+            "?" if run.health.planned is None else str(run.health.planned),
+            *[str(run.health.skipped.get(kind, 0)) for kind in skipped],
+            *[str(run.health.failures.get(kind, 0)) for kind in kinds],
+        ]
+        for run in runs
+    ]
+    return [*blocks, Table(header, rows)]
 
 
 def _ranges(values: list[int]) -> str:

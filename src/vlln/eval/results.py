@@ -8,10 +8,15 @@ Layout::
     DIR/summary.md      the same as Markdown tables
     DIR/.lock           held while a process writes here, so two runs cannot interleave
 
+    DIR/episodes.skipped.jsonl  lines a resume set aside: invalid or repeated (see below)
+
 Each record is appended with one write, flushed and fsynced, so a kill loses at most the
-episode in flight. That episode may leave a partial last line without its newline; reading
-for a restart cuts it off and the runner plays the episode again. A malformed *complete* line
-is not a crash artefact (someone edited the file), so it is a :class:`DataFormatError`.
+episode in flight. That episode may leave a partial last line; reading for a restart cuts it
+off (only when it is not a valid record: one that lacks just its newline is kept) and the
+runner plays the episode again. Reading never fails on a line's content: a line that is not a
+valid record (wrong JSON, a field of the wrong type or range) or repeats an episode is skipped
+and named (file, line, field), and a resume moves it to ``episodes.skipped.jsonl``, so the
+episode is played again and the results file keeps exactly one line per episode.
 """
 
 from __future__ import annotations
@@ -21,16 +26,19 @@ import json
 import os
 from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import IO, Any
 
 from vlln.errors import ConfigError, DataFormatError
 from vlln.eval.config import EvalConfig, describe_differences
-from vlln.files import write_text_atomic
+from vlln.files import write_bytes_atomic, write_text_atomic
 from vlln.tasks.record import EpisodeRecord
 
 RUN_FILE = "run.json"
 EPISODES_FILE = "episodes.jsonl"
+SKIPPED_FILE = "episodes.skipped.jsonl"
+RUN_FACTS = ("planned_episodes", "provenance")  # in run.json, but not arguments of the run
 SUMMARY_JSON = "summary.json"
 SUMMARY_MD = "summary.md"
 LOCK_FILE = ".lock"
@@ -44,58 +52,129 @@ def record_key(record: EpisodeRecord) -> RecordKey:
     return (record.agent_label, record.task, record.budget, record.scene_id, record.episode_id)
 
 
-def read_records(path: Path, repair: bool = False) -> list[EpisodeRecord]:
-    """The records of a JSONL results file, ignoring a partial last line.
+@dataclass(frozen=True)
+class SkippedLine:
+    """A line of a results file that holds no record to count, and why.
 
-    With ``repair`` the partial line is also cut off the file, so the next append starts on a
-    fresh line. A missing file holds no records.
+    ``kind``: ``invalid`` (not JSON, or a field of the wrong type or range), ``duplicate``
+    (an episode already read from an earlier line) or ``torn`` (a last line cut off by a kill).
     """
+
+    file: Path
+    line: int
+    kind: str
+    reason: str
+
+    def describe(self) -> str:
+        return f"{self.file}:{self.line}: {self.reason}"
+
+
+@dataclass
+class RecordScan:
+    """What a results file holds: its valid records (first line of each episode), the lines
+    skipped, and whether the last valid record lacks its newline."""
+
+    records: list[EpisodeRecord] = field(default_factory=list)
+    skipped: list[SkippedLine] = field(default_factory=list)
+    lines: list[bytes] = field(default_factory=list)  # the records' lines, without newlines
+    skipped_lines: list[bytes] = field(default_factory=list)  # complete skipped lines
+    newline_missing: bool = False
+
+
+def scan_records(path: Path) -> RecordScan:
+    """Read every line of a results file; never raises on its content (module doc)."""
+    scan = RecordScan()
     try:
         data = path.read_bytes()
     except FileNotFoundError:
-        return []
-    complete_end = data.rfind(b"\n") + 1
-    if repair and complete_end < len(data):
-        with path.open("r+b") as handle:
-            handle.truncate(complete_end)
-            handle.flush()
-            os.fsync(handle.fileno())
-    records: list[EpisodeRecord] = []
+        return scan
+    parts = data.split(b"\n")
+    tail = parts.pop()  # after the last newline: empty, or a line never finished
     seen: dict[RecordKey, int] = {}
-    for number, line in enumerate(data[:complete_end].split(b"\n")[:-1], start=1):
-        record = _parse_line(line, f"{path}:{number}")
+    for number, text in enumerate([*parts, tail], start=1):
+        last = number == len(parts) + 1
+        if not text.strip():
+            continue
+        try:
+            record = _parse_line(text)
+        except DataFormatError as error:
+            if last:
+                reason = "partial last line (cut off by a stop); its episode is played again"
+                scan.skipped.append(SkippedLine(path, number, "torn", reason))
+            else:
+                scan.skipped.append(SkippedLine(path, number, "invalid", str(error)))
+                scan.skipped_lines.append(text)
+            continue
         key = record_key(record)
         if key in seen:
-            raise DataFormatError(
-                f"{path}:{number} repeats the episode of line {seen[key]} "
-                f"(budget {key[2]}, {key[3]} {key[4]}); two runs wrote into one file or it was "
-                "edited; keep one of the lines"
+            reason = (
+                f"repeats the episode of line {seen[key]} (budget {key[2]}, {key[3]} {key[4]}); "
+                "the first is counted"
             )
+            scan.skipped.append(SkippedLine(path, number, "duplicate", reason))
+            scan.skipped_lines.append(text)
+            continue
         seen[key] = number
-        records.append(record)
-    return records
+        scan.records.append(record)
+        scan.lines.append(text)
+        scan.newline_missing = last
+    return scan
 
 
-def _parse_line(line: bytes, where: str) -> EpisodeRecord:
+def read_records(path: Path, repair: bool = False) -> list[EpisodeRecord]:
+    """The valid records of a JSONL results file (see :func:`scan_records`).
+
+    With ``repair`` the file is made to hold exactly those records, one per line: a torn last
+    line is cut, a missing final newline is added, and invalid or repeated lines are moved to
+    ``episodes.skipped.jsonl`` beside it, so nothing is deleted and nothing is counted twice.
+    """
+    scan = scan_records(path)
+    if repair:
+        repair_file(path, scan)
+    return scan.records
+
+
+def repair_file(path: Path, scan: RecordScan) -> None:
+    """Make ``path`` hold exactly ``scan``'s records (see :func:`read_records`)."""
+    if scan.skipped_lines:
+        with (path.parent / SKIPPED_FILE).open("ab") as handle:
+            handle.write(b"".join(text + b"\n" for text in scan.skipped_lines))
+            handle.flush()
+            os.fsync(handle.fileno())
+        write_bytes_atomic(path, b"".join(text + b"\n" for text in scan.lines))
+        return
+    if any(skipped.kind == "torn" for skipped in scan.skipped):
+        with path.open("r+b") as handle:
+            handle.truncate(path.read_bytes().rfind(b"\n") + 1)
+            handle.flush()
+            os.fsync(handle.fileno())
+    elif scan.newline_missing:
+        with path.open("ab") as handle:
+            handle.write(b"\n")
+            handle.flush()
+            os.fsync(handle.fileno())
+
+
+def _parse_line(line: bytes) -> EpisodeRecord:
     try:
         data = json.loads(line.decode("utf-8"))
-    except (UnicodeDecodeError, json.JSONDecodeError) as error:
-        raise DataFormatError(f"{where}: not a JSON episode record ({error})") from None
+    except (UnicodeDecodeError, json.JSONDecodeError, RecursionError) as error:
+        raise DataFormatError(f"not a JSON episode record ({str(error)[:120]})") from None
     if not isinstance(data, dict):
-        raise DataFormatError(f"{where}: expected a JSON object, got {type(data).__name__}")
-    try:
-        return EpisodeRecord.from_json(data)
-    except DataFormatError as error:
-        raise DataFormatError(f"{where}: {error}") from None
+        raise DataFormatError(f"expected a JSON object, got {type(data).__name__}")
+    return EpisodeRecord.from_json(data)
 
 
 class RecordWriter:
     """Appends records to a JSONL file, each one durable before :meth:`append` returns;
     ``records`` is everything in the file, those found at the start included."""
 
-    def __init__(self, handle: IO[bytes], records: list[EpisodeRecord]) -> None:
+    def __init__(
+        self, handle: IO[bytes], records: list[EpisodeRecord], skipped: list[SkippedLine]
+    ) -> None:
         self._handle = handle
         self.records = records
+        self.skipped = skipped  # lines the opening repair cut or set aside
 
     def append(self, record: EpisodeRecord) -> None:
         data = record.to_json()
@@ -114,6 +193,11 @@ class RunDirectory:
     def __init__(self, path: Path) -> None:
         self.path = path
 
+    def check_is_directory(self) -> None:
+        """A run directory given as an existing file is a one-line error, not a traceback."""
+        if self.path.exists() and not self.path.is_dir():
+            raise ConfigError(f"--out {self.path} is a file, not a directory; give a directory")
+
     @property
     def episodes_path(self) -> Path:
         return self.path / EPISODES_FILE
@@ -122,8 +206,8 @@ class RunDirectory:
     def run_path(self) -> Path:
         return self.path / RUN_FILE
 
-    def stored_config(self) -> EvalConfig | None:
-        """The arguments the directory was started with, or None for a fresh directory."""
+    def stored_run(self) -> dict[str, Any] | None:
+        """``run.json`` as stored, or None for a fresh directory."""
         try:
             text = self.run_path.read_text(encoding="utf-8")
         except FileNotFoundError:
@@ -132,19 +216,50 @@ class RunDirectory:
             data = json.loads(text)
         except json.JSONDecodeError as error:
             raise DataFormatError(f"{self.run_path} is not JSON ({error})") from None
-        return EvalConfig.from_json(data, str(self.run_path))
+        if not isinstance(data, dict):
+            raise DataFormatError(f"{self.run_path}: expected a JSON object of run arguments")
+        return data
 
-    def prepare(self, config: EvalConfig) -> None:
-        """Create the directory for ``config`` or check that it was started with it."""
+    def stored_config(self) -> EvalConfig | None:
+        """The arguments the directory was started with, or None for a fresh directory."""
+        data = self.stored_run()
+        if data is None:
+            return None
+        arguments = {name: value for name, value in data.items() if name not in RUN_FACTS}
+        return EvalConfig.from_json(arguments, str(self.run_path))
+
+    def stored_planned(self) -> int | None:
+        """Episode lines the run plans (None when its run.json predates the count)."""
+        planned = (self.stored_run() or {}).get("planned_episodes")
+        return planned if isinstance(planned, int) and not isinstance(planned, bool) else None
+
+    def prepare(
+        self,
+        config: EvalConfig,
+        planned: int | None = None,
+        provenance: dict[str, str | None] | None = None,
+    ) -> None:
+        """Create the directory for ``config`` or check that it was started with it.
+
+        ``run.json`` also records facts that are not arguments: ``planned_episodes`` (so a
+        reader can tell an incomplete run) and ``provenance`` (agent, oracle, backend, model).
+        """
+        self.check_is_directory()
+        facts = {"planned_episodes": planned, "provenance": provenance}
         stored = self.stored_config()
         if stored is not None:
             differences = describe_differences(stored, config)
+            stored_provenance = (self.stored_run() or {}).get("provenance")
+            if stored_provenance not in (None, provenance) and provenance is not None:
+                differences.append(f"provenance: {stored_provenance} there, {provenance} now")
             if differences:
                 raise ConfigError(
                     f"{self.path} holds a run with other arguments ("
                     + "; ".join(differences)
                     + "). Use another --out, or the same arguments to resume it"
                 )
+            if any((self.stored_run() or {}).get(name) != value for name, value in facts.items()):
+                self._write_run(config, facts)
             return
         if self.episodes_path.exists() and self.episodes_path.stat().st_size > 0:
             raise ConfigError(
@@ -152,7 +267,13 @@ class RunDirectory:
                 "which run wrote it; use another --out"
             )
         self.path.mkdir(parents=True, exist_ok=True)
-        write_text_atomic(self.run_path, json.dumps(config.to_json(), indent=2) + "\n")
+        self._write_run(config, facts)
+
+    def _write_run(self, config: EvalConfig, facts: dict[str, Any]) -> None:
+        data = config.to_json() | {
+            name: value for name, value in facts.items() if value is not None
+        }
+        write_text_atomic(self.run_path, json.dumps(data, indent=2) + "\n")
 
     @contextmanager
     def writing(self) -> Iterator[RecordWriter]:
@@ -165,9 +286,10 @@ class RunDirectory:
                     f"another evaluation is writing to {self.path}; wait for it to end or "
                     "use another --out"
                 ) from None
-            found = read_records(self.episodes_path, repair=True)
+            scan = scan_records(self.episodes_path)
+            repair_file(self.episodes_path, scan)
             with self.episodes_path.open("ab") as handle:
-                yield RecordWriter(handle, found)
+                yield RecordWriter(handle, scan.records, scan.skipped)
 
     def records(self) -> list[EpisodeRecord]:
         return read_records(self.episodes_path)
@@ -179,18 +301,37 @@ class RunDirectory:
         write_text_atomic(self.path / SUMMARY_MD, summary_md)
 
 
-def load_run_records(paths: Iterable[Path]) -> list[EpisodeRecord]:
-    """All records of several run directories (or JSONL files), e.g. the shards of one run.
+@dataclass
+class RunContents:
+    """The records of one or more run directories and what reading them found: lines skipped,
+    lines set aside by a resume, and the episode lines the runs planned (None if unknown)."""
+
+    records: list[EpisodeRecord] = field(default_factory=list)
+    skipped: list[SkippedLine] = field(default_factory=list)
+    set_aside: int = 0
+    planned: int | None = 0
+
+    def skipped_kinds(self) -> list[tuple[str, str]]:
+        """(kind, description) of every line not counted, set-aside lines included."""
+        found = [(line.kind, line.describe()) for line in self.skipped]
+        return found + [(f"set aside in {SKIPPED_FILE}", "")] * self.set_aside
+
+
+def load_runs(paths: Iterable[Path]) -> RunContents:
+    """Everything in several run directories (or JSONL files), e.g. the shards of one run.
 
     The same episode in two places is an error: merging would count it twice.
     """
-    merged: list[EpisodeRecord] = []
+    contents = RunContents()
     origin: dict[RecordKey, Path] = {}
     for path in paths:
+        if path.exists() and not path.is_dir() and path.suffix != ".jsonl":
+            raise ConfigError(f"{path} is a file; pass a run directory of vlln eval")
         file = path / EPISODES_FILE if path.is_dir() else path
         if not file.exists():
             raise ConfigError(f"{path} holds no {EPISODES_FILE}; pass a run directory of vlln eval")
-        for record in read_records(file):
+        scan = scan_records(file)
+        for record in scan.records:
             key = record_key(record)
             if key in origin:
                 raise ConfigError(
@@ -198,5 +339,19 @@ def load_run_records(paths: Iterable[Path]) -> list[EpisodeRecord]:
                     f"{file}; pass disjoint shards or runs"
                 )
             origin[key] = file
-            merged.append(record)
-    return merged
+            contents.records.append(record)
+        contents.skipped += scan.skipped
+        aside = file.parent / SKIPPED_FILE
+        if aside.is_file():
+            contents.set_aside += aside.read_bytes().count(b"\n")
+        planned = RunDirectory(path).stored_planned() if path.is_dir() else None
+        if planned is None or contents.planned is None:
+            contents.planned = None
+        else:
+            contents.planned += planned
+    return contents
+
+
+def load_run_records(paths: Iterable[Path]) -> list[EpisodeRecord]:
+    """The valid records of :func:`load_runs`."""
+    return load_runs(paths).records

@@ -38,7 +38,9 @@ from vlln.agents.protocol import Agent, RecordsModelCalls
 from vlln.agents.registry import make_agent
 from vlln.errors import ConfigError
 from vlln.eval.config import EvalConfig
-from vlln.eval.results import RecordKey, RunDirectory, record_key
+from vlln.eval.cost import eval_cost_line
+from vlln.eval.health import RunHealth, run_health
+from vlln.eval.results import RecordKey, RunDirectory, SkippedLine, load_runs, record_key
 from vlln.eval.summary import GroupSummary, summarize_run, summary_json, summary_markdown
 from vlln.eval.sweep import can_sweep, describe_error, play_sweep
 from vlln.oracle.protocol import Oracle
@@ -83,6 +85,8 @@ class RunOutcome:
     seconds: float  # wall time of this call's episodes
     records: list[EpisodeRecord]  # every record in the directory
     summary: list[GroupSummary] | None  # None while no episode has finished
+    health: RunHealth  # complete or not, lines skipped, failures by kind
+    repaired: list[SkippedLine]  # lines this call cut (torn) or set aside (invalid, repeated)
 
     @property
     def complete(self) -> bool:
@@ -154,7 +158,12 @@ def load_episodes(
 ) -> list[Episode]:
     """The run's episode source: an episode file, or a built-in split (built once, cached)."""
     if config.episode_file is not None:
-        return read_episodes(config.episode_file)
+        episodes = read_episodes(config.episode_file)
+        if not episodes:
+            raise ConfigError(
+                f"{config.episode_file} holds no episodes; pass an episode file with at least one"
+            )
+        return episodes
     if config.split is None or config.houses is None:
         raise ConfigError("the run names no episode source; give a split or an episode file")
     return load_or_build_split(
@@ -202,6 +211,7 @@ def run_evaluation(
     oracle_factory: OracleFactory = RuleOracle,
     scenes: SceneCache | None = None,
     sweep: bool = True,
+    provenance: dict[str, str | None] | None = None,
 ) -> RunOutcome:
     """Play ``config`` into the run directory ``out``, resuming what is already there.
 
@@ -209,16 +219,18 @@ def run_evaluation(
     ``scenes`` shares simulators between calls (it is then not closed here); ``sweep`` plays
     an episode's budgets together by prefix sharing where the agent allows it
     (:mod:`vlln.eval.sweep`; the same records, in less time); ``agent_factory`` defaults to
-    the registry with the run's agent options.
+    the registry with the run's agent options; ``provenance`` (agent, oracle, backend, model)
+    goes into run.json, by default the rule oracle's.
     """
     if stop_after is not None and stop_after < 0:
         raise ConfigError(f"stop_after must be >= 0, got {stop_after}")
+    RunDirectory(out).check_is_directory()
     if agent_factory is None:
         agent_factory = partial(make_agent, options=config.agent_options)
     agent_factory(config.agent, config.seed, config.detector)  # fail before any work
     items = plan_work(load_episodes(config, cache_dir, progress), config)
     run_dir = RunDirectory(out)
-    run_dir.prepare(config)
+    run_dir.prepare(config, len(items), provenance or default_provenance(config, oracle_factory))
     task = TaskType.parse(config.task)
     own_scenes = scenes is None
     cache = scenes if scenes is not None else SceneCache()
@@ -227,9 +239,12 @@ def run_evaluation(
     try:
         with run_dir.writing() as writer:
             _check_same_agent(writer.records, config, out)
+            repaired = list(writer.skipped)
             done = {record_key(record) for record in writer.records}
             remaining = [item for item in items if item.key(config) not in done]
             todo = remaining if stop_after is None else remaining[:stop_after]
+            if progress:
+                print(eval_cost_line(len(items), len(items) - len(remaining)), file=sys.stderr)
             bar = tqdm(
                 total=len(items),
                 initial=len(items) - len(remaining),
@@ -258,22 +273,41 @@ def run_evaluation(
         if own_scenes:
             cache.close()
     seconds = time.perf_counter() - started
+    health = run_health(load_runs([out]))
     summary = summarize_run(records) if records else None
     if summary is not None:
-        run_dir.write_summary(summary_json(summary), summary_markdown(summary))
-    return RunOutcome(out, len(items), played, seconds, records, summary)
+        run_dir.write_summary(
+            summary_json(summary) | {"health": health.to_json()},
+            summary_markdown(summary) + f"\n{health.line()}\n",
+        )
+    return RunOutcome(out, len(items), played, seconds, records, summary, health, repaired)
+
+
+def default_provenance(config: EvalConfig, oracle_factory: OracleFactory) -> dict[str, str | None]:
+    """Who played and who answered: the agent, and the oracle when any budget has dialog."""
+    dialog = any(budget > 0 for budget in config.budgets)
+    oracle = getattr(oracle_factory, "__name__", type(oracle_factory).__name__)
+    rules = oracle_factory is RuleOracle
+    return {
+        "agent": config.agent,
+        "oracle": (oracle if dialog else "none"),
+        "backend": ("rules" if rules else None) if dialog else "none",
+        "model": config.agent_options.get("model"),
+    }
 
 
 def play_items(
     items: Sequence[WorkItem],
     config: EvalConfig,
     scenes: SceneCache,
-    agent_factory: AgentFactory = make_agent,
+    agent_factory: AgentFactory | None = None,
     oracle_factory: OracleFactory = RuleOracle,
     sweep: bool = True,
 ) -> list[EpisodeRecord]:
     """The records of ``items`` in order, as :func:`run_evaluation` plays them (without
     writing them anywhere): what a remote worker runs for its chunk."""
+    if agent_factory is None:
+        agent_factory = partial(make_agent, options=config.agent_options)
     task = TaskType.parse(config.task)
     return [
         record

@@ -18,6 +18,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, replace
 from enum import StrEnum
+from functools import lru_cache
 from typing import TypeVar
 
 from vlln.oracle.attribute_cues import ATTRIBUTE_RULES
@@ -97,6 +98,13 @@ _O, _P, _S = RouteKind.ORIENTATION, RouteKind.PATH, RouteKind.STEP
 def classify_question(text: str) -> QuestionType:
     """The question type of ``text`` (Attribute, Route, Disambiguation or Other)."""
     return analyse_question(text).question_type
+
+
+@lru_cache(maxsize=4096)
+def analysed(text: str) -> QuestionAnalysis:
+    """:func:`analyse_question`, remembered: agents repeat their phrasings, and an analysis
+    (frozen) depends on the text alone."""
+    return analyse_question(text)
 
 
 def analyse_question(text: str) -> QuestionAnalysis:

@@ -1,6 +1,6 @@
 """The default oracle: offline, deterministic, grounded in the house and the agent's state.
 
-It classifies each question with :func:`vlln.oracle.classify.analyse_question` and answers
+It classifies each question with :func:`vlln.oracle.classify.analysed` and answers
 with the logic of its type (paper supplementary, reference-facts §4), without a language
 model, a network or model weights. Everything an answer needs (the geodesic field to the
 target's view points, the shortest-path follower, per-house look-ups) is built in
@@ -15,7 +15,7 @@ from __future__ import annotations
 
 from vlln.errors import ConfigError
 from vlln.oracle.answers import answer_attribute, answer_other
-from vlln.oracle.classify import RouteKind, analyse_question
+from vlln.oracle.classify import RouteKind, analysed
 from vlln.oracle.disambiguation import answer_disambiguation
 from vlln.oracle.knowledge import EpisodeKnowledge, HouseIndex
 from vlln.oracle.protocol import EpisodeContext, Question, QuestionType, Reply
@@ -61,7 +61,7 @@ class RuleOracle:
         knowledge = self._knowledge
         if knowledge is None:
             raise ConfigError("the oracle has no episode; call start(context) before answer()")
-        analysis = analyse_question(question.text)
+        analysis = analysed(question.text)
         state = question.state
         kind = analysis.question_type
         if kind == QuestionType.ATTRIBUTE:

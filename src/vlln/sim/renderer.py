@@ -214,20 +214,39 @@ class Renderer:
                 "this Renderer has been closed; create a new Renderer to render again"
             )
         frame = Frame.allocate(self._spec) if out is None else self._check_out(out)
-        indices = self._draw_list.indices(self._spec, position, yaw, tilt)
-        framebuffer = self._framebuffer
         with self._ctx:
-            for name, value in pose_uniforms(self._spec, position, yaw, tilt).items():
-                program_uniform(self._program, name).write(value)
-            framebuffer.use()
-            framebuffer.clear(0.0, 0.0, 0.0, 0.0, depth=1.0)
-            if self._vertex_array is not None and len(indices) > 0:
-                self._index_buffer.write(indices)
-                self._vertex_array.render(moderngl.TRIANGLES, vertices=len(indices))
+            framebuffer = self._draw(position, yaw, tilt)
             framebuffer.read_into(frame.rgb, components=3, attachment=0)
             framebuffer.read_into(frame.depth, components=1, attachment=1, dtype="f4")
             framebuffer.read_into(frame.instance_ids, components=1, attachment=2, dtype="i4")
         return frame
+
+    def render_instance_ids(
+        self, position: Position, yaw: float, tilt: float = 0.0
+    ) -> NDArray[np.int32]:
+        """Only the instance-id image of :meth:`render` (what the oracle looks at): the same
+        drawing, a third of the read-back."""
+        ids = np.empty((self._spec.height, self._spec.width), np.int32)
+        with self._ctx:
+            self._draw(position, yaw, tilt).read_into(ids, components=1, attachment=2, dtype="i4")
+        return ids
+
+    def _draw(self, position: Position, yaw: float, tilt: float) -> moderngl.Framebuffer:
+        """Draw the view into the framebuffer (inside the context) and return it."""
+        framebuffer = self._framebuffer
+        if framebuffer is None:
+            raise RendererUnavailableError(
+                "this Renderer has been closed; create a new Renderer to render again"
+            )
+        indices = self._draw_list.indices(self._spec, position, yaw, tilt)
+        for name, value in pose_uniforms(self._spec, position, yaw, tilt).items():
+            program_uniform(self._program, name).write(value)
+        framebuffer.use()
+        framebuffer.clear(0.0, 0.0, 0.0, 0.0, depth=1.0)
+        if self._vertex_array is not None and len(indices) > 0:
+            self._index_buffer.write(indices)
+            self._vertex_array.render(moderngl.TRIANGLES, vertices=len(indices))
+        return framebuffer
 
     def close(self) -> None:
         """Free every GL resource; the renderer cannot be used afterwards."""

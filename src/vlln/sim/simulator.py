@@ -11,6 +11,9 @@ from __future__ import annotations
 from collections import OrderedDict
 from dataclasses import dataclass, field
 
+import numpy as np
+from numpy.typing import NDArray
+
 from vlln.errors import ConfigError
 from vlln.sim.agent import Action, AgentState, MotionConfig, step
 from vlln.sim.camera import CameraSpec
@@ -105,6 +108,10 @@ class Simulator:
     def render(self, state: AgentState | None = None) -> Frame:
         s = self._state if state is None else state
         return self.renderer.render(s.position, s.yaw, s.tilt)
+
+    def render_instance_ids(self, state: AgentState) -> NDArray[np.int32]:
+        """The instance-id image of :meth:`render` alone (cheaper: one read-back)."""
+        return self.renderer.render_instance_ids(state.position, state.yaw, state.tilt)
 
     def geodesic_field(self, goals: list[Point2] | tuple[Point2, ...]) -> GeodesicField:
         """The distance field to a goal set, built once and then cached."""

@@ -165,6 +165,8 @@ def read_episodes(path: str | Path) -> list[Episode]:
         raw = gzip.decompress(path.read_bytes())
     except FileNotFoundError:
         raise DataFormatError(f"{path} does not exist") from None
+    except IsADirectoryError:
+        raise DataFormatError(f"{path} is a folder; give an episode file (.json.gz)") from None
     except (gzip.BadGzipFile, EOFError, zlib.error) as err:
         raise DataFormatError(
             f"{path} is not a gzip file ({err}); episode files are gzip-compressed JSON"

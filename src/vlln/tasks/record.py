@@ -13,6 +13,7 @@ from enum import StrEnum
 from typing import Any
 
 from vlln.errors import DataFormatError
+from vlln.tasks.record_check import check_object
 
 
 class EndReason(StrEnum):
@@ -107,17 +108,33 @@ class EpisodeRecord:
 
     @staticmethod
     def from_json(data: dict[str, Any]) -> EpisodeRecord:
-        try:
-            values = dict(data)
-            values["dialog"] = [DialogTurn(**turn) for turn in values.get("dialog", [])]
-            values["model_calls"] = [ModelCall(**c) for c in values.get("model_calls", [])]
-            values["geodesic_trace"] = [_none_to_inf(d) for d in values["geodesic_trace"]]
-            values["geodesic_start"] = _none_to_inf(values["geodesic_start"])
-            return EpisodeRecord(**values)
-        except (KeyError, TypeError) as error:
+        """Build a record from its JSON object, every field checked for type and range first
+        (:mod:`vlln.tasks.record_check`); a bad one raises :class:`DataFormatError` naming it."""
+        check_object(
+            EpisodeRecord,
+            data,
+            signed=("positions",),
+            non_empty=_IDENTITY_FIELDS,
+            nullable=("geodesic_start", "geodesic_trace"),
+        )
+        if data["end_reason"] not in _END_REASONS:
             raise DataFormatError(
-                f"episode record {data.get('episode_id', '?')!r} is malformed: {error}"
-            ) from None
+                f"field 'end_reason' must be one of {', '.join(_END_REASONS)}, "
+                f"got {data['end_reason']!r:.60}"
+            )
+        for index, position in enumerate(data.get("positions", [])):
+            if len(position) != 3:
+                raise DataFormatError(f"field 'positions[{index}]' must be [x, z, yaw]")
+        values = dict(data)
+        values["dialog"] = [DialogTurn(**turn) for turn in values.get("dialog", [])]
+        values["model_calls"] = [ModelCall(**call) for call in values.get("model_calls", [])]
+        values["geodesic_trace"] = [_none_to_inf(d) for d in values["geodesic_trace"]]
+        values["geodesic_start"] = _none_to_inf(values["geodesic_start"])
+        return EpisodeRecord(**values)
+
+
+_IDENTITY_FIELDS = ("episode_id", "scene_id", "task", "agent", "object_category")
+_END_REASONS = tuple(reason.value for reason in EndReason)
 
 
 def agent_label(agent: str, detector: str | None) -> str:

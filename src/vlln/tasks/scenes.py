@@ -21,7 +21,9 @@ from vlln.world.generator import generate_house
 from vlln.world.model import House
 from vlln.world.scans import load_scene
 
-_PROCEDURAL = re.compile(r"^vlln/house_(\d+)(?:/house_\1\.glb)?$")
+_PROCEDURAL = re.compile(r"^vlln/house_([0-9]{1,12})(?:/house_\1\.glb)?$", re.ASCII)
+MAX_SEED = 999_999_999
+"""The largest house seed a scene id may name."""
 
 
 def procedural_scene_id(seed: int) -> str:
@@ -33,13 +35,29 @@ def is_procedural(scene_id: str) -> bool:
 
 
 def procedural_seed(scene_id: str) -> int:
+    """The house seed a scene id names (ASCII digits, at most :data:`MAX_SEED`)."""
     match = _PROCEDURAL.match(scene_id)
     if match is None:
         raise ConfigError(
-            f"scene {scene_id!r} is not a built-in procedural house "
-            "(vlln/house_<seed>/house_<seed>.glb); pass the folder of imported scenes (--scenes)"
+            f"scene {scene_id[:80]!r} is not a built-in procedural house "
+            "(vlln/house_<seed>/house_<seed>.glb, ASCII digits); pass the folder of imported "
+            "scenes (--scenes)"
         )
-    return int(match.group(1))
+    seed = int(match.group(1))
+    if seed > MAX_SEED:
+        raise ConfigError(f"scene {scene_id!r} names seed {seed}; seeds are at most {MAX_SEED}")
+    return seed
+
+
+def canonical_seed(scene_id: str) -> int:
+    """:func:`procedural_seed` of a scene id in its one spelling, :func:`procedural_scene_id`;
+    ``vlln/house_76`` and ``vlln/house_076`` are refused, naming ``vlln/house_00076``."""
+    seed = procedural_seed(scene_id)
+    if scene_id != procedural_scene_id(seed):
+        raise ConfigError(
+            f"scene {scene_id!r} is spelled {procedural_scene_id(seed)!r}; each house has one id"
+        )
+    return seed
 
 
 class SceneCache:
@@ -72,6 +90,14 @@ class SceneCache:
         if is_procedural(scene_id) or self.scenes_dir is None:
             return generate_house(procedural_seed(scene_id))
         return load_scene(self.scenes_dir / scene_name(scene_id))
+
+    def holds(self, scene_id: str) -> bool:
+        """Whether the scene's simulator is built and kept (getting it builds nothing)."""
+        return scene_id in self._sims
+
+    def holds_simulator(self, sim: Simulator) -> bool:
+        """Whether ``sim`` is still one of the kept simulators (not dropped and closed)."""
+        return any(kept is sim for kept in self._sims.values())
 
     def close(self) -> None:
         for sim in self._sims.values():

@@ -8,12 +8,13 @@ from pathlib import Path
 
 import numpy as np
 
+from vlln.files import replace_folder
 from vlln.sim.agent import AgentState
 from vlln.sim.simulator import Simulator
 from vlln.viz.frames import depth_image, instance_image, save_png
 from vlln.viz.topdown import save_house_map
 from vlln.world.generator import HouseParameters, generate_house
-from vlln.world.model import Room
+from vlln.world.model import House, Room
 
 TURNS = 12  # candidate headings per viewpoint, 30 degrees apart
 
@@ -51,8 +52,19 @@ def pick_views(sim: Simulator, n_views: int) -> list[View]:
 def show_world(
     seed: int, out: Path, n_views: int = 4, params: HouseParameters | None = None
 ) -> list[Path]:
-    """Generate house ``seed`` and write its map and views under ``out``; returns the files."""
+    """Generate house ``seed`` and write its map and views under ``out``, replacing an earlier
+    output folder of this command (:func:`vlln.files.replace_folder`); returns the files."""
     house = generate_house(seed, params)
+    files = replace_folder(out, lambda folder: _write_views(house, folder, n_views), _is_ours)
+    return [out / path.name for path in files]
+
+
+def _is_ours(path: Path) -> bool:
+    """What `world show` writes: map.png and view*.png."""
+    return path.is_file() and path.suffix == ".png" and path.name.startswith(("map", "view"))
+
+
+def _write_views(house: House, out: Path, n_views: int) -> list[Path]:
     written = [out / "map.png"]
     with Simulator(house) as sim:
         save_house_map(house, written[0], sim.grid)

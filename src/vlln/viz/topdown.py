@@ -16,8 +16,11 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Polygon, Rectangle
 
 from vlln.sim.navgrid import NavGrid
+from vlln.viz.labels import declutter
 from vlln.world.model import House
 
+ROOM_LABEL = "room-label"
+OBJECT_LABEL = "object-label"
 ROOM_COLORS = {
     "living room": "#f6e7c8",
     "bedroom": "#dfe8f7",
@@ -39,10 +42,12 @@ def draw_house(
     label_objects: bool = True,
     highlight: Sequence[int] = (),
 ) -> None:
-    """Draw the floor plan on ``ax``: x to the right, -z up (north), as seen from above."""
+    """Draw the floor plan on ``ax`` in pose coordinates, as seen from above: x to the right
+    and z downwards, so -z (where yaw 0 looks) is up and a point read off the map is an
+    (x, z) a pose can use. Call :func:`declutter_map` once the figure's layout is final."""
     for room in house.rooms:
         xs = [p[0] for p in room.polygon]
-        zs = [-p[1] for p in room.polygon]
+        zs = [p[1] for p in room.polygon]
         ax.add_patch(
             Polygon(
                 np.c_[xs, zs],
@@ -61,11 +66,12 @@ def draw_house(
             fontsize=8,
             color="#555555",
             alpha=0.8,
+            gid=ROOM_LABEL,
         )
     if grid is not None:
         x0, z0 = grid.origin
         h, w = grid.shape
-        extent = (x0, x0 + w * grid.cell_size, -(z0 + h * grid.cell_size), -z0)
+        extent = (x0, x0 + w * grid.cell_size, z0 + h * grid.cell_size, z0)
         overlay = np.where(grid.navigable, 0.0, np.nan)
         ax.imshow(
             overlay,
@@ -78,14 +84,15 @@ def draw_house(
             interpolation="nearest",
         )
     for door in house.doors:
-        ax.plot(door.center[0], -door.center[1], marker="s", color="#8b5a2b", markersize=5)
+        ax.plot(door.center[0], door.center[1], marker="s", color="#8b5a2b", markersize=5)
     chosen = set(highlight)
-    for inst in house.instances:
+    by_size = sorted(house.instances, key=lambda inst: -inst.box.size[0] * inst.box.size[2])
+    for inst in by_size:
         (x0, _, z0), (x1, _, z1) = inst.box.min, inst.box.max
         is_chosen = inst.id in chosen
         ax.add_patch(
             Rectangle(
-                (x0, -z1),
+                (x0, z0),
                 x1 - x0,
                 z1 - z0,
                 facecolor="#d62728" if is_chosen else "#1f77b4",
@@ -97,17 +104,34 @@ def draw_house(
         if label_objects:
             ax.text(
                 (x0 + x1) / 2,
-                -(z0 + z1) / 2,
+                (z0 + z1) / 2,
                 inst.category,
                 ha="center",
                 va="center",
                 fontsize=4.5,
                 color="#000000",
+                gid=OBJECT_LABEL,
             )
     ax.set_aspect("equal")
     ax.autoscale_view()
+    north_up(ax)
     ax.set_xlabel("x (m)")
-    ax.set_ylabel("-z (m)")
+    ax.set_ylabel("z (m)")
+
+
+def north_up(ax: Axes) -> None:
+    """Put -z up (once, however often it is called)."""
+    if not ax.yaxis_inverted():
+        ax.invert_yaxis()
+
+
+def declutter_map(fig: Figure) -> int:
+    """Nudge or hide object labels so that none overlaps another or a room label (larger
+    objects first); returns how many were hidden."""
+    texts = [text for ax in fig.axes for text in ax.texts]
+    rooms = [text for text in texts if text.get_gid() == ROOM_LABEL]
+    objects = [text for text in texts if text.get_gid() == OBJECT_LABEL]
+    return declutter(fig, rooms, objects)
 
 
 def house_figure(house: House, grid: NavGrid | None = None, title: str | None = None) -> Figure:
@@ -120,6 +144,7 @@ def house_figure(house: House, grid: NavGrid | None = None, title: str | None = 
     draw_house(ax, house, grid)
     ax.set_title(title or f"{house.name}: {len(house.rooms)} rooms, {len(house.instances)} objects")
     fig.tight_layout()
+    declutter_map(fig)
     return fig
 
 

@@ -308,3 +308,27 @@ def test_store_keeps_only_the_most_recently_used_sessions(client: TestClient, wo
     assert client.get(f"/v1/sessions/{first}").status_code == 200
     assert client.get(f"/v1/sessions/{newest}").status_code == 200
     assert client.get("/v1/health").json()["sessions"] == MAX_SESSIONS
+
+
+@pytest.mark.parametrize(
+    "alias",
+    [
+        "vlln/house_76",
+        "vlln/house_076",
+        "vlln/house_\u0660\u0660\u0660\u0667\u0666",
+        "vlln/house_" + "9" * 40,
+    ],
+)
+def test_scene_ids_have_one_spelling(client: TestClient, world: World, alias: str) -> None:
+    """Reproduction 6: aliases of a house and unbounded seeds are not other scenes."""
+    response = client.post("/v1/sessions", json={"scene_id": alias, "target_instance_id": 1})
+    detail = _assert_error(response, 404)["detail"]
+    assert "vlln/house_00076" in detail or "at most" in detail
+
+
+def test_docs_and_schema_are_served(client: TestClient) -> None:
+    """Reproduction 11."""
+    docs = client.get("/docs", headers={"Authorization": ""})
+    assert docs.status_code == 200 and "swagger" in docs.text.lower()
+    schema = client.get("/v1/openapi.json", headers={"Authorization": ""}).json()
+    assert "/v1/sessions/{session_id}/ask" in schema["paths"]

@@ -8,6 +8,7 @@ import time
 import httpx
 import pytest
 
+from vlln.cli import main
 from vlln.errors import ConfigError
 from vlln.oracle.service.config import ServiceConfig
 from vlln.oracle.service.server import build_server, is_loopback
@@ -65,9 +66,22 @@ def test_loopback_is_the_default_and_other_hosts_need_consent(
     assert not is_loopback("0.0.0.0") and not is_loopback("example.org")
     with pytest.raises(ConfigError, match="allow_remote"):
         build_server(ServiceConfig(), "0.0.0.0", 0)
-    build_server(ServiceConfig(), "0.0.0.0", 0, allow_remote=True)  # built, never started
-    assert "WITHOUT a token" in capsys.readouterr().err
+    with pytest.raises(ConfigError, match="token"):  # reproduction 5: refused, not warned
+        build_server(ServiceConfig(), "0.0.0.0", 0, allow_remote=True)
     build_server(ServiceConfig(token=TOKEN), "0.0.0.0", 0, allow_remote=True)
     assert "with a bearer token" in capsys.readouterr().err
     with pytest.raises(ConfigError, match="port"):
         build_server(ServiceConfig(), "127.0.0.1", 70000)
+
+
+@pytest.mark.parametrize("value", [None, ""])
+def test_a_named_token_variable_that_is_unset_or_empty_is_refused(
+    value: str | None, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Reproduction 5: --token-env WRONG_NAME must not start without authentication."""
+    monkeypatch.delenv("VLLN_TOKEN_TYPO", raising=False)
+    if value is not None:
+        monkeypatch.setenv("VLLN_TOKEN_TYPO", value)
+    assert main(["oracle", "serve", "--token-env", "VLLN_TOKEN_TYPO", "--port", "1"]) == 2
+    error = capsys.readouterr().err
+    assert error.startswith("error: ") and "VLLN_TOKEN_TYPO" in error and error.count("\n") == 1

@@ -6,12 +6,15 @@ Endpoints (JSON in and out; errors are ``{"error": ..., "detail": ...}``):
 * ``POST /v1/sessions/{id}/ask`` ask a question from a pose; the server renders the view;
 * ``GET /v1/sessions/{id}`` the dialog so far; ``DELETE /v1/sessions/{id}`` end it;
 * ``GET /v1/health`` liveness, never behind the token;
-* ``GET /v1/openapi.json`` the machine-readable description, for generating clients.
+* ``GET /docs`` interactive documentation; ``GET /v1/openapi.json`` the machine-readable
+  description, for generating clients (neither is behind the token: they hold no house data).
 
-Every piece of state lives in the application object, so two apps never share anything. All
-oracle and simulator work runs on one worker thread: requests are served one after another
-(rendering and the oracle are fast; concurrency would only contend for the CPU) and every
-OpenGL context stays on the thread that uses it. :class:`RequestGate` checks every request
+Every piece of state lives in the application object, so two apps never share anything.
+Requests are served concurrently: those that touch no house (health, showing and deleting a
+session) are answered on the event loop at once, while creating sessions and answering
+questions (house builds, rendering, the oracle) run on one worker thread, which keeps every
+OpenGL context on the thread that uses it; the session store is locked, so both sides may
+use it. :class:`RequestGate` checks every request
 before it reaches a route, so that a request without the token never gets its body parsed.
 """
 
@@ -47,9 +50,12 @@ from vlln.oracle.service.schemas import (
 from vlln.oracle.service.sessions import ServiceError
 
 HEALTH_PATH = "/v1/health"
+DOCS_PATH = "/docs"
+OPENAPI_PATH = "/v1/openapi.json"
+PUBLIC_PATHS = (HEALTH_PATH, DOCS_PATH, OPENAPI_PATH)  # never behind the token: no house data
 T = TypeVar("T")
 _ERRORS: dict[int | str, dict[str, Any]] = {
-    code: {"model": ErrorBody} for code in (400, 401, 404, 413, 415, 422)
+    code: {"model": ErrorBody} for code in (400, 401, 404, 413, 415, 422, 429)
 }
 
 
@@ -71,9 +77,9 @@ def create_app(config: ServiceConfig) -> FastAPI:
         title="vlln oracle",
         version=__version__,
         summary="Answers a navigator's questions about its target in a vlln house.",
-        docs_url=None,
+        docs_url=DOCS_PATH,
         redoc_url=None,
-        openapi_url="/v1/openapi.json",
+        openapi_url=OPENAPI_PATH,
         lifespan=lifespan,
     )
     _add_error_handlers(app)
@@ -81,26 +87,31 @@ def create_app(config: ServiceConfig) -> FastAPI:
 
     @app.get(HEALTH_PATH)
     async def health() -> HealthResponse:
-        return await run(hosted.health)
+        return hosted.health()
 
     @app.post("/v1/sessions", status_code=201, responses=_ERRORS)
-    async def create_session(request: CreateSessionRequest) -> CreateSessionResponse:
-        return await run(hosted.create, request)
+    async def create_session(request: CreateSessionRequest, http: Request) -> CreateSessionResponse:
+        return await run(hosted.create, request, _client(http))
 
     @app.post("/v1/sessions/{session_id}/ask", responses=_ERRORS)
-    async def ask(session_id: str, request: AskRequest) -> AskResponse:
-        return await run(hosted.ask, session_id, request)
+    async def ask(session_id: str, request: AskRequest, http: Request) -> AskResponse:
+        return await run(hosted.ask, session_id, request, _client(http))
 
     @app.get("/v1/sessions/{session_id}", responses=_ERRORS)
     async def show_session(session_id: str) -> SessionView:
-        return await run(hosted.view, session_id)
+        return hosted.view(session_id)
 
     @app.delete("/v1/sessions/{session_id}", status_code=204, responses=_ERRORS)
     async def delete_session(session_id: str) -> Response:
-        await run(hosted.delete, session_id)
+        hosted.delete(session_id)
         return Response(status_code=204)
 
     return app
+
+
+def _client(request: Request) -> str:
+    """Who is charged for house builds: the client's address."""
+    return request.client.host if request.client is not None else "unknown"
 
 
 def error_response(status: int, error: str, detail: Any, **headers: str) -> JSONResponse:
@@ -157,7 +168,7 @@ class RequestGate:
         token = self.token
         if (
             token is not None
-            and scope["path"] != HEALTH_PATH
+            and scope["path"] not in PUBLIC_PATHS
             and not _authorised(headers.get("authorization"), token)
         ):
             reply = error_response(

@@ -22,6 +22,8 @@ class ServiceConfig:
     first); ``scene_capacity`` is how many simulators are kept, shared by all sessions of a
     scene. ``oracle_seed`` seeds every session's :class:`RuleOracle`, so answers are
     reproducible. ``floor_tolerance`` is how far (m) a pose's y may be from the floor.
+    ``builds_per_minute`` and ``client_builds_per_minute`` bound the houses built for all
+    clients together and for one client address (:mod:`vlln.oracle.service.limits`).
     """
 
     token: str | None = None
@@ -32,6 +34,8 @@ class ServiceConfig:
     max_body_bytes: int = DEFAULT_MAX_BODY_BYTES
     floor_tolerance: float = 0.3
     simulator: SimulatorConfig | None = None
+    builds_per_minute: int = 60
+    client_builds_per_minute: int = 20
 
     def __post_init__(self) -> None:
         if self.token is not None and (not self.token or self.token != self.token.strip()):
@@ -39,7 +43,13 @@ class ServiceConfig:
                 "token must be a non-empty string without surrounding whitespace; leave it "
                 "unset to serve without authentication (loopback only is advised)"
             )
-        for name in ("max_sessions", "scene_capacity", "max_body_bytes"):
+        for name in (
+            "max_sessions",
+            "scene_capacity",
+            "max_body_bytes",
+            "builds_per_minute",
+            "client_builds_per_minute",
+        ):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, int) or value < 1:
                 raise ConfigError(f"{name} must be a whole number >= 1, got {value!r}")

@@ -14,11 +14,15 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from vlln import __version__
 from vlln.errors import VllnError
+from vlln.oracle.classify import analysed
 from vlln.oracle.protocol import EpisodeContext, Question, QuestionType
 from vlln.oracle.rule_oracle import RuleOracle
 from vlln.oracle.service.config import ServiceConfig
+from vlln.oracle.service.limits import BuildLimiter
 from vlln.oracle.service.schemas import (
     AskRequest,
     AskResponse,
@@ -32,15 +36,17 @@ from vlln.oracle.service.schemas import (
 from vlln.oracle.service.schemas import QuestionType as WireQuestionType
 from vlln.oracle.service.sessions import ServiceError, Session, SessionStore
 from vlln.sim.agent import AgentState
+from vlln.sim.renderer import Frame
 from vlln.sim.simulator import Simulator
 from vlln.sim.viewpoints import view_points
 from vlln.tasks.episode import Episode
-from vlln.tasks.scenes import SceneCache, procedural_scene_id, procedural_seed
+from vlln.tasks.scenes import SceneCache, canonical_seed, procedural_scene_id
 from vlln.tasks.spec import REFUSAL_MESSAGE
 from vlln.world.frame import wrap_angle
 from vlln.world.model import ObjectInstance
 
 Point2 = tuple[float, float]
+LOCAL = "local"  # the client of calls made in-process
 _WIRE_TYPES: dict[QuestionType, WireQuestionType] = {
     QuestionType.ATTRIBUTE: "attribute",
     QuestionType.ROUTE: "route",
@@ -56,19 +62,21 @@ class HostedOracle:
         self.config = config
         self.scenes = SceneCache(config.simulator, capacity=config.scene_capacity)
         self.sessions = SessionStore(config.max_sessions)
+        self.builds = BuildLimiter(config.client_builds_per_minute, config.builds_per_minute)
         self.episodes = {episode.episode_id: episode for episode in config.episodes}
 
     # ----------------------------------------------------------------- endpoints
-    def create(self, request: CreateSessionRequest) -> CreateSessionResponse:
+    def create(self, request: CreateSessionRequest, client: str = LOCAL) -> CreateSessionResponse:
+        """A new session; ``client`` (its address) is charged if its scene must be built."""
         if request.episode_id is not None:
             episode = self._episode(request.episode_id)
             scene_id, episode_id = episode.scene_id, episode.episode_id
             instruction: str | None = episode.instruction.instruction_text
-            sim = self._simulator(scene_id)
+            sim = self._simulator(scene_id, client)
             target, goals = self._episode_target(sim, episode)
         elif request.scene_id is not None and request.target_instance_id is not None:
             scene_id, episode_id, instruction = request.scene_id, None, None
-            sim = self._simulator(scene_id)
+            sim = self._simulator(scene_id, client)
             target = self._instance(sim, request.target_instance_id)
             goals = view_points(sim.grid, target.box)
         else:
@@ -82,17 +90,16 @@ class HostedOracle:
                 f"instance {target.id} ({target.category}) in {scene_id} has no navigable point "
                 "within 0.6 m of its box, so it cannot be a navigation target; choose another",
             )
-        oracle = RuleOracle(seed=self.config.oracle_seed)
-        oracle.start(EpisodeContext(sim, target, tuple(goals)))
         session = Session(
             session_id=self.sessions.fresh_id(),
             scene_id=scene_id,
             episode_id=episode_id,
             target=target,
+            goals=tuple(goals),
             instruction=instruction,
             dialog_budget=request.dialog_budget,
-            oracle=oracle,
         )
+        self._oracle(session, sim)
         self.sessions.add(session)
         return CreateSessionResponse(
             session_id=session.session_id,
@@ -104,16 +111,18 @@ class HostedOracle:
             questions_left=session.questions_left,
         )
 
-    def ask(self, session_id: str, request: AskRequest) -> AskResponse:
+    def ask(self, session_id: str, request: AskRequest, client: str = LOCAL) -> AskResponse:
         session = self.sessions.get(session_id)
-        sim = self._simulator(session.scene_id)
+        sim = self._simulator(session.scene_id, client)
         state = self._state(sim, request.pose)
         kind: WireQuestionType
         if session.answered >= session.dialog_budget:
             answer, kind, answered = REFUSAL_MESSAGE, "refused", False
         else:
-            frame = sim.render(state)
-            reply = session.oracle.answer(Question(request.question, state, frame))
+            oracle = self._oracle(session, sim)
+            reply = oracle.answer(
+                Question(request.question, state, _view(sim, state, request.question))
+            )
             answer, kind, answered = reply.answer, _WIRE_TYPES[reply.question_type], True
             session.answered += 1
         turn = DialogTurnView(
@@ -158,20 +167,41 @@ class HostedOracle:
         self.scenes.close()
 
     # ----------------------------------------------------------------- look-ups
-    def _simulator(self, scene_id: str) -> Simulator:
+    def _oracle(self, session: Session, sim: Simulator) -> RuleOracle:
+        """The session's oracle on ``sim``, started afresh (answered turns replayed, so the
+        seeded wording goes on where it was) when the scene cache had dropped its house."""
+        if session.oracle is not None and session.simulator is sim:
+            return session.oracle
+        oracle = RuleOracle(seed=self.config.oracle_seed)
+        oracle.start(EpisodeContext(sim, session.target, session.goals))
+        for turn in session.dialog:
+            if turn.answered:
+                state = self._state(sim, turn.pose)
+                oracle.answer(Question(turn.question, state, _view(sim, state, turn.question)))
+        session.oracle, session.simulator = oracle, sim
+        return oracle
+
+    def _simulator(self, scene_id: str, client: str) -> Simulator:
         try:
-            procedural_seed(scene_id)
-        except VllnError:
+            canonical_seed(scene_id)
+        except VllnError as error:
             raise ServiceError(
                 404,
                 "unknown scene",
-                f"scene {scene_id!r} is not served; scene ids have the form vlln/house_<seed> "
-                f"with a whole-number seed, e.g. {procedural_scene_id(76)!r}",
+                f"{error}. Scene ids have the form vlln/house_<seed> with the seed in ASCII "
+                f"digits, zero-padded to 5, e.g. {procedural_scene_id(76)!r}",
             ) from None
-        try:
+        if self.scenes.holds(scene_id):
             return self.scenes.get(scene_id)
+        self.builds.admit(client)
+        try:
+            sim = self.scenes.get(scene_id)
         except VllnError as error:
             raise ServiceError(422, "scene cannot be built", str(error)) from None
+        for session in self.sessions.sessions():  # drop oracles of houses the cache let go
+            if session.simulator is not None and not self.scenes.holds_simulator(session.simulator):
+                session.oracle = session.simulator = None
+        return sim
 
     def _episode(self, episode_id: str) -> Episode:
         episode = self.episodes.get(episode_id)
@@ -245,3 +275,23 @@ class HostedOracle:
                 f"{low:g}..{high:g} deg",
             )
         return AgentState((x, grid.floor_y, z), wrap_angle(pose.yaw), pose.tilt)
+
+
+def _view(sim: Simulator, state: AgentState, question: str) -> Frame:
+    """The view a question is asked from, as far as the rule oracle looks at it: only
+    disambiguation and "other" answers read the view, and only its instance ids, so only
+    those are rendered; the colour and depth images are read-only zeros of the right shape
+    and every other question is answered without drawing anything."""
+    height, width = sim.config.camera.height, sim.config.camera.width
+    if analysed(question).question_type in _LOOKING:
+        ids = sim.render_instance_ids(state)
+    else:
+        ids = np.broadcast_to(np.zeros(1, np.int32), (height, width))
+    return Frame(
+        rgb=np.broadcast_to(np.zeros(1, np.uint8), (height, width, 3)),
+        depth=np.broadcast_to(np.zeros(1, np.float32), (height, width)),
+        instance_ids=ids,
+    )
+
+
+_LOOKING = (QuestionType.DISAMBIGUATION, QuestionType.OTHER)

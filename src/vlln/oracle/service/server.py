@@ -2,12 +2,14 @@
 
 The server listens on loopback unless told otherwise: the oracle hands out privileged
 knowledge of the house (where the target is), so exposing it on a network is a deliberate
-choice, made with ``allow_remote=True`` and announced with a warning on stderr.
+choice, made with ``allow_remote=True`` and a bearer token (refused without one), and
+announced with a warning on stderr.
 """
 
 from __future__ import annotations
 
 import ipaddress
+import os
 import sys
 from pathlib import Path
 
@@ -20,6 +22,7 @@ from vlln.tasks.episode import read_episodes
 
 DEFAULT_HOST = "127.0.0.1"
 DEFAULT_PORT = 8765
+DEFAULT_TOKEN_ENV = "VLLN_ORACLE_TOKEN"
 LOG_LEVELS = ("critical", "error", "warning", "info", "debug")
 
 
@@ -31,6 +34,22 @@ def is_loopback(host: str) -> bool:
         return ipaddress.ip_address(host).is_loopback
     except ValueError:
         return False
+
+
+def token_from_environment(token_env: str | None) -> str | None:
+    """The bearer token: a variable named with --token-env must hold one; without the flag,
+    VLLN_ORACLE_TOKEN is used when it is set (and must then not be empty)."""
+    name = token_env or DEFAULT_TOKEN_ENV
+    value = os.environ.get(name)
+    if value is None and token_env is None:
+        return None
+    if not value or not value.strip():
+        state = "is not set" if value is None else "is empty"
+        raise ConfigError(
+            f"the token variable {name} {state}; export {name}=<token> before starting the "
+            "service, or leave out --token-env to serve loopback without a token"
+        )
+    return value
 
 
 def build_server(
@@ -53,10 +72,15 @@ def build_server(
                 "are, so serving it beyond this machine needs allow_remote=True "
                 "(--allow-remote), ideally with a token"
             )
-        auth = "with a bearer token" if config.token else "WITHOUT a token: anyone can use it"
+        if not config.token:
+            raise ConfigError(
+                f"host {host!r} is reachable from other machines, so the oracle needs a bearer "
+                "token there: export VLLN_ORACLE_TOKEN=<token> (or name a variable with "
+                "--token-env)"
+            )
         print(
             f"warning: the vlln oracle will listen on {host}:{port}, reachable from other "
-            f"machines, {auth}",
+            "machines, with a bearer token",
             file=sys.stderr,
         )
     settings = uvicorn.Config(
@@ -82,6 +106,8 @@ def serve(
     scene_capacity: int = 2,
     oracle_seed: int = 0,
     log_level: str = "info",
+    builds_per_minute: int = 60,
+    client_builds_per_minute: int = 20,
 ) -> None:
     """Serve the oracle until interrupted; ``episodes`` is an episode file (``.json.gz``) whose
     episodes sessions may name by ``episode_id``."""
@@ -91,6 +117,8 @@ def serve(
         max_sessions=max_sessions,
         scene_capacity=scene_capacity,
         oracle_seed=oracle_seed,
+        builds_per_minute=builds_per_minute,
+        client_builds_per_minute=client_builds_per_minute,
     )
     server = build_server(config, host, port, allow_remote=allow_remote, log_level=log_level)
     server.run()

@@ -1,6 +1,10 @@
 """Dialog sessions of the oracle service and the bounded store that keeps them.
 
-A session is one target with its own :class:`RuleOracle` and dialog budget. The store keeps at
+A session is one target with its dialog budget and turns. Its :class:`RuleOracle` (which
+holds the house's look-ups and a distance field) lives only while the session's simulator is
+in the scene cache; once the cache drops that house, the oracle is dropped too and rebuilt on
+the next question (replaying the answered turns, so the wording stays that of the seed). So
+memory is bounded by the scene cache, not by the number of sessions. The store keeps at
 most ``capacity`` sessions and drops the least recently used one when a new one would exceed
 it, so a client that never deletes its sessions cannot grow the server's memory without bound.
 Session ids are unguessable (:func:`secrets.token_urlsafe`) because they are the only handle
@@ -10,6 +14,7 @@ on a dialog; they name a session and never influence an answer, so determinism i
 from __future__ import annotations
 
 import secrets
+import threading
 from collections import OrderedDict
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -17,6 +22,7 @@ from dataclasses import dataclass, field
 from vlln.errors import ConfigError, VllnError
 from vlln.oracle.rule_oracle import RuleOracle
 from vlln.oracle.service.schemas import DialogTurnView
+from vlln.sim.simulator import Simulator
 from vlln.world.model import ObjectInstance
 
 
@@ -43,9 +49,11 @@ class Session:
     scene_id: str
     episode_id: str | None
     target: ObjectInstance
+    goals: tuple[tuple[float, float], ...]
     instruction: str | None
     dialog_budget: int
-    oracle: RuleOracle
+    oracle: RuleOracle | None = None  # started on ``simulator``; None once that is dropped
+    simulator: Simulator | None = None
     dialog: list[DialogTurnView] = field(default_factory=list)
     answered: int = 0
 
@@ -55,7 +63,8 @@ class Session:
 
 
 class SessionStore:
-    """Sessions by id, least recently used dropped first once ``capacity`` is reached."""
+    """Sessions by id, least recently used dropped first once ``capacity`` is reached; safe to
+    use from the event loop and the worker thread at once."""
 
     def __init__(self, capacity: int, new_id: Callable[[], str] = new_session_id) -> None:
         if isinstance(capacity, bool) or not isinstance(capacity, int) or capacity < 1:
@@ -63,6 +72,7 @@ class SessionStore:
         self.capacity = capacity
         self._new_id = new_id
         self._sessions: OrderedDict[str, Session] = OrderedDict()
+        self._lock = threading.Lock()
 
     def __len__(self) -> int:
         return len(self._sessions)
@@ -75,15 +85,19 @@ class SessionStore:
                 return session_id
 
     def add(self, session: Session) -> None:
-        if session.session_id in self._sessions:
-            raise ConfigError(f"a session with id {session.session_id!r} is already stored")
-        self._sessions[session.session_id] = session
-        while len(self._sessions) > self.capacity:
-            self._sessions.popitem(last=False)
+        with self._lock:
+            if session.session_id in self._sessions:
+                raise ConfigError(f"a session with id {session.session_id!r} is already stored")
+            self._sessions[session.session_id] = session
+            while len(self._sessions) > self.capacity:
+                self._sessions.popitem(last=False)
 
     def get(self, session_id: str) -> Session:
         """The session, marked as most recently used; 404 when it is unknown or was dropped."""
-        session = self._sessions.get(session_id)
+        with self._lock:
+            session = self._sessions.get(session_id)
+            if session is not None:
+                self._sessions.move_to_end(session_id)
         if session is None:
             raise ServiceError(
                 404,
@@ -91,9 +105,13 @@ class SessionStore:
                 f"no session {session_id[:64]!r}; it was deleted, dropped as least recently used "
                 f"(at most {self.capacity} are kept), or never created: POST /v1/sessions",
             )
-        self._sessions.move_to_end(session_id)
         return session
+
+    def sessions(self) -> list[Session]:
+        with self._lock:
+            return list(self._sessions.values())
 
     def remove(self, session_id: str) -> None:
         self.get(session_id)
-        del self._sessions[session_id]
+        with self._lock:
+            self._sessions.pop(session_id, None)

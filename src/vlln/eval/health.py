@@ -1,0 +1,112 @@
+"""Run health: whether a run is complete, which lines were skipped and which turns failed.
+
+A benchmark number must never come from a partial or degraded run without saying so. Every
+command that reads a run (``vlln eval``, ``vlln score``, ``vlln report``) states the health
+in one line and in what it writes. Failures are counted per kind in :data:`FAILURE_KINDS`, a
+mapping of name to a per-record counter; a new kind of failure (a model server's errors, an
+agent's unparseable outputs) is one more entry there.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from vlln.eval.results import RunContents
+from vlln.tasks.record import EndReason, EpisodeRecord
+
+FailureCounter = Callable[[EpisodeRecord], int]
+
+FAILURE_KINDS: dict[str, FailureCounter] = {
+    "oracle fallback turns": lambda record: sum(turn.fallback for turn in record.dialog),
+    "agent errors": lambda record: int(record.end_reason == EndReason.ERROR),
+    "failed actions": lambda record: record.failed_actions,
+    "unreadable model replies": lambda record: record.failures.get("parse", 0),
+    "model server failures": lambda record: record.failures.get("server", 0),
+}
+"""Failure kind -> how many times one episode record shows it."""
+
+_EXAMPLES = 3  # skipped lines named in the one-line statement
+
+
+@dataclass(frozen=True)
+class RunHealth:
+    """What a set of records is worth: complete or not, lines skipped, failures by kind."""
+
+    finished: int  # valid episode lines
+    planned: int | None  # episode lines the run(s) planned; None when run.json does not say
+    skipped: dict[str, int]  # lines not counted, by kind (invalid, duplicate, torn, set aside)
+    failures: dict[str, int]  # FAILURE_KINDS name -> count, every kind present
+    backends: list[str]  # oracle backends that answered turns
+    examples: list[str]  # the first skipped lines, described (file:line: reason)
+
+    @property
+    def complete(self) -> bool:
+        return self.planned is not None and self.finished >= self.planned
+
+    @property
+    def clean(self) -> bool:
+        """Complete, nothing skipped, no failure of any kind."""
+        return self.complete and not self.skipped and not any(self.failures.values())
+
+    def line(self) -> str:
+        """The health in one line, e.g. ``run health: INCOMPLETE, 11 of 12 episode lines;
+        skipped lines: torn 1 (runs/f/episodes.jsonl:12: ...); failures: none``."""
+        if self.planned is None:
+            state = f"{self.finished} episode lines (planned count unknown)"
+        elif self.complete:
+            state = f"complete, {self.finished} of {self.planned} episode lines"
+        else:
+            state = f"INCOMPLETE, {self.finished} of {self.planned} episode lines"
+        parts = [f"run health: {state}"]
+        if self.skipped:
+            counts = ", ".join(f"{kind} {count}" for kind, count in self.skipped.items())
+            where = f" ({'; '.join(self.examples)})" if self.examples else ""
+            parts.append(f"skipped lines: {counts}{where}")
+        else:
+            parts.append("no skipped lines")
+        failed = {kind: count for kind, count in self.failures.items() if count}
+        if failed:
+            parts.append("failures: " + ", ".join(f"{kind} {n}" for kind, n in failed.items()))
+        else:
+            parts.append("no failed or fallback turns")
+        return "; ".join(parts)
+
+    def to_json(self) -> dict[str, Any]:
+        return {
+            "complete": self.complete,
+            "finished": self.finished,
+            "planned": self.planned,
+            "skipped_lines": dict(self.skipped),
+            "failures": dict(self.failures),
+            "oracle_backends": list(self.backends),
+        }
+
+
+def run_health(contents: RunContents) -> RunHealth:
+    """The health of what :func:`vlln.eval.results.load_runs` read."""
+    return health_of(contents.records, contents.planned, contents.skipped_kinds())
+
+
+def health_of(
+    records: Sequence[EpisodeRecord],
+    planned: int | None,
+    skipped: Sequence[tuple[str, str]] = (),
+) -> RunHealth:
+    """Health of ``records``; ``skipped`` holds (kind, description) per line not counted."""
+    skipped_counts: dict[str, int] = {}
+    for kind, _ in skipped:
+        skipped_counts[kind] = skipped_counts.get(kind, 0) + 1
+    failures = {
+        kind: sum(count(record) for record in records) for kind, count in FAILURE_KINDS.items()
+    }
+    backends = sorted({turn.backend for record in records for turn in record.dialog})
+    return RunHealth(
+        finished=len(records),
+        planned=planned,
+        skipped=skipped_counts,
+        failures=failures,
+        backends=[backend for backend in backends if backend != "none"],
+        examples=[text for _, text in skipped if text][:_EXAMPLES],
+    )

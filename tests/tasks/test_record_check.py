@@ -1,0 +1,72 @@
+"""Episode records read from JSON: every field checked for type and range, the field named."""
+
+from __future__ import annotations
+
+import json
+import math
+from typing import Any
+
+import pytest
+
+from tests.tasks.test_metrics import ask, make_record
+from vlln.errors import DataFormatError
+from vlln.tasks.record import EpisodeRecord
+
+
+def valid() -> dict[str, Any]:
+    return make_record(dialog=[ask(3)], positions=[[0.0, 1.0, 0.5]], actions=["forward"]).to_json()
+
+
+def test_valid_record_round_trips() -> None:
+    data = valid()
+    assert EpisodeRecord.from_json(json.loads(json.dumps(data))).to_json() == data
+
+
+@pytest.mark.parametrize(
+    ("field", "value", "message"),
+    [
+        ("steps", "lots", r"field 'steps'.*integer.*'lots'"),
+        ("budget", -3, r"field 'budget'.*>= 0.*-3"),
+        ("steps", True, r"field 'steps'.*integer"),
+        ("steps", 2.5, r"field 'steps'.*integer"),
+        ("geodesic_start", math.nan, r"field 'geodesic_start'.*finite"),
+        ("geodesic_start", -1.0, r"field 'geodesic_start'.*>= 0"),
+        ("path_length", "far", r"field 'path_length'.*number"),
+        ("geodesic_trace", [1.0, "x"], r"field 'geodesic_trace\[1\]'"),
+        ("geodesic_trace", 3, r"field 'geodesic_trace'.*list"),
+        ("target_ids", [-1], r"field 'target_ids\[0\]'.*>= 0"),
+        ("end_reason", "bored", r"field 'end_reason'.*one of"),
+        ("episode_id", 7, r"field 'episode_id'.*string"),
+        ("episode_id", "", r"field 'episode_id'.*empty"),
+        ("stop_instance_id", "7", r"field 'stop_instance_id'.*integer"),
+        ("positions", [[0.0, math.inf, 0.0]], r"field 'positions\[0\]\[1\]'.*finite"),
+        ("dialog", [{"step": 1}], r"missing field 'dialog\[0\]\.question'"),
+        ("dialog", [{**ask(1).__dict__, "step": -1}], r"field 'dialog\[0\].step'.*>= 0"),
+        ("dialog", "none", r"field 'dialog'.*list"),
+    ],
+)
+def test_wrong_type_or_range_names_the_field(field: str, value: Any, message: str) -> None:
+    data = valid()
+    data[field] = value
+    with pytest.raises(DataFormatError, match=message):
+        EpisodeRecord.from_json(data)
+
+
+def test_missing_and_unknown_fields_are_named() -> None:
+    data = valid()
+    del data["steps"]
+    with pytest.raises(DataFormatError, match=r"missing field 'steps'"):
+        EpisodeRecord.from_json(data)
+    data = valid()
+    data["stepz"] = 3
+    with pytest.raises(DataFormatError, match=r"unknown field 'stepz'"):
+        EpisodeRecord.from_json(data)
+
+
+def test_unreachable_distance_reads_as_null_and_optional_fields_default() -> None:
+    data = valid()
+    data["geodesic_trace"] = [2.0, None]
+    del data["positions"], data["dialog"]
+    record = EpisodeRecord.from_json(data)
+    assert record.geodesic_trace == [2.0, math.inf]
+    assert record.dialog == []
