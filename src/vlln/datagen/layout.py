@@ -21,7 +21,7 @@ down, z forward) in a z-up world: world ``(x, y, z)`` = habitat ``(x, -z, y)``.
 ``goal.125cm_30deg`` is the pixel ``[col, row]`` of the frame's look-down image under which
 the agent stands ``relative_goal_frame_id.125cm_30deg`` frames later (``[-1, -1]`` and -1 where
 the frame has no pixel goal; see :mod:`vlln.datagen.goals`). Frames are JPEG, as the
-reference writes them (see JPEG_QUALITY); depth is only used during the build and not
+reference writes them (see JPEG_QTABLES); depth is only used during the build and not
 stored.
 """
 
@@ -47,11 +47,14 @@ from vlln.tasks.episode import scene_name
 
 FORMAT_VERSION = "vlln-trajectories/2.0"
 CHUNK_SIZE = 1000
-# The reference saves its frames with PIL's default quality (75). On our renders, with their
-# fine floor textures, 75 costs 1.6x the bytes of 50 for no difference visible at the
-# 384x384 and 640x480 the model is shown: a kept trajectory of the data benchmark takes
-# 7.2 MB at 50 (with optimised Huffman tables) and 11.4 MB at 75.
-JPEG_QUALITY = 50
+# The reference saves its frames with PIL's default quality (75). Our renders' fine floor
+# textures are noise a JPEG cannot compress, so a kept trajectory of the data benchmark takes
+# 11.4 MB at 75 and 7.2 MB at 50 (about 0.9 MB of it the 4 KB disk blocks of its ~460 small
+# files). Pillow's "web_low" tables quantise the low frequencies a little more and the highest
+# ones much less than the standard tables do, which on these frames gives smaller files at a
+# higher PSNR than quality 33 (the standard setting of the same size, which blurs the floor
+# texture and blotches the colour of plain walls); see docs/data-pipeline.md for the figures.
+JPEG_QTABLES = "web_low"
 NO_ACTION = -1  # action[0]: no action led to the first frame
 CAMERAS = ("level", "down")
 _PITCH_DEG = {"level": 0.0, "down": -DOWN_TILT_DEG}
@@ -97,7 +100,7 @@ def reference_pose(
 
 def rgb_to_jpeg(rgb: NDArray[np.uint8]) -> bytes:
     buffer = io.BytesIO()
-    Image.fromarray(rgb).save(buffer, "JPEG", quality=JPEG_QUALITY, optimize=True)
+    Image.fromarray(rgb).save(buffer, "JPEG", qtables=JPEG_QTABLES, optimize=True)
     return buffer.getvalue()
 
 
