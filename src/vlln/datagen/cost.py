@@ -1,9 +1,9 @@
 """What a dataset build will cost, said before it starts (and asked about when it is large).
 
 The figures are the README's, measured on the 2-core development machine with
-`vlln bench data` and the 20-house build: about 10.5 s of one core per trajectory tried
-(collection, filtering, rendering both cameras again, encoding), about 23.5 MB of disk per
-trajectory tried (83 % are kept, 28 MB each: RGB JPEG and 16-bit depth PNG per frame), and
+`vlln bench data` and the 20-house build: about 10.7 s of one core per trajectory tried
+(collection, filtering, rendering both cameras again, pixel goals, encoding), about 4.7 MB of
+disk per trajectory tried (83 % are kept, 5.6 MB each: a JPEG of both cameras per frame), and
 about 500 MB of memory (one house's simulator and the frames of one trajectory).
 """
 
@@ -13,8 +13,8 @@ from dataclasses import dataclass
 
 from vlln.eval.cost import describe_duration
 
-SECONDS_PER_TRAJECTORY = 10.5
-MB_PER_TRAJECTORY = 23.5
+SECONDS_PER_TRAJECTORY = 10.7
+MB_PER_TRAJECTORY = 4.7
 PEAK_MEMORY_MB = 500
 CONFIRM_ABOVE_S = 3600.0  # an interactive build longer than this asks first
 
