@@ -22,6 +22,22 @@ def test_valid_record_round_trips() -> None:
     assert EpisodeRecord.from_json(json.loads(json.dumps(data))).to_json() == data
 
 
+def test_a_model_agents_failures_and_calls_round_trip() -> None:
+    data = valid() | {"failures": {"parse": 2, "server": 1}, "detector": "noisy"}
+    data["model_calls"] = [
+        {
+            "step": 0,
+            "text": None,
+            "error": "HTTP 503",
+            "look_down": False,
+            "latency_ms": 12.5,
+            "prompt_tokens": 0,
+            "completion_tokens": 0,
+        }
+    ]
+    assert EpisodeRecord.from_json(json.loads(json.dumps(data))).to_json() == data
+
+
 @pytest.mark.parametrize(
     ("field", "value", "message"),
     [
@@ -43,6 +59,10 @@ def test_valid_record_round_trips() -> None:
         ("dialog", [{"step": 1}], r"missing field 'dialog\[0\]\.question'"),
         ("dialog", [{**ask(1).__dict__, "step": -1}], r"field 'dialog\[0\].step'.*>= 0"),
         ("dialog", "none", r"field 'dialog'.*list"),
+        ("failures", {"parse": -1}, r"field 'failures\['parse'\]'.*>= 0"),
+        ("failures", {"parse": "2"}, r"field 'failures\['parse'\]'.*integer"),
+        ("failures", [1], r"field 'failures'.*object"),
+        ("model_calls", [{"step": 0}], r"missing field 'model_calls\[0\]\.text'"),
     ],
 )
 def test_wrong_type_or_range_names_the_field(field: str, value: Any, message: str) -> None:

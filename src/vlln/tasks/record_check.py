@@ -90,6 +90,14 @@ def _check_value(hint: Any, value: Any, name: str, rules: _Rules) -> None:
         for index, item in enumerate(value):
             _check_value(item_hint, item, f"{name}[{index}]", rules)
         return
+    if origin is dict:
+        if not isinstance(value, dict):
+            raise DataFormatError(f"field '{name}' must be an object, got {value!r:.60}")
+        key_hint, item_hint = typing.get_args(hint)
+        for key, item in value.items():
+            _check_scalar(key_hint, key, f"{name} key", rules)
+            _check_value(item_hint, item, f"{name}[{key!r:.40}]", rules)
+        return
     if dataclasses.is_dataclass(hint):
         check_object(typing.cast(type[Any], hint), value, f"{name}.")
         return
