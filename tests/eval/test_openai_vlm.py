@@ -140,7 +140,7 @@ def test_scripted_replies_play_the_experts_episode_to_success(
     assert "TURN LEFT (←) or TURN RIGHT (→) by 30 degrees" in user_texts(requests[0])[0]
     # The last decision's prompt is the shared builder's text for that state, byte for byte.
     frame = sum(name != "STOP" for name in expert.actions)
-    seed = derive_seed(0, "agent", episode.scene_id, episode.episode_id, 0)
+    seed = derive_seed(0, "agent", episode.scene_id, episode.episode_id)
     expected = build_conversation(
         episode.instruction.instruction_text,
         frame,
@@ -214,7 +214,7 @@ def test_a_question_is_answered_and_the_answer_reaches_the_next_prompt(
     (turn,) = record.dialog
     assert turn.question == "What color is it?" and turn.answered
     assert turn.answer
-    seed = derive_seed(0, "agent", episode.scene_id, episode.episode_id, 5)
+    seed = derive_seed(0, "agent", episode.scene_id, episode.episode_id)
     expected = build_conversation(
         episode.instruction.instruction_text,
         0,
