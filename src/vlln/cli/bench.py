@@ -1,0 +1,117 @@
+"""``vlln bench ...``: the speed and memory figures."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from vlln.cli.options import Commands
+from vlln.web.command import add_bench_web
+
+
+def _bench_sim(args: argparse.Namespace) -> int:
+    from vlln.bench.sim import run_sim_benchmark
+
+    if args.envs is not None:
+        from vlln.bench.parallel import run_parallel_benchmark
+
+        run_parallel_benchmark(
+            args.envs, seed=args.seed, frames=args.frames, repeats=args.repeats, as_json=args.json
+        )
+        return 0
+    run_sim_benchmark(
+        seed=args.seed,
+        frames=args.frames,
+        repeats=args.repeats,
+        as_json=args.json,
+        scene=None if args.scene is None else Path(args.scene),
+    )
+    return 0
+
+
+def _bench_eval(args: argparse.Namespace) -> int:
+    from vlln.bench.eval import run_eval_benchmark
+
+    cache_dir = None if args.cache_dir is None else Path(args.cache_dir)
+    run_eval_benchmark(episodes=args.episodes, as_json=args.json, cache_dir=cache_dir)
+    return 0
+
+
+def _bench_oracle(args: argparse.Namespace) -> int:
+    from vlln.bench.oracle import run_oracle_benchmark
+
+    run_oracle_benchmark(
+        seed=args.seed,
+        questions=args.questions,
+        as_json=args.json,
+        service_scenes=args.service_scenes,
+    )
+    return 0
+
+
+def _bench_agent(args: argparse.Namespace) -> int:
+    from vlln.bench.agent import run_agent_benchmark
+    from vlln.bench.agent_model import run_model_benchmark
+
+    run_agent_benchmark(seed=args.seed, repeats=args.repeats, as_json=args.json)
+    run_model_benchmark(seed=args.seed, as_json=args.json)
+    return 0
+
+
+def _bench_data(args: argparse.Namespace) -> int:
+    from vlln.bench.data import run_data_benchmark
+
+    run_data_benchmark(houses=args.houses, per_house=args.per_house, as_json=args.json)
+    return 0
+
+
+def add_bench_commands(commands: Commands) -> None:
+    bench = commands.add_parser("bench", help="speed and memory benchmarks").add_subparsers(
+        dest="bench_command", required=True
+    )
+    sim = bench.add_parser("sim", help="renderer, motion and geodesic figures")
+    sim.add_argument("--seed", type=int, default=0, help="house seed (default 0)")
+    sim.add_argument("--frames", type=int, default=300, help="frames per timing (default 300)")
+    sim.add_argument("--repeats", type=int, default=3, help="passes per frame rate (default 3)")
+    sim.add_argument("--json", action="store_true", help="print one JSON object per line")
+    sim.add_argument("--scene", help="a scanned scene folder instead of a procedural house")
+
+    sim.add_argument(
+        "--envs", type=int, help="steps/s of N environments in N processes against one (speed-up)"
+    )
+    sim.set_defaults(handler=_bench_sim)
+    bench_eval = bench.add_parser("eval", help="episodes per hour of the evaluation runner")
+    bench_eval.add_argument("--episodes", type=int, default=6, help="episodes (default 6)")
+    bench_eval.add_argument("--json", action="store_true", help="print one JSON object per line")
+    bench_eval.add_argument("--cache-dir", help="where built splits are kept")
+    bench_eval.set_defaults(handler=_bench_eval)
+    bench_oracle = bench.add_parser("oracle", help="answer latency of the offline oracle")
+    bench_oracle.add_argument("--seed", type=int, default=0, help="house seed (default 0)")
+    bench_oracle.add_argument(
+        "--questions", type=int, default=2000, help="questions (default 2000)"
+    )
+    bench_oracle.add_argument("--json", action="store_true", help="print one JSON object per line")
+    bench_oracle.add_argument(
+        "--service-scenes",
+        type=int,
+        default=64,
+        help="houses given a session each for the service's memory figure (default 64; "
+        "0 = no service figures)",
+    )
+    bench_oracle.set_defaults(handler=_bench_oracle)
+    bench_agent = bench.add_parser(
+        "agent", help="a model agent's step cost outside the model; the local model's steps/s"
+    )
+    bench_agent.add_argument("--seed", type=int, default=0, help="house seed (default 0)")
+    bench_agent.add_argument("--repeats", type=int, default=200, help="timed repeats (200)")
+    bench_agent.add_argument("--json", action="store_true", help="print one JSON object per line")
+    bench_agent.set_defaults(handler=_bench_agent)
+
+    bench_data = bench.add_parser("data", help="trajectories per hour of the data pipeline")
+    bench_data.add_argument("--houses", type=int, default=2, help="training houses (default 2)")
+    bench_data.add_argument(
+        "--per-house", type=int, default=6, help="trajectories per house (default 6)"
+    )
+    bench_data.add_argument("--json", action="store_true", help="print one JSON object per line")
+    bench_data.set_defaults(handler=_bench_data)
+    add_bench_web(bench)

@@ -1,0 +1,108 @@
+"""``vlln data ...``: build, summarise and export training data."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from vlln.cli.options import Commands, add_ray_options
+from vlln.errors import ConfigError
+
+
+def _data_build(args: argparse.Namespace) -> int:
+    from vlln.datagen.build import BuildConfig, build_dataset, summarize
+    from vlln.datagen.cost import build_cost
+    from vlln.eval.sharding import Shard
+
+    config = BuildConfig(
+        houses=args.houses, split=args.split, seed=args.seed, per_house=args.per_house
+    )
+    if Path(args.out).exists() and not Path(args.out).is_dir():
+        raise ConfigError(f"--out {args.out} is a file, not a folder; give a dataset folder")
+    shard = Shard.parse(args.shard) if args.shard else None
+    houses = -(-config.houses // shard.count) if shard else config.houses
+    cost = build_cost(houses, config.per_house)
+    print(cost.line(), file=sys.stderr)
+    if cost.large and not args.yes and sys.stdin.isatty():
+        answer = input("this is a large build; start it? [y/N] ")
+        if answer.strip().lower() not in ("y", "yes"):
+            print("not started (pass --yes to skip this question)", file=sys.stderr)
+            return 1
+    if args.ray is not None:
+        from vlln.cluster.data import build_dataset_ray
+
+        if shard is not None:
+            raise ConfigError("--shard and --ray do not mix: Ray shares the houses out itself")
+        out = build_dataset_ray(
+            Path(args.out),
+            config,
+            address=args.ray or None,
+            max_retries=args.retries,
+            progress=not args.quiet,
+        )
+    else:
+        out = build_dataset(Path(args.out), config, shard=shard, progress=not args.quiet)
+    print(summarize(out).line())
+    print(f"dataset in {out} (summarise it with: vlln data stats {out})")
+    return 0
+
+
+def _data_stats(args: argparse.Namespace) -> int:
+    from vlln.datagen.stats.report import write_stats
+
+    paths = write_stats(Path(args.dataset), Path(args.out) if args.out else None)
+    print("wrote " + ", ".join(str(path) for path in paths))
+    return 0
+
+
+def _data_export_sft(args: argparse.Namespace) -> int:
+    from vlln.datagen.sft.config import SftConfig
+    from vlln.datagen.sft.export import export_sft
+
+    config = SftConfig(seed=args.seed, history_frames=args.history)
+    summary = export_sft(Path(args.dataset), Path(args.out), config, progress=not args.quiet)
+    print(
+        f"wrote {summary.samples} conversations from {summary.trajectories} trajectories "
+        f"({summary.images} images) to {args.out}/sft.jsonl"
+    )
+    return 0
+
+
+def add_data_commands(commands: Commands) -> None:
+    data = commands.add_parser("data", help="the training-data pipeline").add_subparsers(
+        dest="data_command", required=True
+    )
+    build = data.add_parser(
+        "build", help="scene summaries, episodes and dialog-augmented trajectories"
+    )
+    build.add_argument("--houses", type=int, required=True, help="houses of the split to use")
+    build.add_argument("--out", required=True, help="dataset folder (a rerun resumes it)")
+    build.add_argument(
+        "--per-house",
+        type=int,
+        default=20,
+        help="trajectories tried per house (default 20; 0 = every IIGN episode)",
+    )
+    build.add_argument("--split", default="train", help="house split (default train)")
+    build.add_argument("--seed", type=int, default=0, help="seed of every random choice")
+    build.add_argument("--shard", help="i/n: build every n-th house, starting at the i-th")
+    build.add_argument("--quiet", action="store_true", help="no progress bars")
+    add_ray_options(build, chunks=False)
+    build.add_argument(
+        "--yes", action="store_true", help="start a large build without asking (it states its cost)"
+    )
+    build.set_defaults(handler=_data_build)
+    stats = data.add_parser("stats", help="statistics, figure and report of a built dataset")
+    stats.add_argument("dataset", help="a folder made by vlln data build")
+    stats.add_argument("--out", help="where to write them (default DATASET/stats)")
+    stats.set_defaults(handler=_data_stats)
+    sft = data.add_parser(
+        "export-sft", help="trajectories as multi-image conversations for fine-tuning"
+    )
+    sft.add_argument("dataset", help="a folder made by vlln data build")
+    sft.add_argument("--out", required=True, help="output folder (sft.jsonl and images)")
+    sft.add_argument("--seed", type=int, default=0, help="seed of every random choice")
+    sft.add_argument("--history", type=int, default=8, help="history frames (default 8)")
+    sft.add_argument("--quiet", action="store_true", help="no progress bar")
+    sft.set_defaults(handler=_data_export_sft)

@@ -1,0 +1,75 @@
+"""``vlln oracle ...``: serve the oracle, measure its classifier."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from vlln.cli.options import Commands
+
+
+def _oracle_serve(args: argparse.Namespace) -> int:
+    from vlln.oracle.service.server import serve, token_from_environment
+
+    token = token_from_environment(args.token_env)
+    serve(
+        host=args.host,
+        port=args.port,
+        token=token,
+        episodes=None if args.episodes is None else Path(args.episodes),
+        allow_remote=args.allow_remote,
+        max_sessions=args.max_sessions,
+        oracle_seed=args.oracle_seed,
+        builds_per_minute=args.builds_per_minute,
+        client_builds_per_minute=args.client_builds_per_minute,
+        log_level=args.log_level,
+    )
+    return 0
+
+
+def _oracle_classify_report(args: argparse.Namespace) -> int:
+    from vlln.oracle.question_set import classifier_report
+
+    accuracy, table = classifier_report(args.questions)
+    print(f"accuracy: {accuracy:.1%}\n\n{table}")
+    return 0
+
+
+def add_oracle_commands(commands: Commands) -> None:
+    oracle = commands.add_parser("oracle", help="the oracle").add_subparsers(
+        dest="oracle_command", required=True
+    )
+    serve = oracle.add_parser("serve", help="answer questions over HTTP (FastAPI)")
+    serve.add_argument("--host", default="127.0.0.1", help="address (default loopback only)")
+    serve.add_argument("--port", type=int, default=8765, help="port (default 8765)")
+    serve.add_argument(
+        "--token-env",
+        help="environment variable holding the bearer token; it must be set and not empty "
+        "(without the flag: VLLN_ORACLE_TOKEN when set, else no token, loopback only)",
+    )
+    serve.add_argument("--episodes", help="an episode file whose episodes sessions can name")
+    serve.add_argument(
+        "--allow-remote", action="store_true", help="allow a host other than loopback"
+    )
+    serve.add_argument("--max-sessions", type=int, default=64, help="sessions kept (default 64)")
+    serve.add_argument("--oracle-seed", type=int, default=0, help="paraphrase seed (default 0)")
+    serve.add_argument(
+        "--builds-per-minute", type=int, default=60, help="house builds, all clients (default 60)"
+    )
+    serve.add_argument(
+        "--client-builds-per-minute",
+        type=int,
+        default=20,
+        help="house builds one client address may cause (default 20)",
+    )
+    serve.add_argument(
+        "--log-level",
+        default="warning",
+        help="uvicorn log level (default warning: no line per request)",
+    )
+    serve.set_defaults(handler=_oracle_serve)
+    report = oracle.add_parser(
+        "classify-report", help="accuracy and confusion matrix of the offline classifier"
+    )
+    report.add_argument("--questions", help="a JSON Lines question set (default: held-out set)")
+    report.set_defaults(handler=_oracle_classify_report)

@@ -1,0 +1,70 @@
+"""``vlln world ...``: draw, export and import houses."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from vlln.cli.options import Commands
+
+
+def _world_show(args: argparse.Namespace) -> int:
+    from vlln.viz.show import show_world
+    from vlln.world.generator import parameters_from_overrides
+
+    params = parameters_from_overrides(args.param)
+    files = show_world(args.seed, Path(args.out), n_views=args.views, params=params)
+    print(f"wrote {len(files)} images to {args.out} (map: {files[0]})")
+    return 0
+
+
+def _world_export(args: argparse.Namespace) -> int:
+    from vlln.world.generator import generate_house, parameters_from_overrides
+    from vlln.world.scans import export_scene
+
+    house = generate_house(args.seed, parameters_from_overrides(args.param))
+    for style in args.style or ["mp3d", "hm3d"]:
+        print(f"wrote {export_scene(house, Path(args.out) / style, style)}")
+    return 0
+
+
+def _world_import(args: argparse.Namespace) -> int:
+    import dataclasses
+    import json
+
+    from vlln.world.scans import import_scene
+    from vlln.world.scene_summary import export_scene_summary
+
+    house, report = import_scene(Path(args.scene))
+    if args.summary_out:
+        export_scene_summary(house, Path(args.summary_out))
+    print(json.dumps(dataclasses.asdict(report), indent=2))
+    return 0
+
+
+def add_world_commands(commands: Commands) -> None:
+    world = commands.add_parser("world", help="procedural houses").add_subparsers(
+        dest="world_command", required=True
+    )
+    show = world.add_parser("show", help="write a top-down map and egocentric views of a house")
+    show.add_argument("--seed", type=int, default=0, help="house seed (default 0)")
+    show.add_argument("--out", required=True, help="output directory")
+    show.add_argument("--views", type=int, default=4, help="number of rooms to view (default 4)")
+    show.add_argument(
+        "--param",
+        action="append",
+        default=[],
+        metavar="NAME=VALUE",
+        help="a house-generator parameter, e.g. --param max_rooms=6 (repeatable)",
+    )
+    show.set_defaults(handler=_world_show)
+    export = world.add_parser("export", help="write a house as Matterport3D/HM3D scene folders")
+    export.add_argument("--seed", type=int, default=0, help="house seed (default 0)")
+    export.add_argument("--out", required=True, help="output folder (<out>/<style>/<scene>/)")
+    export.add_argument("--style", action="append", choices=["mp3d", "hm3d"], help="repeatable")
+    export.add_argument("--param", action="append", default=[], metavar="NAME=VALUE")
+    export.set_defaults(handler=_world_export)
+    imported = world.add_parser("import", help="read a Matterport3D or HM3D scene folder")
+    imported.add_argument("scene", help="scene folder <dir>/<scene>/ (.glb + .house or semantic)")
+    imported.add_argument("--summary-out", help="also write its scene summary under this folder")
+    imported.set_defaults(handler=_world_import)
