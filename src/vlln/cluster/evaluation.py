@@ -19,18 +19,17 @@ from vlln.agents.registry import make_agent
 from vlln.cluster.scheduler import DEFAULT_MAX_RETRIES, collect_in_order, connect, remote_function
 from vlln.errors import ConfigError
 from vlln.eval.config import EvalConfig
-from vlln.eval.health import run_health
-from vlln.eval.results import RunDirectory, load_runs, record_key
+from vlln.eval.results import RunDirectory, record_key
 from vlln.eval.runner import (
     RunOutcome,
     WorkItem,
     by_episode,
     default_provenance,
+    finish_run,
     load_episodes,
     plan_work,
     play_items,
 )
-from vlln.eval.summary import summarize_run, summary_json, summary_markdown
 from vlln.oracle.rule_oracle import RuleOracle
 from vlln.tasks.record import EpisodeRecord
 from vlln.tasks.scenes import SceneCache
@@ -108,11 +107,4 @@ def run_ray_evaluation(
             collect_in_order(refs, commit)
         records = list(writer.records)
     seconds = time.perf_counter() - started
-    health = run_health(load_runs([out]))
-    summary = summarize_run(records) if records else None
-    if summary is not None:
-        run_dir.write_summary(
-            summary_json(summary) | {"health": health.to_json()},
-            summary_markdown(summary) + f"\n{health.line()}\n",
-        )
-    return RunOutcome(out, len(items), played, seconds, records, summary, health, repaired)
+    return finish_run(out, len(items), played, seconds, records, repaired)

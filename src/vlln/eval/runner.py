@@ -273,14 +273,26 @@ def run_evaluation(
         if own_scenes:
             cache.close()
     seconds = time.perf_counter() - started
+    return finish_run(out, len(items), played, seconds, records, repaired)
+
+
+def finish_run(
+    out: Path,
+    planned: int,
+    played: int,
+    seconds: float,
+    records: list[EpisodeRecord],
+    repaired: list[SkippedLine],
+) -> RunOutcome:
+    """Write the summary files of the run in ``out`` (with its health) and say what it holds."""
     health = run_health(load_runs([out]))
     summary = summarize_run(records) if records else None
     if summary is not None:
-        run_dir.write_summary(
+        RunDirectory(out).write_summary(
             summary_json(summary) | {"health": health.to_json()},
             summary_markdown(summary) + f"\n{health.line()}\n",
         )
-    return RunOutcome(out, len(items), played, seconds, records, summary, health, repaired)
+    return RunOutcome(out, planned, played, seconds, records, summary, health, repaired)
 
 
 def default_provenance(config: EvalConfig, oracle_factory: OracleFactory) -> dict[str, str | None]:
