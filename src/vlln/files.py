@@ -34,6 +34,15 @@ def write_bytes_atomic(path: Path, data: bytes) -> None:
         raise
 
 
+def remove_leftover_temp_files(folder: Path) -> None:
+    """Delete the temporary files that :func:`write_bytes_atomic` leaves when its process is
+    killed between writing and renaming; only for a folder that no other process writes."""
+    if folder.is_dir():
+        for temp in folder.rglob(".*.tmp"):
+            if temp.is_file():
+                temp.unlink()
+
+
 def write_text_atomic(path: Path, text: str) -> None:
     """:func:`write_bytes_atomic` for UTF-8 text with Unix line endings."""
     write_bytes_atomic(path, text.encode("utf-8"))

@@ -28,7 +28,7 @@ from vlln import __version__
 from vlln.datagen.collector.collect import CollectorConfig, collect_trajectory
 from vlln.datagen.collector.visibility import DOWN_TILT
 from vlln.datagen.filtering import FilterConfig, rejection_reason
-from vlln.datagen.layout import FORMAT_VERSION
+from vlln.datagen.layout import FORMAT_VERSION, house_dir_name
 from vlln.datagen.reader import HouseDataset, house_folders
 from vlln.datagen.trajectory import Trajectory
 from vlln.datagen.writer import HouseWriter
@@ -136,8 +136,13 @@ def build_house(
         return
     oracle = RuleOracle(seed=config.seed)
     todo = [e for e in episodes if e.episode_id not in writer.attempts]
-    name = episodes[0].scene_id.rsplit("/", 1)[-1]
-    bar = tqdm(todo, desc=name, unit="traj", disable=not progress, leave=False)
+    bar = tqdm(
+        todo,
+        desc=house_dir_name(episodes[0].scene_id),
+        unit="traj",
+        disable=not progress,
+        leave=False,
+    )
     for episode in bar:
         trajectory = collect_trajectory(sim, episode, oracle, config.seed, config.collector)
         last = trajectory.steps[-1].state

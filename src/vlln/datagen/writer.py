@@ -29,7 +29,7 @@ from vlln.datagen.layout import (
 )
 from vlln.datagen.trajectory import Trajectory
 from vlln.errors import DataFormatError
-from vlln.files import write_text_atomic
+from vlln.files import remove_leftover_temp_files, write_text_atomic
 from vlln.sim.camera import CameraSpec
 from vlln.sim.renderer import Frame
 
@@ -49,6 +49,7 @@ class HouseWriter:
 
     def __init__(self, root: Path, scene_id: str, camera: CameraSpec) -> None:
         self.root = Path(root) / house_dir_name(scene_id)
+        remove_leftover_temp_files(self.root)  # a killed build's; each house has one writer
         self.scene_id = scene_id
         self.camera = camera
         self.attempts = read_journal(self.root / "meta" / "journal.jsonl")
