@@ -35,3 +35,14 @@ def test_parallel_environments_report_their_speed_up(capsys: pytest.CaptureFixtu
     assert values["steps_per_s_1_env"] > 0 and values["steps_per_s_2_envs"] > 0
     expected = values["steps_per_s_2_envs"] / values["steps_per_s_1_env"]
     assert values["envs_speedup"] == pytest.approx(expected, rel=0.01)
+    cores = values["cpu_cores"]
+    assert values["render_threads_1_env"] == cores
+    assert values["render_threads_per_env_2_envs"] == max(1, cores // 2)
+    busy = values["steps_per_s_1_env"] * values["cpu_ms_per_step_1_env"] / 1e3
+    assert values["cpu_cores_busy_1_env"] == pytest.approx(busy, rel=0.01, abs=0.002)
+    main_ms, cpu_ms = values["main_thread_cpu_ms_per_step_1_env"], values["cpu_ms_per_step_1_env"]
+    assert 0 < main_ms <= cpu_ms
+    ceiling = cores * (main_ms + (cpu_ms - main_ms) / cores) / values["cpu_ms_per_step_2_envs"]
+    assert values["envs_speedup_ceiling"] == pytest.approx(ceiling, rel=0.01)
+    same = values["steps_per_s_2_envs"] / values["steps_per_s_1_env_same_threads"]
+    assert values["envs_speedup_same_threads"] == pytest.approx(same, rel=0.01)

@@ -4,12 +4,21 @@ Each process builds its own house and simulator and replays its own random walk 
 collision, render and a geodesic query per step, as :func:`vlln.bench.sim._step_fps` does);
 all start together after a barrier, and the rate is every process's steps over the time from
 the first start to the last finish. On a CPU renderer (Mesa llvmpipe) the rasteriser's threads
-are shared out: each of N processes gets ``cores // N`` (``LP_NUM_THREADS``), so one
-environment alone may use every core. ``envs_speedup`` compares N processes with one, both
-measured in the same invocation, ``repeats`` times interleaved (median). The CPU time per
-step (every thread of the process, the rasteriser's included) is reported beside the rates:
-it does not depend on what else the machine runs, so it shows whether N processes cost more
-CPU per step than one when a busy machine hides the speed-up.
+are shared out: one environment alone gets every core (``LP_NUM_THREADS``, as a user running one
+environment does), each of N processes ``cores // N``. ``envs_speedup`` compares N processes
+with one, both measured in the same invocation, ``repeats`` times interleaved (median).
+
+The CPU time per step (every thread of the process, the rasteriser's included) and the part of
+it spent on the main thread (Python, vertex shading, binning, read-back) are reported beside
+the rates: they do not depend on what else the machine runs, and they bound the speed-up. One
+environment alone runs its main thread while its rasteriser threads wait, then its rasteriser
+threads while the main thread waits, so a step takes at least ``main + rest / threads``; N
+processes that keep every core busy reach ``cores × (main + rest / threads) ÷ CPU per step of
+N`` times its rate (``envs_speedup_ceiling``, computed from CPU times alone). The more of one
+environment's work runs on the rasteriser's threads, the more cores it keeps busy on its own
+and the less N processes can add. ``envs_speedup_same_threads`` compares N processes with one
+environment rasterising with as many threads as each of the N does: how the rate grows with
+processes at a fixed setting per process.
 """
 
 from __future__ import annotations
@@ -19,7 +28,7 @@ import os
 import statistics
 import time
 from multiprocessing.synchronize import Barrier
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -29,40 +38,69 @@ from vlln.errors import ConfigError
 WARM_UP_STEPS = 30
 
 
+class Run(NamedTuple):
+    """One timed run of one or more processes."""
+
+    steps_per_s: float  # all processes together
+    cpu_ms_per_step: float  # every thread
+    main_thread_cpu_ms_per_step: float  # the thread that steps the simulator
+
+
 def run_parallel_benchmark(
     envs: int, seed: int = 0, frames: int = 300, repeats: int = 3, as_json: bool = False
 ) -> list[Figure]:
-    """Print steps/s of one environment, of ``envs`` in parallel, and their ratio."""
+    """Print steps/s of one environment, of ``envs`` in parallel, their ratio and its bound."""
     if envs < 1:
         raise ConfigError(f"--envs must be at least 1, got {envs}")
     cores = len(os.sched_getaffinity(0))  # the cores this process may use (taskset, cgroups)
-    one: list[tuple[float, float]] = []
-    many: list[tuple[float, float]] = []
+    threads_alone = cores
+    threads_shared = max(1, cores // envs)
+    runs_one: list[Run] = []
+    runs_many: list[Run] = []
+    runs_one_shared: list[Run] = []
     for _ in range(repeats):
-        one.append(_steps_per_second(1, seed, frames, cores))
-        many.append(_steps_per_second(envs, seed, frames, cores))
-    rate_one = statistics.median(rate for rate, _ in one)
-    rate_many = statistics.median(rate for rate, _ in many)
+        runs_one.append(_run(1, seed, frames, threads_alone))
+        runs_many.append(_run(envs, seed, frames, threads_shared))
+        if threads_shared != threads_alone:
+            runs_one_shared.append(_run(1, seed, frames, threads_shared))
+    one, many = _median(runs_one), _median(runs_many)
+    one_shared = _median(runs_one_shared) if runs_one_shared else one
+    main = one.main_thread_cpu_ms_per_step
+    shortest_step_ms = main + (one.cpu_ms_per_step - main) / threads_alone
     figures = [
         Figure("envs", envs, "count"),
         Figure("cpu_cores", cores, "count"),
-        Figure("steps_per_s_1_env", rate_one, "steps/s"),
-        Figure(f"steps_per_s_{envs}_envs", rate_many, "steps/s"),
-        Figure("envs_speedup", rate_many / rate_one, "x"),
-        Figure("cpu_ms_per_step_1_env", statistics.median(cpu for _, cpu in one), "ms"),
-        Figure(f"cpu_ms_per_step_{envs}_envs", statistics.median(cpu for _, cpu in many), "ms"),
+        Figure("render_threads_1_env", threads_alone, "count"),
+        Figure(f"render_threads_per_env_{envs}_envs", threads_shared, "count"),
+        Figure("steps_per_s_1_env", one.steps_per_s, "steps/s"),
+        Figure(f"steps_per_s_{envs}_envs", many.steps_per_s, "steps/s"),
+        Figure("envs_speedup", many.steps_per_s / one.steps_per_s, "x"),
+        Figure("cpu_ms_per_step_1_env", one.cpu_ms_per_step, "ms"),
+        Figure("main_thread_cpu_ms_per_step_1_env", main, "ms"),
+        Figure(f"cpu_ms_per_step_{envs}_envs", many.cpu_ms_per_step, "ms"),
+        Figure("cpu_cores_busy_1_env", one.steps_per_s * one.cpu_ms_per_step / 1e3, "cores"),
+        Figure(
+            f"cpu_cores_busy_{envs}_envs", many.steps_per_s * many.cpu_ms_per_step / 1e3, "cores"
+        ),
+        Figure("envs_speedup_ceiling", cores * shortest_step_ms / many.cpu_ms_per_step, "x"),
+        Figure("steps_per_s_1_env_same_threads", one_shared.steps_per_s, "steps/s"),
+        Figure("envs_speedup_same_threads", many.steps_per_s / one_shared.steps_per_s, "x"),
     ]
     for figure in figures:
         emit(figure, as_json)
     return figures
 
 
-def _steps_per_second(envs: int, seed: int, frames: int, cores: int) -> tuple[float, float]:
-    """(steps per second of all processes together, CPU milliseconds per step)."""
+def _median(runs: list[Run]) -> Run:
+    """Each figure's median over several runs."""
+    return Run(*(statistics.median(values) for values in zip(*runs, strict=True)))
+
+
+def _run(envs: int, seed: int, frames: int, threads: int) -> Run:
+    """Time ``envs`` processes stepping together, each rasterising with ``threads`` threads."""
     context = multiprocessing.get_context("spawn")  # a fresh GL context in every process
     barrier = context.Barrier(envs)
     results: Any = context.Queue()
-    threads = max(1, cores // envs)
     workers = [
         context.Process(target=_walk_in_process, args=(seed, i, frames, threads, barrier, results))
         for i in range(envs)
@@ -77,7 +115,9 @@ def _steps_per_second(envs: int, seed: int, frames: int, cores: int) -> tuple[fl
     start = min(t[0] for t in timings)
     end = max(t[1] for t in timings)
     steps = sum(t[2] for t in timings)
-    return steps / (end - start), 1e3 * sum(t[3] for t in timings) / steps
+    cpu_ms = 1e3 * sum(t[3] for t in timings)
+    main_ms = 1e3 * sum(t[4] for t in timings)
+    return Run(steps / (end - start), cpu_ms / steps, main_ms / steps)
 
 
 def _walk_in_process(
@@ -95,7 +135,8 @@ def _walk_in_process(
         goals = _goal_sets(sim, rng, count=1)[0]
         _step_fps(sim, warm_up, goals)
         barrier.wait()
-        start, cpu = time.perf_counter(), time.process_time()
+        start, cpu, main = time.perf_counter(), time.process_time(), time.thread_time()
         _step_fps(sim, walk, goals)
-        end, cpu = time.perf_counter(), time.process_time() - cpu
-        results.put((start, end, len(walk.actions), cpu))
+        end = time.perf_counter()
+        cpu, main = time.process_time() - cpu, time.thread_time() - main
+        results.put((start, end, len(walk.actions), cpu, main))
