@@ -1,8 +1,9 @@
 """Connecting to a cluster, and collecting task results in order as they finish.
 
 Retries are explicit: a chunk whose worker process or node dies is re-run up to
-``max_retries`` times (``max_retries`` on the task; exceptions raised by our own code are not
-retried, since a rerun would raise them again). Results are handed to the driver's ``commit``
+``max_retries`` times (``max_retries`` on the task). Exceptions raised by our own code are not
+retried, since a rerun would raise them again, except the few a task names (a failure beside
+it, such as a lost model server). Results are handed to the driver's ``commit``
 in submission order, each exactly once, as soon as every earlier one is in; when a chunk
 fails for good, the results already in are committed (out of order) before the error, so no
 finished work is lost and a rerun resumes.
@@ -45,12 +46,19 @@ def connect(address: str | None) -> Any:
     return ray
 
 
-def remote_function(function: Callable[..., Any], max_retries: int) -> Any:
-    """``function`` as a Ray task with explicit retries for a dead worker."""
+def remote_function(
+    function: Callable[..., Any],
+    max_retries: int,
+    retry_on: tuple[type[Exception], ...] = (),
+) -> Any:
+    """``function`` as a Ray task with explicit retries for a dead worker, and for the
+    exceptions in ``retry_on`` (failures of something beside the task, such as its model
+    server, that a rerun can get past)."""
     if max_retries < 0:
         raise ConfigError(f"max_retries must be >= 0, got {max_retries}")
     ray = import_ray()
-    return ray.remote(function).options(max_retries=max_retries, retry_exceptions=False)
+    retry_exceptions = list(retry_on) if retry_on else False
+    return ray.remote(function).options(max_retries=max_retries, retry_exceptions=retry_exceptions)
 
 
 def collect_in_order(refs: Sequence[Any], commit: Callable[[int, Any], None]) -> None:
