@@ -4,7 +4,9 @@ Chunks hold whole episodes (all their budgets, so the MSP sweep shares prefixes 
 worker) in plan order. A worker keeps one scene cache for all the chunks it plays. The driver
 resumes like the local runner (episodes already in the folder are not sent), appends each
 chunk's records in plan order, never a record whose key is already there, and writes the
-summary at the end: the folder is what ``vlln eval`` without ``--ray`` writes.
+summary at the end: the folder is what ``vlln eval`` without ``--ray`` writes. The ``vlln``
+agent's model is loaded once per node, by a server its workers share
+(:mod:`vlln.cluster.model_server`).
 """
 
 from __future__ import annotations
