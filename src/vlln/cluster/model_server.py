@@ -31,7 +31,7 @@ from vlln.agents.local.backend import TransformersBackend
 from vlln.agents.local.batching import DEFAULT_MAX_BATCH, BatchingModel
 from vlln.agents.local.options import LocalModelSettings, check_vlln_options
 from vlln.agents.model.backend import ModelReply
-from vlln.cluster.scheduler import import_ray
+from vlln.cluster.scheduler import ClusterError, import_ray
 from vlln.errors import ConfigError, VllnError
 from vlln.eval.config import EvalConfig
 from vlln.prompt import Conversation
@@ -100,8 +100,9 @@ class ModelServer:
         try:
             backend = TransformersBackend(settings.model_dir, settings.device, settings.max_tokens)
             self.model = BatchingModel(backend, max_batch)
-        except VllnError as error:  # reported by ready(), as one line on the driver
-            self.error = str(error)
+        except Exception as error:  # reported by ready(), as one line on the driver
+            self.error = f"the model server on node {self.node_id[:12]} could not load the model: "
+            self.error += _one_line(error)
 
     async def ready(self) -> str | None:
         """None once the model is loaded, else why it could not be."""
@@ -124,6 +125,12 @@ class ModelServer:
             model.largest_batch,
             self.restarted,
         )
+
+
+def _one_line(error: Exception) -> str:
+    """Our own errors as they are; anything else (a broken checkpoint) with its type."""
+    text = str(error) if isinstance(error, VllnError) else f"{type(error).__name__}: {error}"
+    return text.strip().splitlines()[0][:300]
 
 
 class ServedModel:
@@ -201,7 +208,13 @@ def start_model_servers(
         ).remote(settings, options.max_batch)
         for node in nodes
     }
-    errors = ray.get([server.ready.remote() for server in servers.values()])
+    try:
+        errors = ray.get([server.ready.remote() for server in servers.values()])
+    except ray.exceptions.RayActorError as error:
+        stop_model_servers(servers)
+        raise ClusterError(
+            f"a model server died while loading the model (out of memory?): {type(error).__name__}"
+        ) from None
     failed = next((error for error in errors if error is not None), None)
     if failed is not None:
         stop_model_servers(servers)
