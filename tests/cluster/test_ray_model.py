@@ -159,13 +159,14 @@ def test_a_killed_model_server_fails_its_chunk_or_is_restarted_and_no_episode_ch
     # whole episodes (the local run's) were written, none from a model that stopped answering.
     stop, killed = _kill_the_server_once(out / "episodes.jsonl", after_lines=1)
     try:
-        with pytest.raises(ClusterError, match="ModelServerLost"):
+        with pytest.raises(ClusterError, match="ModelServerLost: the model server died") as error:
             run_ray_evaluation(
                 config, out, cache_dir=splits, episodes_per_chunk=1, max_retries=0, progress=False
             )
     finally:
         stop.set()
     assert killed, "the model server was not caught running"
+    assert "\n" not in str(error.value)
     saved = _records_without_timing(out)
     assert 1 <= len(saved) < len(expected)
     assert all(record == expected[record["episode_id"], record["budget"]] for record in saved)

@@ -79,10 +79,18 @@ def collect_in_order(refs: Sequence[Any], commit: Callable[[int, Any], None]) ->
                 for ref_left in pending:
                     ray.cancel(ref_left)
                 raise ClusterError(
-                    f"chunk {index} failed on the cluster after its retries: "
-                    f"{type(error).__name__}: {str(error)[:500]}; finished results are saved, "
-                    "rerun the same command to resume"
+                    f"chunk {index} failed on the cluster after its retries: {_reason(error)}; "
+                    "finished results are saved, rerun the same command to resume"
                 ) from None
         while next_index in ready:
             commit(next_index, ready.pop(next_index))
             next_index += 1
+
+
+def _reason(error: Exception) -> str:
+    """One line on why a task failed: the exception raised in it (not Ray's wrapper with the
+    remote traceback), or what happened to its worker."""
+    cause = getattr(error, "cause", None)
+    reason = cause if isinstance(cause, Exception) else error
+    lines = str(reason).strip().splitlines()
+    return f"{type(reason).__name__}: {lines[0][:500] if lines else ''}"
