@@ -109,8 +109,8 @@ class ModelServer:
         return self.error
 
     async def generate(self, conversation: Conversation, images: Sequence[bytes]) -> ModelReply:
-        if self.model is None:
-            return ModelReply(text=None, error=self.error)
+        if self.model is None:  # a restart whose load failed: no reply is ever coming
+            raise ModelServerLost(self.error or "no model")
         return await self.model.generate(conversation, images)
 
     async def stats(self) -> ServerStats:
@@ -155,6 +155,10 @@ class ServedModel:
             reply: ModelReply = ray.get(self.server.generate.remote(conversation, list(images)))
         except ray.exceptions.RayActorError as error:
             self.lost = f"the model server died: {type(error).__name__}"
+            return ModelReply(text=None, error=self.lost)
+        except ModelServerLost as error:  # raised in the server, wrapped by Ray
+            cause = getattr(error, "cause", error)
+            self.lost = str(cause).strip()[:300]
             return ModelReply(text=None, error=self.lost)
         waited_ms = (time.perf_counter() - started) * 1000.0
         return ModelReply(
