@@ -48,6 +48,11 @@ def _eval(args: argparse.Namespace) -> int:
     cache_dir = None if args.cache_dir is None else Path(args.cache_dir)
     if args.ray is not None:
         from vlln.cluster.evaluation import run_ray_evaluation
+        from vlln.cluster.model_server import ServerStats, ServingOptions
+
+        def report_servers(stats: list[ServerStats]) -> None:
+            for server in stats:
+                print(f"model server: {server.describe()}", file=sys.stderr)
 
         if args.scenes is not None:
             raise ConfigError("--scenes and --ray do not mix yet: evaluate scanned scenes locally")
@@ -60,6 +65,8 @@ def _eval(args: argparse.Namespace) -> int:
             max_retries=args.retries,
             progress=not args.quiet,
             sweep=not args.no_sweep,
+            serving=ServingOptions(args.model_cpus, args.model_gpus, args.model_batch),
+            on_model_stats=report_servers,
         )
     else:
         scenes = SceneCache(scenes_dir=args.scenes)
@@ -99,6 +106,7 @@ def _agent_options(args: argparse.Namespace) -> dict[str, str]:
         "max_retries": args.model_retries,
         "cache_dir": None if args.model_cache is None else str(Path(args.model_cache).resolve()),
         "device": args.device,
+        "max_tokens": args.max_tokens,
     }
     return {name: str(value) for name, value in flags.items() if value is not None}
 
@@ -182,6 +190,17 @@ def add_eval_commands(commands: Commands) -> None:
     )
     add_ray_options(run, chunks=True)
     model.add_argument("--device", help="vlln: torch device (default cuda if present, else cpu)")
+    model.add_argument("--max-tokens", type=int, help="longest model reply in tokens (default 128)")
+    served = run.add_argument_group("the vlln agent's model server on each Ray node (docs/ray.md)")
+    served.add_argument("--model-cpus", type=float, default=1.0, help="its CPUs (default 1)")
+    served.add_argument(
+        "--model-gpus",
+        type=float,
+        help="its GPUs (default 1 when the cluster has GPUs and --device is not cpu, else 0)",
+    )
+    served.add_argument(
+        "--model-batch", type=int, default=8, help="most requests answered at once (default 8)"
+    )
     run.set_defaults(handler=_eval)
 
     score = commands.add_parser("score", help="recompute every metric from run directories")

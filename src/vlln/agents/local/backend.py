@@ -3,8 +3,9 @@
 Implements :class:`vlln.agents.model.backend.VisionLanguageModel` for the model-agent loop.
 Loaded once per process (:func:`load_backend`) and reused for every episode. Decoding is
 greedy with at most 128 new tokens, as the reference evaluates. :meth:`generate_batch` answers
-several conversations in one padded forward pass, for callers that play episodes side by side
-(and ``vlln bench agent``); the evaluation runner plays one episode at a time per process.
+several conversations in one padded forward pass, for callers that play episodes side by side:
+the model server of ``vlln eval --ray`` (:mod:`vlln.cluster.model_server`) and ``vlln bench
+agent``; the local evaluation runner plays one episode at a time per process.
 """
 
 from __future__ import annotations
@@ -79,6 +80,21 @@ class TransformersBackend:
         except RuntimeError as error:  # out of device memory and the like: a failed call
             return ModelReply(text=None, error=f"{type(error).__name__}: {error}"[:300])
 
+    def generate_many(
+        self, calls: Sequence[tuple[Conversation, Sequence[bytes]]]
+    ) -> list[ModelReply]:
+        """The replies to several calls of :meth:`generate`, in one batch when it fits (greedy
+        decoding with left padding gives each the reply it gets alone); when the batch fails
+        (out of device memory), each call alone, so one bad call fails only itself."""
+        requests = [
+            ChatRequest(conversation, tuple(_decode(data) for data in images))
+            for conversation, images in calls
+        ]
+        try:
+            return self.generate_batch(requests)
+        except RuntimeError:
+            return [self.generate(conversation, images) for conversation, images in calls]
+
     def generate_batch(self, requests: Sequence[ChatRequest]) -> list[ModelReply]:
         """The model's next turn for every request, decoded greedily in one batch."""
         import torch
@@ -128,6 +144,9 @@ def _decode(data: bytes) -> Image.Image:
 
 
 @lru_cache(maxsize=2)
-def load_backend(model_dir: str, device: str | None = None) -> TransformersBackend:
-    """The process's one backend per model folder and device (loaded on first use)."""
-    return TransformersBackend(model_dir, device)
+def load_backend(
+    model_dir: str, device: str | None = None, max_new_tokens: int = MAX_NEW_TOKENS
+) -> TransformersBackend:
+    """The process's one backend per model folder, device and reply length (loaded on first
+    use)."""
+    return TransformersBackend(model_dir, device, max_new_tokens)

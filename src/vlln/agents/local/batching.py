@@ -1,0 +1,63 @@
+"""Requests from many callers answered in batches: what one model shared by a node's workers
+needs (:mod:`vlln.cluster.model_server`).
+
+Requests that arrive while the model is busy wait, and the next forward pass answers up to
+``max_batch`` of them together; no request ever waits for company, so a lone caller is
+answered as fast as without batching. Greedy decoding with left padding gives every request
+the reply it gets alone (tested with the tiny model).
+"""
+
+from __future__ import annotations
+
+import asyncio
+from collections.abc import Sequence
+
+from vlln.agents.local.backend import TransformersBackend
+from vlln.agents.model.backend import ModelReply
+from vlln.errors import ConfigError
+from vlln.prompt import Conversation
+
+DEFAULT_MAX_BATCH = 8
+
+_Waiting = tuple[Conversation, Sequence[bytes], "asyncio.Future[ModelReply]"]
+
+
+class BatchingModel:
+    """``backend`` behind an asyncio queue; the model runs in a thread, so requests keep
+    arriving while it works. Counts what it did, for the run's report."""
+
+    def __init__(self, backend: TransformersBackend, max_batch: int = DEFAULT_MAX_BATCH) -> None:
+        if max_batch < 1:
+            raise ConfigError(f"--model-batch must be at least 1, got {max_batch}")
+        self.backend = backend
+        self.max_batch = max_batch
+        self.requests = self.batches = self.largest_batch = 0
+        self._waiting: list[_Waiting] = []
+        self._drainer: asyncio.Task[None] | None = None  # answering the waiting calls
+
+    async def generate(self, conversation: Conversation, images: Sequence[bytes]) -> ModelReply:
+        """The reply to one call, computed in a batch with the calls waiting beside it."""
+        loop = asyncio.get_running_loop()
+        future: asyncio.Future[ModelReply] = loop.create_future()
+        self._waiting.append((conversation, images, future))
+        self.requests += 1
+        if self._drainer is None or self._drainer.done():
+            self._drainer = loop.create_task(self._drain())
+        return await future
+
+    async def _drain(self) -> None:
+        """Answer waiting calls, up to ``max_batch`` at a time, until none is left."""
+        while self._waiting:
+            batch = self._waiting[: self.max_batch]
+            del self._waiting[: self.max_batch]
+            self.batches += 1
+            self.largest_batch = max(self.largest_batch, len(batch))
+            calls = [(conversation, images) for conversation, images, _ in batch]
+            try:
+                replies = await asyncio.to_thread(self.backend.generate_many, calls)
+            except Exception as error:  # not a failed call (those are replies): a bug
+                for _, _, future in batch:
+                    future.set_exception(error)
+                continue
+            for (_, _, future), reply in zip(batch, replies, strict=True):
+                future.set_result(reply)
