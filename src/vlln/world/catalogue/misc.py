@@ -111,7 +111,7 @@ def build_coat_rack(style: Style, rng: np.random.Generator) -> ObjectModel:
 
 CATEGORIES: list[Category] = [
     Category(
-        name="radiator",
+        name="heater",
         shapes={"column": "column radiator", "panel": "panel radiator"},
         colors=("white", "cream", "gray", "silver", "black"),
         materials=("metal",),

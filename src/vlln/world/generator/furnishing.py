@@ -44,19 +44,19 @@ TABLE_WORDS = ("table", "desk", "island", "counter")  # category names that are 
 SURFACE_HEIGHTS = (0.3, 1.6)  # m; small objects are put on surfaces in this height range
 TALL_WALL_OBJECT = 1.5  # m; wall objects this tall (curtains) hang on outer walls only
 SEAT_ITEM_HEIGHT = 0.3  # m; seats and beds take only low things lying flat
-SOFT_SUPPORTS = ("bed", "sofa", "armchair", "bench", "beanbag", "ottoman", "crib")
+SOFT_SUPPORTS = ("bed", "couch", "armchair", "bench", "beanbag", "ottoman", "crib")
 # Small objects that belong on particular furniture go there when the room has it.
 PREFERRED_SUPPORTS: dict[str, tuple[str, ...]] = {
-    "pillow": ("bed", "sofa", "armchair", "bench"),
-    "tv": ("tv stand", "cabinet", "chest of drawers", "dresser"),
+    "pillow": ("bed", "couch", "armchair", "bench"),
+    "tv": ("tv stand", "cabinet", "drawer", "dresser"),
     "computer monitor": ("desk",),
     "keyboard": ("desk",),
     "printer": ("desk", "cabinet", "shelf"),
-    "microwave": ("kitchen counter", "kitchen island"),
-    "coffee machine": ("kitchen counter", "kitchen island"),
-    "kettle": ("kitchen counter", "kitchen island", "stove"),
-    "toaster": ("kitchen counter", "kitchen island"),
-    "table lamp": ("nightstand", "side table", "desk", "dresser", "chest of drawers"),
+    "microwave": ("counter", "kitchen island"),
+    "coffee machine": ("counter", "kitchen island"),
+    "kettle": ("counter", "kitchen island", "stove"),
+    "toaster": ("counter", "kitchen island"),
+    "table lamp": ("nightstand", "side table", "desk", "dresser", "drawer"),
 }
 FREE_STANDING = (Placement.FLOOR, Placement.AT_TABLE)  # may stand on rugs
 FREE_STANDING_WORDS = tuple(p.value for p in FREE_STANDING)

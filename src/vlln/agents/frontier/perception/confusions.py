@@ -16,13 +16,13 @@ from vlln.world.materials import COLORS
 # Groups of catalogue categories a detector confuses with each other (shape and use alike).
 LOOKALIKE_GROUPS: tuple[tuple[str, ...], ...] = (
     ("chair", "armchair", "stool"),
-    ("armchair", "sofa"),
+    ("armchair", "couch"),
     ("stool", "ottoman", "beanbag"),
     ("bench", "ottoman"),
     ("table", "desk", "coffee table", "side table", "kitchen island"),
     ("side table", "nightstand"),
-    ("kitchen counter", "kitchen island"),
-    ("cabinet", "chest of drawers", "dresser", "nightstand", "wardrobe"),
+    ("counter", "kitchen island"),
+    ("cabinet", "drawer", "dresser", "nightstand", "wardrobe"),
     ("bookshelf", "shelf", "shoe rack", "tv stand"),
     ("bed", "crib"),
     ("table lamp", "floor lamp"),
@@ -35,11 +35,11 @@ LOOKALIKE_GROUPS: tuple[tuple[str, ...], ...] = (
     ("dishwasher", "washing machine"),
     ("refrigerator", "wardrobe"),
     ("rug", "bath mat"),
-    ("basket", "laundry basket", "trash can", "box"),
+    ("basket", "hamper", "garbage", "box"),
     ("bathtub", "shower"),
-    ("bicycle", "exercise bike"),
-    ("exercise bike", "treadmill"),
-    ("backpack", "suitcase"),
+    ("bicycle", "excercise equipment"),
+    ("excercise equipment", "treadmill"),
+    ("backpack", "luggage"),
 )
 
 # Materials that look alike under indoor light.
