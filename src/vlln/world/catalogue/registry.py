@@ -67,16 +67,21 @@ class Catalogue:
 def default_catalogue() -> Catalogue:
     """Every built-in category."""
     from vlln.world.catalogue import (
+        appliances,
         bathroom,
         bedroom,
         decor,
         electronics,
+        fixtures,
+        household,
         kitchen,
+        leisure,
         misc,
         seating,
         storage,
         tables,
         tableware,
+        textiles,
     )
 
     modules = (
@@ -90,5 +95,10 @@ def default_catalogue() -> Catalogue:
         decor,
         tableware,
         misc,
+        appliances,
+        household,
+        textiles,
+        fixtures,
+        leisure,
     )
     return Catalogue([c for module in modules for c in module.CATEGORIES])

@@ -35,6 +35,7 @@ ARRANGEMENTS: dict[str, tuple[str, str]] = {
     "nightstand": ("bed", "beside"),
     "coffee table": ("couch", "in front"),
     "tv stand": ("couch", "across"),
+    "range hood": ("stove", "above"),
 }
 COVERING_PHASE = 3.5  # rugs go down after the furniture that may not stand on them
 STYLE_REUSE = 0.6  # chance that an instance takes its room's style for the category

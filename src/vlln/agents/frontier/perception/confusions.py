@@ -40,6 +40,22 @@ LOOKALIKE_GROUPS: tuple[tuple[str, ...], ...] = (
     ("bicycle", "excercise equipment"),
     ("excercise equipment", "treadmill"),
     ("backpack", "luggage"),
+    ("oven", "microwave", "dishwasher"),
+    ("clothes dryer", "washing machine"),
+    ("footstool", "ottoman"),
+    ("cushion", "pillow"),
+    ("blanket", "sheet", "towel"),
+    ("blinds", "curtain"),
+    ("switch", "socket", "plug"),
+    ("hook", "hanger", "coat rack"),
+    ("vanity", "sink"),
+    ("countertop", "counter", "kitchen island"),
+    ("stand", "side table"),
+    ("blackboard", "tv", "picture"),
+    ("water heater", "water cooler"),
+    ("air conditioner", "heater"),
+    ("pool table", "table"),
+    ("cart", "shelf"),
 )
 
 # Materials that look alike under indoor light.
