@@ -118,7 +118,10 @@ def write_catalogue_sheet(catalogue: Catalogue, out: Path, columns: int = COLUMN
         x, y = (k % columns) * cell_w, (k // columns) * cell_h
         thumb = Image.fromarray(view.rgb).resize(THUMB, Image.Resampling.LANCZOS)
         sheet.paste(thumb, (x, y + LABEL_HEIGHT))
-        draw.text((x + 4, y + 2), f"{view.name} ({view.fine_category})", fill="black")
+        label = f"{view.name} ({view.fine_category})"
+        if draw.textlength(label) > cell_w - 8:  # too long for its cell: the name alone
+            label = view.name
+        draw.text((x + 4, y + 2), label, fill="black")
     path = out / "catalogue.png"
     sheet.save(path)
     return path

@@ -7,6 +7,7 @@ floor). The small ones are drawn a little larger than life so an agent can see t
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
@@ -81,9 +82,16 @@ def build_plug(style: Style, rng: np.random.Generator) -> ObjectModel:
     thick = 0.008 if charger else 0.012
     bottom = y0 + size / 2 - body[1] / 2
     z_out = 0.012 + body[2] / 2
-    bend = (0.02 * s, bottom * 0.4, z_out + 0.05 * s)
-    beam(b, (0.0, bottom, z_out), bend, thick, thick, cable, PLASTIC)
-    beam(b, bend, (0.05 * s, thick / 2, z_out + 0.12 * s), thick, thick, cable, PLASTIC)
+    # the cable sags from the plug in a curve to the floor, then lies along it in a loop
+    points = [(0.0, bottom, z_out)]
+    for k in range(1, 5):
+        f = k / 4
+        points.append(
+            (0.03 * s * f, bottom * (1.0 - f) ** 1.5, z_out + 0.08 * s * math.sin(f * 1.6))
+        )
+    points += [(0.12 * s, 0.0, z_out + 0.16 * s), (0.22 * s, 0.0, z_out + 0.08 * s)]
+    for p0, p1 in itertools.pairwise(points):
+        beam(b, p0, p1, thick, thick, cable, PLASTIC)
     return ObjectModel(standing_on_floor(b.build()))
 
 

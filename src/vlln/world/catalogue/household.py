@@ -144,7 +144,7 @@ def build_stand(style: Style, rng: np.random.Generator) -> ObjectModel:
         b.box((0.0, h / 2, 0.0), (w, h - 0.1 * s, w), color, mat)
         b.box((0.0, h - 0.025 * s, 0.0), (w + 0.06, 0.05 * s, w + 0.06), shade(color, 0.9), mat)
         return ObjectModel(b.build(), [Surface(h, (0.0, 0.0), (w + 0.06, w + 0.06))])
-    r, h = 0.17 * s, float(rng.uniform(0.6, 0.8)) * s
+    r, h = 0.13 * s, float(rng.uniform(0.85, 1.0)) * s  # taller and slimmer than a stool
     b.cylinder((0.0, h - 0.03, 0.0), r, 0.03, color, mat, segments=14)
     ring_y = h * 0.35
     for k in range(3):
@@ -318,7 +318,7 @@ CATEGORIES: list[Category] = [
     ),
     Category(
         name="stand",
-        shapes={"plant": "plant stand", "pedestal": "display pedestal"},
+        shapes={"pedestal": "display pedestal", "plant": "plant stand"},
         colors=(*WOOD_COLORS, "gold"),
         materials=("wood", "metal", "marble"),
         placement=Placement.CORNER,

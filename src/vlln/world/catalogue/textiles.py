@@ -60,7 +60,7 @@ def _folded_stack(
 
 
 def build_blanket(style: Style, rng: np.random.Generator) -> ObjectModel:
-    """A folded blanket with a fringe, or a rolled one tied with a band."""
+    """A folded blanket with a woven stripe across it, or a rolled one tied with a band."""
     s = style.scale
     color, mat = color_rgb(style.color), material_index(style.material)
     b = MeshBuilder()
@@ -73,9 +73,10 @@ def build_blanket(style: Style, rng: np.random.Generator) -> ObjectModel:
         return ObjectModel(b.build())
     w, d = float(rng.uniform(0.5, 0.6)) * s, 0.35 * s
     top = _folded_stack(b, style, (w, d), 3, 0.035 * s)
-    for k in range(9):  # fringe on the visible side
-        x = -w / 2 + (k + 0.5) * w / 9
-        b.box((x, top * 0.5, d / 2 + 0.01), (0.015, top * 0.8, 0.03), shade(color, 0.85), mat)
+    stripe = shade(color, 0.55)
+    for x in (-w * 0.3, w * 0.3):  # stripes over the top and down the folded front
+        b.box((x, top + 0.001, 0.0), (0.04 * s, 0.002, d - 0.02), stripe, mat, faces="+y")
+        b.box((x, top / 2, d / 2 + 0.002), (0.04 * s, top, 0.004), stripe, mat, faces="+z")
     return ObjectModel(b.build())
 
 
