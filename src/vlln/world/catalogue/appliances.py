@@ -72,8 +72,8 @@ def build_range_hood(style: Style, rng: np.random.Generator) -> ObjectModel:
         b.box((0.0, 0.07 * s, d + 0.005), (w * 0.9, 0.02, 0.01), BLACK, GLASS, faces="+z+y-y")
         return ObjectModel(b.build())
     top_y, canopy_d, stack_w = 0.3 * s, 0.22 * s, 0.28 * s
-    front = np.array
-    for sx in (-1.0, 1.0):  # side triangles, drawn as narrow quads
+    front = np.array  # a point or direction
+    for sx in (-1.0, 1.0):  # the sides: trapezoids from the canopy's edge to the stack
         corners = [
             front([sx * w / 2, 0.06 * s, 0.0]),
             front([sx * w / 2, 0.06 * s, d]),

@@ -9,9 +9,10 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import NDArray
 
 from vlln.world.catalogue.base import Category, ObjectModel, Placement, Style
-from vlln.world.catalogue.parts import beam, facing_polygon, ring, shade, standing_on_floor
+from vlln.world.catalogue.parts import beam, ring, shade, standing_on_floor
 from vlln.world.materials import Rgb, color_rgb, material_index
 from vlln.world.mesh import MeshBuilder
 
@@ -84,6 +85,23 @@ def build_drum(style: Style, rng: np.random.Generator) -> ObjectModel:
     return ObjectModel(standing_on_floor(b.build()))
 
 
+def _triangle(
+    b: MeshBuilder,
+    corners: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]],
+    outward: NDArray[np.float64],
+    color: Rgb,
+    mat: int,
+) -> None:
+    """One flat triangle facing ``outward``."""
+    p = np.array(corners)
+    normal = np.cross(p[1] - p[0], p[2] - p[0])
+    if float(np.dot(normal, outward)) < 0.0:
+        p, normal = p[::-1], -normal
+    normal /= float(np.linalg.norm(normal))
+    uv = np.array([(0.0, 0.0), (1.0, 0.0), (0.5, 1.0)])
+    b.add_triangles(p, np.tile(normal, (3, 1)), uv, color, mat)
+
+
 def build_umbrella(style: Style, rng: np.random.Generator) -> ObjectModel:
     """A long closed umbrella on its tip with a crook handle, or an open one drying, its
     canopy of eight panels resting on the floor."""
@@ -123,8 +141,8 @@ def build_umbrella(style: Style, rng: np.random.Generator) -> ObjectModel:
         mid = (p0 + p1) / 2
         out = np.array([mid[0], 0.6 * r, mid[2]])
         tone = color if k % 2 == 0 else shade(color, 0.85)
-        facing_polygon(b, [p0, p1, apex, apex + (p0 - apex) * 0.0001], out, tone, mat)
-        facing_polygon(b, [p0, p1, apex, apex + (p0 - apex) * 0.0001], -out, shade(tone, 0.7), mat)
+        _triangle(b, (p0, p1, apex), out, tone, mat)
+        _triangle(b, (p0, p1, apex), -out, shade(tone, 0.7), mat)  # the inside, seen below
         b.cylinder((p0[0], 0.0, p0[2]), 0.01, 0.025, SILVER, METAL, segments=5)
     b.cylinder((0.0, rise + 0.02, 0.0), 0.008, 0.05, SILVER, METAL, segments=6)
     beam(
