@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
+from vlln.errors import ConfigError
 from vlln.sim.camera import CameraSpec
 from vlln.viz.catalogue_sheet import render_category, write_catalogue_sheet
 from vlln.world.catalogue import appliances, fixtures, household, leisure, textiles
@@ -139,3 +140,9 @@ def test_the_contact_sheet_tiles_every_category(tmp_path: Path) -> None:
     assert Image.open(tmp_path / "person.png").size == (640, 480)
     image = np.asarray(Image.open(sheet))
     assert image.shape[0] >= 160 and image.shape[1] >= 2 * 213
+
+
+def test_the_sheet_wants_a_folder(tmp_path: Path) -> None:
+    (tmp_path / "file").write_text("")
+    with pytest.raises(ConfigError, match="is a file, not a directory"):
+        write_catalogue_sheet(default_catalogue(), tmp_path / "file")

@@ -16,6 +16,7 @@ import numpy as np
 from numpy.typing import NDArray
 from PIL import Image, ImageDraw
 
+from vlln.errors import ConfigError
 from vlln.sim.camera import CameraSpec
 from vlln.sim.renderer import Renderer
 from vlln.viz.frames import save_png
@@ -106,6 +107,8 @@ def _setting(category: Category, lo: NDArray[np.float64], hi: NDArray[np.float64
 def write_catalogue_sheet(catalogue: Catalogue, out: Path, columns: int = COLUMNS) -> Path:
     """Render every category to ``out/<name>.png`` and tile them, labelled, into
     ``out/catalogue.png``; returns the sheet's path."""
+    if out.exists() and not out.is_dir():
+        raise ConfigError(f"--out {out} is a file, not a directory; give a directory")
     out.mkdir(parents=True, exist_ok=True)
     views = [render_category(category) for category in catalogue]
     for view in views:
