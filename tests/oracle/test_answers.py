@@ -20,6 +20,7 @@ from vlln.sim.follower import GreedyFollower
 from vlln.sim.renderer import Frame
 from vlln.sim.simulator import Simulator, SimulatorConfig
 from vlln.sim.viewpoints import view_points
+from vlln.world.catalogue.aliases import ALIASES
 from vlln.world.frame import wrap_angle, yaw_of
 from vlln.world.generator import generate_house
 from vlln.world.model import ObjectInstance, Room
@@ -418,6 +419,22 @@ def test_relation_answers_name_real_neighbours(sim: Simulator) -> None:
         assert support.category in answer, answer
         checked += 1
     assert checked >= 5
+
+
+def test_relation_questions_may_name_a_category_by_its_earlier_name(sim: Simulator) -> None:
+    house = sim.house
+    earlier = {name: alias for alias, name in ALIASES.items()}
+    asked = 0
+    for relation in house.relations:
+        target, other = house.instance(relation.subject), house.instance(relation.object)
+        if other.category not in earlier or not _goals(sim, target):
+            continue
+        oracle = _oracle(sim, target)
+        question = f"Is it {relation.word} the {earlier[other.category]}?"
+        answer = _ask(oracle, sim, AgentState((0.0, 0.0, 0.0)), question)
+        assert answer.startswith("Yes") and other.category in answer, (question, answer)
+        asked += 1
+    assert asked >= 3
 
 
 def test_unknown_attributes_are_not_invented(sim: Simulator) -> None:

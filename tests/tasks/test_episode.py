@@ -35,7 +35,7 @@ def make_episode(index: int, info: dict[str, Any] | None = None) -> Episode:
         scene_id=f"house_{index:04d}/house_{index:04d}.glb",
         start_position=(0.1 * index, 0.0, 3.0),
         start_rotation=(0.0, 0.7071, 0.0, 0.7071),
-        object_category="sofa",
+        object_category="couch",
         goals=(target, distractor),
         instruction=Instruction(
             task_type="ign",
@@ -95,6 +95,17 @@ def test_file_layout_matches_the_released_format(tmp_path: Path) -> None:
         "instruction_info": ["color"],
     }
     assert two["instruction"]["instruction_info"] is None
+
+
+def test_an_earlier_category_name_reads_as_the_catalogue_name(tmp_path: Path) -> None:
+    episode = raw_episode()
+    episode["object_category"] = "sofa"
+    (back,) = read_episodes(write_raw(tmp_path / "e.json.gz", {"episodes": [episode]}))
+    assert back.object_category == "couch"
+    del episode["object_category"]
+    episode["goals"][0]["object_category"] = "trash can"
+    (back,) = read_episodes(write_raw(tmp_path / "g.json.gz", {"episodes": [episode]}))
+    assert back.object_category == "garbage"
 
 
 def test_reads_integers_nulls_and_the_accepted_extras(tmp_path: Path) -> None:

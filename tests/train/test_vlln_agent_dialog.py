@@ -67,12 +67,16 @@ def test_a_checkpoint_trained_on_dialog_asks_and_the_answers_are_recorded(
     questions = [output.question for output in outputs if isinstance(output, TalkOutput)]
     # The model opens with questions; each asked one is its own <talk> output, in order.
     assert isinstance(outputs[0], TalkOutput), calls[0].text
-    assert 1 <= len(record.dialog) <= record.budget
     assert [turn.question for turn in record.dialog] == questions[: len(record.dialog)]
     assert record.actions[: len(record.dialog)] == ["TALK"] * len(record.dialog)
-    # The rule oracle answered every question within the budget...
-    for turn in record.dialog:
+    # The rule oracle answered every question within the budget, and refused any beyond it
+    # (a model trained on questions alone may keep asking)...
+    within, beyond = record.dialog[: record.budget], record.dialog[record.budget :]
+    assert within
+    for turn in within:
         assert turn.answered and turn.answer and turn.backend == "rules"
-    # ...and each exchange went into the prompt of the model's next call.
-    for before, after in pairwise(calls[: len(record.dialog) + 1]):
+    for turn in beyond:
+        assert not turn.answered and turn.question_type == "refused"
+    # ...and each answered exchange went into the prompt of the model's next call.
+    for before, after in pairwise(calls[: len(within) + 1]):
         assert after.prompt_tokens > before.prompt_tokens

@@ -20,7 +20,7 @@ BY_NAME = {c.name: c for c in CATEGORIES}
 ENVELOPES: dict[str, tuple[tuple[float, float], tuple[float, float]]] = {
     "chair": ((0.35, 0.75), (0.7, 1.2)),
     "armchair": ((0.65, 1.1), (0.65, 1.3)),
-    "sofa": ((1.2, 3.0), (0.65, 1.05)),
+    "couch": ((1.2, 3.0), (0.65, 1.05)),
     "stool": ((0.25, 0.5), (0.35, 0.95)),
     "bench": ((0.9, 1.7), (0.35, 0.6)),
     "ottoman": ((0.4, 0.7), (0.3, 0.55)),
@@ -35,10 +35,10 @@ ENVELOPES: dict[str, tuple[tuple[float, float], tuple[float, float]]] = {
     "wardrobe": ((0.8, 1.85), (1.6, 2.4)),
     "bookshelf": ((0.65, 1.2), (0.7, 2.1)),
     "dresser": ((1.0, 1.55), (0.65, 1.9)),
-    "chest of drawers": ((0.65, 1.0), (0.85, 1.5)),
+    "drawer": ((0.65, 1.0), (0.85, 1.5)),
     "shelf": ((0.45, 1.1), (0.1, 0.45)),
     "shoe rack": ((0.6, 1.0), (0.4, 1.15)),
-    "kitchen counter": ((1.5, 3.0), (0.75, 1.05)),
+    "counter": ((1.5, 3.0), (0.75, 1.05)),
     "bed": ((1.7, 2.5), (0.8, 1.4)),
     "nightstand": ((0.35, 0.65), (0.45, 0.7)),
     "crib": ((1.0, 1.5), (0.75, 1.2)),
@@ -52,11 +52,11 @@ ENVELOPES: dict[str, tuple[tuple[float, float], tuple[float, float]]] = {
     "mirror": ((0.45, 0.9), (0.5, 1.0)),
     "toilet paper": ((0.1, 0.25), (0.15, 0.35)),
     "bath mat": ((0.45, 1.05), (0.005, 0.02)),
-    "laundry basket": ((0.35, 0.65), (0.4, 0.8)),
+    "hamper": ((0.35, 0.65), (0.4, 0.8)),
 }
 FLAT_FLOOR_CATEGORIES = {"rug", "bath mat"}
 FLOOR_PLACEMENTS = {Placement.AGAINST_WALL, Placement.FLOOR, Placement.AT_TABLE, Placement.CORNER}
-COMMON = ("chair", "table", "cabinet", "sofa", "bed", "pillow", "towel", "sink", "toilet", "shelf")
+COMMON = ("chair", "table", "cabinet", "couch", "bed", "pillow", "towel", "sink", "toilet", "shelf")
 
 
 def sample_styles(category: Category) -> list[Style]:
@@ -194,8 +194,8 @@ def test_surfaces_lie_on_real_tops_inside_the_footprint(category: Category) -> N
 
 @pytest.mark.parametrize(
     "name",
-    ["table", "desk", "kitchen counter", "bookshelf", "shelf", "nightstand", "dresser", "bed",
-     "sofa", "chest of drawers", "coffee table", "side table", "kitchen island", "tv stand"],
+    ["table", "desk", "counter", "bookshelf", "shelf", "nightstand", "dresser", "bed",
+     "couch", "drawer", "coffee table", "side table", "kitchen island", "tv stand"],
 )  # fmt: skip
 def test_furniture_with_a_top_offers_a_surface(name: str) -> None:
     category = BY_NAME[name]

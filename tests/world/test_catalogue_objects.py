@@ -25,11 +25,11 @@ BY_NAME = {c.name: c for c in CATEGORIES}
 
 REQUIRED = (
     "refrigerator", "stove", "microwave", "dishwasher", "washing machine", "kettle", "toaster",
-    "coffee machine", "trash can", "tv", "computer monitor", "laptop", "keyboard", "printer",
+    "coffee machine", "garbage", "tv", "computer monitor", "laptop", "keyboard", "printer",
     "speaker", "game console", "plant", "floor lamp", "table lamp", "ceiling light", "picture",
     "clock", "vase", "candle", "statue", "curtain", "fireplace", "cup", "bowl", "plate",
-    "bottle", "book", "teapot", "fruit bowl", "piano", "guitar", "treadmill", "exercise bike",
-    "exercise ball", "bicycle", "suitcase", "basket", "box", "fan", "radiator", "coat rack",
+    "bottle", "book", "teapot", "fruit bowl", "piano", "guitar", "treadmill",
+    "excercise equipment", "bicycle", "luggage", "basket", "box", "fan", "heater", "coat rack",
     "backpack",
 )  # fmt: skip
 
@@ -44,7 +44,7 @@ ENVELOPES: dict[str, tuple[tuple[float, float], tuple[float, float]]] = {
     "kettle": ((0.15, 0.35), (0.15, 0.35)),
     "toaster": ((0.2, 0.4), (0.15, 0.25)),
     "coffee machine": ((0.15, 0.35), (0.25, 0.5)),
-    "trash can": ((0.2, 0.45), (0.25, 0.95)),
+    "garbage": ((0.2, 0.45), (0.25, 0.95)),
     "tv": ((0.8, 1.5), (0.5, 1.0)),
     "computer monitor": ((0.4, 0.9), (0.3, 0.55)),
     "laptop": ((0.25, 0.4), (0.015, 0.3)),
@@ -74,13 +74,12 @@ ENVELOPES: dict[str, tuple[tuple[float, float], tuple[float, float]]] = {
     "piano": ((1.2, 2.3), (0.95, 1.5)),
     "guitar": ((0.25, 0.6), (0.9, 1.4)),
     "treadmill": ((1.3, 2.2), (1.0, 1.7)),
-    "exercise bike": ((0.75, 1.3), (0.9, 1.45)),
-    "exercise ball": ((0.45, 0.8), (0.45, 0.8)),
+    "excercise equipment": ((0.45, 1.3), (0.45, 1.45)),
     "bicycle": ((1.4, 2.0), (0.8, 1.2)),
-    "suitcase": ((0.35, 0.55), (0.55, 1.15)),
+    "luggage": ((0.35, 0.55), (0.55, 1.15)),
     "basket": ((0.3, 0.55), (0.3, 0.7)),
     "box": ((0.3, 0.95), (0.2, 0.75)),
-    "radiator": ((0.5, 1.5), (0.45, 0.75)),
+    "heater": ((0.5, 1.5), (0.45, 0.75)),
     "coat rack": ((0.4, 0.9), (1.5, 2.3)),
     "umbrella stand": ((0.2, 0.35), (0.6, 1.2)),
     "backpack": ((0.2, 0.35), (0.35, 0.65)),
@@ -89,8 +88,16 @@ FLOOR_PLACEMENTS = {Placement.AGAINST_WALL, Placement.FLOOR, Placement.AT_TABLE,
 LARGE_ON_SURFACE = {"tv", "computer monitor"}  # need a wide surface (tv stand, desk)
 CEILING_HEIGHT = 2.7
 TABLEWARE = {c.name for c in tableware.CATEGORIES}
-COMMON = ("plant", "picture", "table lamp", "cup", "bottle", "book", "trash can")
-RARE = ("piano", "guitar", "fireplace", "treadmill", "exercise bike", "bicycle", "game console")
+COMMON = ("plant", "picture", "table lamp", "cup", "bottle", "book", "garbage")
+RARE = (
+    "piano",
+    "guitar",
+    "fireplace",
+    "treadmill",
+    "excercise equipment",
+    "bicycle",
+    "game console",
+)
 SCALES = (0.85, 1.15)
 
 

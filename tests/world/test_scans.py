@@ -77,7 +77,8 @@ def test_geodesics_and_instance_images_agree(house: House, imported: House) -> N
 
 
 def test_category_mapping_knows_synonyms_and_reports_the_rest() -> None:
-    assert map_category("couch") == ("sofa", True)
+    assert map_category("couch") == ("couch", True)
+    assert map_category("sofa") == ("couch", True)
     assert map_category("tv_monitor") == ("tv", True)
     assert map_category("Chair") == ("chair", True)
     assert map_category("chairs") == ("chair", True)

@@ -333,3 +333,8 @@ def test_export_rejects_what_the_format_cannot_express(tmp_path: Path) -> None:
     )
     with pytest.raises(DataFormatError, match="non-finite"):
         export_scene_summary(dataclasses.replace(house, instances=[nan_box]), tmp_path)
+
+
+def test_an_earlier_category_name_reads_as_the_catalogue_name(tmp_path: Path) -> None:
+    house = import_scene_summary(write_json(tmp_path / "s", {"7": GOOD}, REGIONS))
+    assert [inst.category for inst in house.instances] == ["couch"]

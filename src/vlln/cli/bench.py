@@ -65,10 +65,21 @@ def _bench_data(args: argparse.Namespace) -> int:
     return 0
 
 
+def _bench_world(args: argparse.Namespace) -> int:
+    from vlln.bench.world import run_world_benchmark
+
+    run_world_benchmark(houses=args.houses, as_json=args.json)
+    return 0
+
+
 def add_bench_commands(commands: Commands) -> None:
     bench = commands.add_parser("bench", help="speed and memory benchmarks").add_subparsers(
         dest="bench_command", required=True
     )
+    world = bench.add_parser("world", help="catalogue size, objects and CPU time per house")
+    world.add_argument("--houses", type=int, default=20, help="houses 0..N-1 (default 20)")
+    world.add_argument("--json", action="store_true", help="print one JSON object per line")
+    world.set_defaults(handler=_bench_world)
     sim = bench.add_parser("sim", help="renderer, motion and geodesic figures")
     sim.add_argument("--seed", type=int, default=0, help="house seed (default 0)")
     sim.add_argument("--frames", type=int, default=300, help="frames per timing (default 300)")

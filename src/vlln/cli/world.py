@@ -42,6 +42,16 @@ def _world_import(args: argparse.Namespace) -> int:
     return 0
 
 
+def _world_catalogue(args: argparse.Namespace) -> int:
+    from vlln.viz.catalogue_sheet import write_catalogue_sheet
+    from vlln.world.catalogue import default_catalogue
+
+    catalogue = default_catalogue()
+    sheet = write_catalogue_sheet(catalogue, Path(args.out))
+    print(f"rendered {len(catalogue)} categories at 640x480; contact sheet: {sheet}")
+    return 0
+
+
 def add_world_commands(commands: Commands) -> None:
     world = commands.add_parser("world", help="procedural houses").add_subparsers(
         dest="world_command", required=True
@@ -68,3 +78,8 @@ def add_world_commands(commands: Commands) -> None:
     imported.add_argument("scene", help="scene folder <dir>/<scene>/ (.glb + .house or semantic)")
     imported.add_argument("--summary-out", help="also write its scene summary under this folder")
     imported.set_defaults(handler=_world_import)
+    catalogue = world.add_parser(
+        "catalogue", help="render every object category at 640x480 and a contact sheet"
+    )
+    catalogue.add_argument("--out", required=True, help="folder for <category>.png, catalogue.png")
+    catalogue.set_defaults(handler=_world_catalogue)

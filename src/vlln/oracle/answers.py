@@ -31,6 +31,7 @@ from vlln.oracle.knowledge import (
 from vlln.oracle.route import CANNOT_ANSWER
 from vlln.sim.agent import Action, AgentState
 from vlln.sim.renderer import Frame
+from vlln.world.catalogue.aliases import canonical_category
 from vlln.world.frame import wrap_angle, yaw_of
 from vlln.world.materials import MATERIAL_TEXTURE
 from vlln.world.model import ObjectInstance, Room
@@ -240,7 +241,7 @@ def _relation_answer(
         sentence = "It is " + " and ".join(parts) + "."
     if not analysis.yes_no:
         return sentence
-    named = {m.group(1) for m in index.category_pattern.finditer(text)}
+    named = {canonical_category(m.group(1)) for m in index.category_pattern.finditer(text)}
     for relation in own:
         other = index.instances[relation.object]
         if other.category in named and (word is None or relation.word == word):

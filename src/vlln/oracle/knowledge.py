@@ -19,6 +19,7 @@ from numpy.typing import NDArray
 from vlln.oracle.protocol import EpisodeContext
 from vlln.sim.follower import GreedyFollower
 from vlln.sim.geodesic import GeodesicField
+from vlln.world.catalogue.aliases import aliases_of
 from vlln.world.model import House, ObjectInstance, Relation, Room
 
 # Landmarks for route descriptions: big enough to notice from across a room, not so high up
@@ -71,7 +72,7 @@ class HouseIndex:
     instances: dict[int, ObjectInstance]
     relations: dict[int, list[Relation]]  # by subject id, nearest first
     relations_to: dict[int, list[Relation]]  # by object id, nearest first
-    category_pattern: re.Pattern[str]  # finds category names (or their plurals) in text
+    category_pattern: re.Pattern[str]  # finds category names, aliases (or plurals) in text
     landmarks: dict[int, list[ObjectInstance]]  # by room id
     _room_ids: NDArray[np.int64]
     _edges: list[tuple[NDArray[np.float64], NDArray[np.float64]]]  # per room: start, end
@@ -133,7 +134,10 @@ class HouseIndex:
 
 
 def _category_pattern(categories: set[str]) -> re.Pattern[str]:
-    names = "|".join(re.escape(c) for c in sorted(categories, key=len, reverse=True))
+    """Finds the categories and their aliases ("sofa" for a couch); map a match with
+    :func:`~vlln.world.catalogue.aliases.canonical_category`."""
+    words = categories | set(aliases_of(categories))
+    names = "|".join(re.escape(c) for c in sorted(words, key=len, reverse=True))
     return re.compile(rf"\b({names})s?\b" if names else r"(?!)")
 
 

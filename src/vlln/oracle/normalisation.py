@@ -248,7 +248,9 @@ def _object_names() -> re.Pattern[str]:
     """Object names of several words, which :func:`normalise` joins with "_" into one word
     ("the floor_lamp"), so that a pattern for "the" and a noun takes the whole name and the
     "kitchen" of a "kitchen_island" is no room."""
-    names = sorted((n for n in default_catalogue().names if " " in n), key=len, reverse=True)
+    catalogue = default_catalogue()
+    words = [*catalogue.names, *catalogue.aliases]
+    names = sorted((n for n in words if " " in n), key=len, reverse=True)
     return re.compile(r"\b(" + "|".join(re.escape(n) for n in names) + r")(s|es)?\b")
 
 

@@ -203,7 +203,9 @@ _KNOWN_WORDS: frozenset[str] = _KEYWORDS | frozenset(
 @cache
 def _vocabulary() -> frozenset[str]:
     """Every word taken as correctly spelt: keywords, common words and object names."""
-    objects = {word for name in default_catalogue().names for word in name.split()}
+    catalogue = default_catalogue()
+    names = [*catalogue.names, *catalogue.aliases]
+    objects = {word for name in names for word in name.split()}
     return _KNOWN_WORDS | frozenset(objects) | frozenset(f"{word}s" for word in objects)
 
 

@@ -51,6 +51,7 @@ from typing import Any
 
 from vlln.errors import DataFormatError
 from vlln.files import write_bytes_atomic
+from vlln.world.catalogue.aliases import canonical_category
 from vlln.world.model import Point3
 
 Quaternion = tuple[float, float, float, float]  # [x, y, z, w]
@@ -345,6 +346,11 @@ _INSTRUCTION_CATEGORY = re.compile(r"\bthe ([a-z][a-z ]*?)[.,;]", re.IGNORECASE)
 
 
 def _category_of(data: dict[str, Any], instruction: Instruction) -> str:
+    """The catalogue's name (aliases such as "sofa" mapped) of the episode's category."""
+    return canonical_category(_named_category(data, instruction))
+
+
+def _named_category(data: dict[str, Any], instruction: Instruction) -> str:
     """``object_category``, else the target goal's, else from an instance id, else the text."""
     given = data.get("object_category")
     if given is not None:

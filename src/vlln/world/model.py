@@ -10,6 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from enum import IntEnum
 
+from vlln.world.catalogue.aliases import canonical_category
 from vlln.world.mesh import Mesh
 
 Point2 = tuple[float, float]  # floor-plan (x, z), see vlln.world.frame
@@ -174,4 +175,6 @@ class House:
         raise KeyError(f"house {self.name!r} has no room {room_id}")
 
     def instances_of(self, category: str) -> list[ObjectInstance]:
-        return [inst for inst in self.instances if inst.category == category]
+        """The instances of a category, also when it is named by an alias ("sofa")."""
+        name = canonical_category(category)
+        return [inst for inst in self.instances if canonical_category(inst.category) == name]

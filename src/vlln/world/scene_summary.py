@@ -39,6 +39,7 @@ import numpy as np
 
 from vlln.errors import DataFormatError
 from vlln.files import write_text_atomic
+from vlln.world.catalogue.aliases import canonical_category
 from vlln.world.model import (
     Attributes,
     Box3,
@@ -374,6 +375,7 @@ def _parse_objects(
         category = entry.get("category")
         if not (isinstance(category, str) and category):
             raise _bad(path, where, "category", "a non-empty string", category)
+        category = canonical_category(category)
         if "position" in entry:
             _point3(path, where, entry, "position")
         a = _point3(path, where, entry, "min_points")

@@ -366,7 +366,7 @@ CATEGORIES: list[Category] = [
         build=build_bath_mat,
     ),
     Category(
-        name="laundry basket",
+        name="hamper",
         shapes={"round": "laundry basket", "hamper": "laundry hamper"},
         colors=("white", "beige", "gray", "light blue", "brown"),
         materials=("plastic", "fabric", "wood"),

@@ -256,7 +256,7 @@ def build_umbrella_stand(style: Style, rng: np.random.Generator) -> ObjectModel:
 
 CATEGORIES: list[Category] = [
     Category(
-        name="trash can",
+        name="garbage",
         shapes={"pedal": "pedal bin", "swing-top": "swing-top bin", "open": "wastebasket"},
         colors=("silver", "white", "black", "gray", "blue", "green"),
         materials=("metal", "plastic"),
@@ -276,7 +276,7 @@ CATEGORIES: list[Category] = [
         build=build_trash_can,
     ),
     Category(
-        name="suitcase",
+        name="luggage",
         shapes={"hard-shell": "hard-shell suitcase", "soft": "soft suitcase"},
         colors=BAG_COLORS,
         materials=("plastic", "fabric", "leather"),

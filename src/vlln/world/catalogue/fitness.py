@@ -192,6 +192,13 @@ def build_bicycle(style: Style, rng: np.random.Generator) -> ObjectModel:
     return ObjectModel(b.build())
 
 
+def build_exercise_equipment(style: Style, rng: np.random.Generator) -> ObjectModel:
+    """An exercise bike or an exercise ball, by shape."""
+    if style.shape == "ball":
+        return build_exercise_ball(style, rng)
+    return build_exercise_bike(style, rng)
+
+
 CATEGORIES: list[Category] = [
     Category(
         name="treadmill",
@@ -203,22 +210,13 @@ CATEGORIES: list[Category] = [
         build=build_treadmill,
     ),
     Category(
-        name="exercise bike",
-        shapes={"upright": "exercise bike"},
-        colors=GYM_COLORS,
-        materials=("metal", "plastic"),
+        name="excercise equipment",  # the reference's spelling
+        shapes={"bike": "exercise bike", "ball": "exercise ball"},
+        colors=(*GYM_COLORS, "blue", "purple", "pink", "green"),
+        materials=("plastic",),  # a "metal exercise ball" is no thing
         placement=Placement.FLOOR,
-        rooms={"gym": 0.6, "living room": 0.03, "bedroom": 0.03},
-        build=build_exercise_bike,
-    ),
-    Category(
-        name="exercise ball",
-        shapes={"round": "exercise ball"},
-        colors=("blue", "red", "gray", "purple", "pink", "green", "black", "silver"),
-        materials=("plastic",),
-        placement=Placement.FLOOR,
-        rooms={"gym": 0.7, "living room": 0.08, "bedroom": 0.08, "study": 0.04},
-        build=build_exercise_ball,
+        rooms={"gym": 1.3, "living room": 0.1, "bedroom": 0.1, "study": 0.04},
+        build=build_exercise_equipment,
     ),
     Category(
         name="bicycle",

@@ -95,7 +95,8 @@ def build_coat_rack(style: Style, rng: np.random.Generator) -> ObjectModel:
         tip = (0.14 * s * math.cos(a), y + 0.08 * s, 0.14 * s * math.sin(a))
         beam(b, (0.0, y, 0.0), tip, 0.02 * s, 0.02 * s, color, mat)
         hooks.append(tip)
-    for k in rng.choice(6, int(rng.integers(0, 3)), replace=False):
+    behind = [k for k, (x, _, z) in enumerate(hooks) if z < 0.0]  # coats hang at the back
+    for k in rng.choice(behind, min(len(behind), int(rng.integers(0, 3))), replace=False):
         x, y, z = hooks[int(k)]
         coat = color_rgb(COAT_COLORS[int(rng.integers(len(COAT_COLORS)))])
         out = np.array([x, 0.0, z]) / math.hypot(x, z)
@@ -111,7 +112,7 @@ def build_coat_rack(style: Style, rng: np.random.Generator) -> ObjectModel:
 
 CATEGORIES: list[Category] = [
     Category(
-        name="radiator",
+        name="heater",
         shapes={"column": "column radiator", "panel": "panel radiator"},
         colors=("white", "cream", "gray", "silver", "black"),
         materials=("metal",),

@@ -280,7 +280,7 @@ CATEGORIES: list[Category] = [
     ),
     Category(
         name="candle",
-        shapes={"pillar": "pillar candle", "taper": "candlestick"},
+        shapes={"pillar": "pillar candle", "taper": "taper candle"},  # "candlestick" is a category
         colors=("white", "cream", "red", "beige", "purple", "yellow"),
         materials=("plain",),
         placement=Placement.ON_SURFACE,

@@ -6,6 +6,7 @@ from collections.abc import Iterator
 from functools import cache
 
 from vlln.errors import UnknownCategoryError
+from vlln.world.catalogue.aliases import ALIASES, canonical_category
 from vlln.world.catalogue.base import Category
 
 ROOM_TYPES: tuple[str, ...] = (
@@ -23,13 +24,13 @@ ROOM_TYPES: tuple[str, ...] = (
 
 
 class Catalogue:
-    """A fixed set of categories, looked up by name."""
+    """A fixed set of categories, looked up by name or by an alias (see :mod:`.aliases`)."""
 
     def __init__(self, categories: list[Category]) -> None:
         self._by_name: dict[str, Category] = {}
         for category in categories:
-            if category.name in self._by_name:
-                raise ValueError(f"category {category.name!r} is defined twice")
+            if category.name in self._by_name or category.name in ALIASES:
+                raise ValueError(f"category {category.name!r} is defined twice or is an alias")
             self._by_name[category.name] = category
 
     @property
@@ -42,9 +43,15 @@ class Catalogue:
     def __iter__(self) -> Iterator[Category]:
         return iter(self._by_name[name] for name in self.names)
 
+    @property
+    def aliases(self) -> dict[str, str]:
+        """Alias -> category name, for the aliases of categories this catalogue has."""
+        return {alias: name for alias, name in ALIASES.items() if name in self._by_name}
+
     def get(self, name: str) -> Category:
+        """The category called ``name`` or that ``name`` is an alias of."""
         try:
-            return self._by_name[name]
+            return self._by_name[canonical_category(name)]
         except KeyError:
             raise UnknownCategoryError(
                 f"unknown object category {name!r}; the catalogue has {len(self)}: "
@@ -60,16 +67,21 @@ class Catalogue:
 def default_catalogue() -> Catalogue:
     """Every built-in category."""
     from vlln.world.catalogue import (
+        appliances,
         bathroom,
         bedroom,
         decor,
         electronics,
+        fixtures,
+        household,
         kitchen,
+        leisure,
         misc,
         seating,
         storage,
         tables,
         tableware,
+        textiles,
     )
 
     modules = (
@@ -83,5 +95,10 @@ def default_catalogue() -> Catalogue:
         decor,
         tableware,
         misc,
+        appliances,
+        household,
+        textiles,
+        fixtures,
+        leisure,
     )
     return Catalogue([c for module in modules for c in module.CATEGORIES])

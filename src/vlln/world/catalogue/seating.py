@@ -253,7 +253,7 @@ CATEGORIES: list[Category] = [
         build=build_armchair,
     ),
     Category(
-        name="sofa",
+        name="couch",
         shapes={"two-seat": "loveseat", "three-seat": "three-seat sofa", "L-shaped": "corner sofa"},
         colors=UPHOLSTERY_COLORS,
         materials=("fabric", "leather"),

@@ -317,7 +317,7 @@ CATEGORIES: list[Category] = [
         build=build_dresser,
     ),
     Category(
-        name="chest of drawers",
+        name="drawer",
         shapes={"four-drawer": "chest of drawers", "five-drawer": "tall chest of drawers"},
         colors=WOOD_COLORS,
         materials=("wood", "plain"),
@@ -354,7 +354,7 @@ CATEGORIES: list[Category] = [
         build=build_shoe_rack,
     ),
     Category(
-        name="kitchen counter",
+        name="counter",
         shapes={"with doors": "kitchen counter", "with drawers": "drawer counter"},
         colors=PAINT_COLORS,
         materials=("marble", "wood", "plastic"),

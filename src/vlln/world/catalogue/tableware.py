@@ -31,6 +31,7 @@ BOOK_COLORS = (
     "teal",
 )
 PAPER = color_rgb("cream")
+GILT = color_rgb("gold")  # bands on book spines
 PLAIN = material_index("plain")
 
 
@@ -151,11 +152,15 @@ def _book(
         for x in (-1, 1):
             b.box((cx + x * (w - board) / 2, cy, cz), (board, h, d), color, cover)
         b.box((cx, cy, cz + d / 2 - board / 2), (w, h, board), color, cover)
+        for y in (cy + h * 0.32, cy - h * 0.32):  # gilt bands across the spine
+            b.box((cx, y, cz + d / 2 + 0.0005), (w, 0.006, 0.001), GILT, PLAIN, faces="+z")
     else:
         b.box((cx - 0.003, cy, cz), (h - 0.006, w - 2 * board, d - 0.006), PAPER, PLAIN)
         for y in (-1, 1):
             b.box((cx, cy + y * (w - board) / 2, cz), (h, board, d), color, cover)
         b.box((cx + h / 2 - board / 2, cy, cz), (board, w, d), color, cover)
+        for z in (cz + d * 0.32, cz - d * 0.32):
+            b.box((cx + h / 2 + 0.0005, cy, z), (0.001, w, 0.006), GILT, PLAIN, faces="+x")
 
 
 def build_book(style: Style, rng: np.random.Generator) -> ObjectModel:

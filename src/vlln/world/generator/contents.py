@@ -33,8 +33,9 @@ PHASE: dict[Placement, int] = {
 # category -> (the category it is arranged around, how): placed right after its anchor.
 ARRANGEMENTS: dict[str, tuple[str, str]] = {
     "nightstand": ("bed", "beside"),
-    "coffee table": ("sofa", "in front"),
-    "tv stand": ("sofa", "across"),
+    "coffee table": ("couch", "in front"),
+    "tv stand": ("couch", "across"),
+    "range hood": ("stove", "above"),
 }
 COVERING_PHASE = 3.5  # rugs go down after the furniture that may not stand on them
 STYLE_REUSE = 0.6  # chance that an instance takes its room's style for the category

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
+from itertools import chain
 
 import numpy as np
 
@@ -43,20 +44,24 @@ TABLE_HEIGHTS = (0.6, 1.0)  # m; a top in this range is a table for seats "at th
 TABLE_WORDS = ("table", "desk", "island", "counter")  # category names that are worktops
 SURFACE_HEIGHTS = (0.3, 1.6)  # m; small objects are put on surfaces in this height range
 TALL_WALL_OBJECT = 1.5  # m; wall objects this tall (curtains) hang on outer walls only
+WINDOW_COVERINGS = ("curtain", "blinds")  # hang on outer walls only, where windows would be
 SEAT_ITEM_HEIGHT = 0.3  # m; seats and beds take only low things lying flat
-SOFT_SUPPORTS = ("bed", "sofa", "armchair", "bench", "beanbag", "ottoman", "crib")
+SOFT_SUPPORTS = ("bed", "couch", "armchair", "bench", "beanbag", "ottoman", "crib")
 # Small objects that belong on particular furniture go there when the room has it.
 PREFERRED_SUPPORTS: dict[str, tuple[str, ...]] = {
-    "pillow": ("bed", "sofa", "armchair", "bench"),
-    "tv": ("tv stand", "cabinet", "chest of drawers", "dresser"),
+    "pillow": ("bed", "couch", "armchair", "bench"),
+    "cushion": ("couch", "armchair", "bench", "bed"),
+    "blanket": ("bed", "couch", "armchair", "ottoman"),
+    "sheet": ("bed", "drawer", "dresser", "shelf"),
+    "tv": ("tv stand", "cabinet", "drawer", "dresser"),
     "computer monitor": ("desk",),
     "keyboard": ("desk",),
     "printer": ("desk", "cabinet", "shelf"),
-    "microwave": ("kitchen counter", "kitchen island"),
-    "coffee machine": ("kitchen counter", "kitchen island"),
-    "kettle": ("kitchen counter", "kitchen island", "stove"),
-    "toaster": ("kitchen counter", "kitchen island"),
-    "table lamp": ("nightstand", "side table", "desk", "dresser", "chest of drawers"),
+    "microwave": ("counter", "kitchen island"),
+    "coffee machine": ("counter", "kitchen island"),
+    "kettle": ("counter", "kitchen island", "stove"),
+    "toaster": ("counter", "kitchen island"),
+    "table lamp": ("nightstand", "side table", "desk", "dresser", "drawer"),
 }
 FREE_STANDING = (Placement.FLOOR, Placement.AT_TABLE)  # may stand on rugs
 FREE_STANDING_WORDS = tuple(p.value for p in FREE_STANDING)
@@ -220,9 +225,11 @@ class _RoomFurnisher:
     def _on_wall(self, req: PlacementRequest) -> tuple[Pose, str, None] | None:
         # The model's origin (the bottom centre of its back) hangs at the category's height.
         y = req.category.wall_height
-        tall = req.bounds.height > TALL_WALL_OBJECT
+        tall = req.bounds.height > TALL_WALL_OBJECT or req.category.name in WINDOW_COVERINGS
         tries = 2 * POSE_TRIES  # walls have more free room than floors; keep looking
-        for side, pose in poses.against_wall(self.space.interior, req.bounds, self.rng, tries, y):
+        interior = self.space.interior
+        over = self._above_anchors(req, y)
+        for side, pose in chain(over, poses.against_wall(interior, req.bounds, self.rng, tries, y)):
             if tall and side not in self.outer_sides:
                 continue
             box = pose.box(req.bounds)
@@ -235,6 +242,15 @@ class _RoomFurnisher:
             ):
                 return pose, placement_words(Placement.WALL_MOUNTED), None
         return None
+
+    def _above_anchors(self, req: PlacementRequest, y: float) -> Iterator[tuple[str, Pose]]:
+        """Wall poses over the anchors of a category arranged "above" one (see ARRANGEMENTS)."""
+        anchor_name, how = ARRANGEMENTS.get(req.category.name, ("", ""))
+        if how != "above":
+            return
+        for name, side, box in self.anchors:
+            if name == anchor_name:
+                yield from poses.above(self.space.interior, req.bounds, side, box, y)
 
     def _on_surface(self, req: PlacementRequest) -> tuple[Pose, str, _WorldSurface] | None:
         usable = [

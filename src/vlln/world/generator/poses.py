@@ -211,6 +211,24 @@ def across_from(interior: Rect, bounds: LocalBounds, side: str, anchor: Box3) ->
     return [_pose(opposite, turns, fixed, float(np.clip(along, lo, hi)), 0.0)]
 
 
+def above(
+    interior: Rect, bounds: LocalBounds, side: str, anchor: Box3, y: float
+) -> list[tuple[str, Pose]]:
+    """On the wall behind ``anchor`` (which stands against ``side``), centred over it at
+    height ``y``: a range hood over the stove."""
+    turns = dict(WALL_SIDES)[side]
+    span = _slide_range(interior, side, bounds.turned(turns))
+    if span is None:
+        return []
+    fixed, lo, hi = span
+    x0, x1, z0, z1 = bounds.turned(turns)
+    if side in ("z0", "z1"):
+        along = (anchor.min[0] + anchor.max[0]) / 2.0 - (x0 + x1) / 2.0
+    else:
+        along = (anchor.min[2] + anchor.max[2]) / 2.0 - (z0 + z1) / 2.0
+    return [(side, _pose(side, turns, fixed, float(np.clip(along, lo, hi)), y))]
+
+
 def wall_line(room: Rect, side: str) -> tuple[str, float]:
     """The wall line ``(axis, coord)`` of a room side, as used by doors."""
     return {

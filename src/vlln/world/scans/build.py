@@ -16,6 +16,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from vlln.world.catalogue import default_catalogue
+from vlln.world.catalogue.aliases import canonical_category
 from vlln.world.mesh import Mesh
 from vlln.world.model import (
     Attributes,
@@ -35,8 +36,7 @@ STRUCTURE_CATEGORIES = frozenset(
 )
 DOOR_FRAME_CATEGORIES = frozenset({"door frame", "doorframe"})
 # Common scan names for catalogue categories (the scans' vocabularies are larger than ours).
-SYNONYMS: dict[str, str] = {
-    "couch": "sofa",
+SYNONYMS: dict[str, str] = {  # raw annotation words; the catalogue's aliases come on top
     "television": "tv",
     "tv monitor": "tv",
     "monitor": "computer monitor",
@@ -44,17 +44,16 @@ SYNONYMS: dict[str, str] = {
     "houseplant": "plant",
     "fridge": "refrigerator",
     "dining table": "table",
-    "counter": "kitchen counter",
-    "cushion": "pillow",
     "shelving": "shelf",
     "bookcase": "bookshelf",
     "lamp": "table lamp",
     "night stand": "nightstand",
-    "trash": "trash can",
-    "trash bin": "trash can",
-    "garbage can": "trash can",
-    "wastebasket": "trash can",
+    "trash": "garbage",
+    "trash bin": "garbage",
+    "garbage can": "garbage",
+    "wastebasket": "garbage",
     "washer": "washing machine",
+    "dryer": "clothes dryer",
     "coffee maker": "coffee machine",
     "bath tub": "bathtub",
     "tub": "bathtub",
@@ -94,6 +93,7 @@ def map_category(raw: str) -> tuple[str, bool]:
     names = set(default_catalogue().names)
     word = raw.strip().lower().replace("_", " ").replace("#", " ")
     for candidate in (word, SYNONYMS.get(word, ""), word.rstrip("s")):
+        candidate = canonical_category(candidate)
         if candidate in names:
             return candidate, True
     return word, False
