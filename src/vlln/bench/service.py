@@ -20,6 +20,7 @@ import subprocess
 import sys
 import time
 from collections.abc import Callable
+from functools import partial
 from typing import Any
 
 import httpx
@@ -58,12 +59,14 @@ def run_service_benchmark(
         _wait_until_up(base, server)
         target, poses = _target_and_poses(seed)
         questions = [q.question for q in load_packaged_question_set("heldout")]
-        load = asyncio.run(_load(base, headers, seed, target, poses, questions, rounds))
+        server_cpu = partial(_cpu_seconds, server.pid)
+        load = asyncio.run(_load(base, headers, seed, target, poses, questions, rounds, server_cpu))
         record("service_clients", CLIENTS, "clients")
         record("service_requests_per_s", load["rate"], "req/s")
         record("service_p50_ms", load["p50"], "ms")
         record("service_p99_ms", load["p99"], "ms")
         record("service_errors", load["errors"], "requests")
+        record("service_cpu_ms_per_request", load["cpu_ms"], "ms")
         _sessions_on_distinct_scenes(base, headers, memory_scenes)
         record(f"service_rss_{memory_scenes}_scenes_mb", _rss_mb(server.pid), "MB")
     finally:
@@ -125,7 +128,10 @@ async def _load(
     poses: list[dict[str, Any]],
     questions: list[str],
     rounds: int,
+    server_cpu: Callable[[], float],
 ) -> dict[str, float]:
+    """Latencies of every timed request, the request rate and the server's CPU time per
+    request, all counted from the moment every client has its session."""
     latencies: list[float] = []
     errors = 0
 
@@ -139,6 +145,7 @@ async def _load(
             await ready.wait()  # every session exists (the house built once) ...
             if number == 0:
                 clock.append(time.perf_counter())  # ... before the clock starts
+                cpu.append(server_cpu())
             for _ in range(rounds):
                 for step in range(4):
                     began = time.perf_counter()
@@ -155,9 +162,11 @@ async def _load(
 
     ready = asyncio.Barrier(CLIENTS)
     clock: list[float] = []
+    cpu: list[float] = []
     await asyncio.gather(*(client(number) for number in range(CLIENTS)))
     seconds = time.perf_counter() - clock[0]
     return {
+        "cpu_ms": (server_cpu() - cpu[0]) * 1e3 / len(latencies),
         "rate": len(latencies) / seconds,
         "p50": float(np.percentile(latencies, 50)),
         "p99": float(np.percentile(latencies, 99)),
@@ -176,6 +185,14 @@ def _sessions_on_distinct_scenes(base: str, headers: dict[str, str], scenes: int
                     break
                 if reply.status_code == 429:
                     raise ConfigError(f"the service refused a house build: {reply.text}")
+
+
+def _cpu_seconds(pid: int) -> float:
+    """CPU time (user and system, every thread) the process has used so far: a figure that,
+    unlike requests per second, hardly depends on what else the machine is running."""
+    with open(f"/proc/{pid}/stat", encoding="ascii") as stat:
+        fields = stat.read().rpartition(")")[2].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
 def _rss_mb(pid: int) -> float:
