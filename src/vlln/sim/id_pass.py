@@ -7,9 +7,18 @@ in the same order, from the same vertex and index buffers with the same depth te
 culling, into the renderer's own id and depth attachments, so its image equals the full
 pass's id output pixel for pixel. Both vertex shaders declare ``gl_Position`` invariant,
 which is what the GLSL specification asks for positions to agree between two programs.
+
+moderngl holds Python's global interpreter lock through every call, including the read-back
+that waits for the rasteriser; a server that renders on one thread would then stall all its
+other threads for the whole frame. So the pass waits for the frame with ``glFinish`` called
+through ctypes, which releases the lock, and reads back only once the pixels are done.
 """
 
 from __future__ import annotations
+
+import ctypes
+import ctypes.util
+from collections.abc import Callable
 
 import moderngl
 import numpy as np
@@ -43,6 +52,24 @@ void main() {
     out_instance = v_instance;
 }
 """
+
+
+def _load_gl_finish() -> Callable[[], None] | None:
+    """``glFinish`` from the system's OpenGL dispatch library (it acts on the context current
+    on the calling thread), or None where there is none: then the read-back waits instead,
+    holding the lock."""
+    for name in (ctypes.util.find_library("OpenGL"), "libOpenGL.so.0", "libGL.so.1"):
+        if name is None:
+            continue
+        try:
+            finish: Callable[[], None] = ctypes.CDLL(name).glFinish
+        except (OSError, AttributeError):
+            continue
+        return finish
+    return None
+
+
+_GL_FINISH = _load_gl_finish()
 
 
 def id_vertex_format() -> str:
@@ -85,6 +112,8 @@ class InstanceIdPass:
         self._framebuffer.clear(0.0, 0.0, 0.0, 0.0, depth=1.0)
         if vertices > 0:
             self._vertex_array.render(moderngl.TRIANGLES, vertices=vertices)
+            if _GL_FINISH is not None:
+                _GL_FINISH()  # other Python threads run while the rasteriser works
         self._framebuffer.read_into(out, components=1, attachment=0, dtype="i4")
 
     def release(self) -> None:
