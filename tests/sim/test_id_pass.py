@@ -10,7 +10,7 @@ import pytest
 
 from vlln.errors import RendererUnavailableError
 from vlln.sim.camera import CameraSpec
-from vlln.sim.id_pass import id_vertex_format
+from vlln.sim.id_pass import gl_finish, id_vertex_format
 from vlln.sim.renderer import Renderer
 from vlln.sim.shaders import VERTEX_DTYPE, VERTEX_FORMAT
 from vlln.sim.simulator import Simulator
@@ -81,3 +81,7 @@ def test_the_id_format_reads_position_and_instance_of_a_whole_record() -> None:
     total = sum(int(part[:-1]) * sizes[part[-1]] for part in fmt.split())
     assert total == VERTEX_DTYPE.itemsize
     assert len(VERTEX_FORMAT.split()) == len(VERTEX_DTYPE.names or ())
+
+
+def test_the_wait_for_the_rasteriser_is_found_on_this_machine() -> None:
+    assert gl_finish() is not None  # else every id frame would hold the interpreter lock

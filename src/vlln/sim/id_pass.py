@@ -17,7 +17,7 @@ through ctypes, which releases the lock, and reads back only once the pixels are
 from __future__ import annotations
 
 import ctypes
-import ctypes.util
+import functools
 from collections.abc import Callable
 
 import moderngl
@@ -54,22 +54,18 @@ void main() {
 """
 
 
-def _load_gl_finish() -> Callable[[], None] | None:
-    """``glFinish`` from the system's OpenGL dispatch library (it acts on the context current
-    on the calling thread), or None where there is none: then the read-back waits instead,
+@functools.cache
+def gl_finish() -> Callable[[], None] | None:
+    """``glFinish`` of the system's OpenGL dispatch library (it acts on the context current on
+    the calling thread), or None where there is none: then the read-back waits instead,
     holding the lock."""
-    for name in (ctypes.util.find_library("OpenGL"), "libOpenGL.so.0", "libGL.so.1"):
-        if name is None:
-            continue
+    for name in ("libOpenGL.so.0", "libGL.so.1"):
         try:
             finish: Callable[[], None] = ctypes.CDLL(name).glFinish
         except (OSError, AttributeError):
             continue
         return finish
     return None
-
-
-_GL_FINISH = _load_gl_finish()
 
 
 def id_vertex_format() -> str:
@@ -112,8 +108,9 @@ class InstanceIdPass:
         self._framebuffer.clear(0.0, 0.0, 0.0, 0.0, depth=1.0)
         if vertices > 0:
             self._vertex_array.render(moderngl.TRIANGLES, vertices=vertices)
-            if _GL_FINISH is not None:
-                _GL_FINISH()  # other Python threads run while the rasteriser works
+            finish = gl_finish()
+            if finish is not None:
+                finish()  # other Python threads run while the rasteriser works
         self._framebuffer.read_into(out, components=1, attachment=0, dtype="i4")
 
     def release(self) -> None:
