@@ -35,6 +35,6 @@ def test_service_benchmark_measures_a_running_service() -> None:
     figures: dict[str, float] = {}
     run_service_benchmark(lambda metric, value, unit: figures.update({metric: value}), 1, 2, 1)
     assert figures["service_clients"] == 30 and figures["service_errors"] == 0
-    assert figures["service_requests_per_s"] > 0
+    assert figures["service_requests_per_s"] > 0 and figures["service_cpu_ms_per_request"] > 0
     assert 0 < figures["service_p50_ms"] <= figures["service_p99_ms"]
     assert 50 < figures["service_rss_2_scenes_mb"] < 2000

@@ -15,11 +15,22 @@ from __future__ import annotations
 
 from vlln.errors import ConfigError
 from vlln.oracle.answers import answer_attribute, answer_other
-from vlln.oracle.classify import RouteKind, analysed
+from vlln.oracle.classify import OtherTopic, RouteKind, analysed
 from vlln.oracle.disambiguation import answer_disambiguation
 from vlln.oracle.knowledge import EpisodeKnowledge, HouseIndex
 from vlln.oracle.protocol import EpisodeContext, Question, QuestionType, Reply
 from vlln.oracle.route import answer_orientation, answer_path, answer_step
+
+
+def reads_view(text: str) -> bool:
+    """Whether the answer to this question looks at the view it is asked from: only
+    disambiguation ("is this the one?") and visibility ("can I see it?") answers do. A caller
+    that must render the view itself, as the oracle service does, can skip the others."""
+    analysis = analysed(text)
+    return (
+        analysis.question_type == QuestionType.DISAMBIGUATION
+        or analysis.other == OtherTopic.VISIBILITY
+    )
 
 
 class RuleOracle:

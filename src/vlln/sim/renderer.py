@@ -23,6 +23,7 @@ from numpy.typing import NDArray
 from vlln.errors import ConfigError, RendererUnavailableError
 from vlln.sim.camera import CameraSpec, Position
 from vlln.sim.gl_context import create_headless_context, renderer_description
+from vlln.sim.id_pass import InstanceIdPass
 from vlln.sim.shaders import (
     FRAGMENT_SHADER,
     VERTEX_ATTRIBUTES,
@@ -151,6 +152,7 @@ class Renderer:
         self._attachments: list[moderngl.Renderbuffer] = []
         self._buffers: list[moderngl.Buffer] = []
         self._vertex_array: moderngl.VertexArray | None = None
+        self._id_pass: InstanceIdPass | None = None  # made on the first id-only render
         with self._ctx:
             self._ctx.enable(moderngl.DEPTH_TEST)
             if cull_back_faces:
@@ -224,11 +226,28 @@ class Renderer:
     def render_instance_ids(
         self, position: Position, yaw: float, tilt: float = 0.0
     ) -> NDArray[np.int32]:
-        """Only the instance-id image of :meth:`render` (what the oracle looks at): the same
-        drawing, a third of the read-back."""
+        """Only the instance-id image of :meth:`render` (what the oracle looks at), equal to
+        its ``instance_ids`` pixel for pixel, drawn without any shading
+        (:class:`~vlln.sim.id_pass.InstanceIdPass`)."""
+        if self._framebuffer is None:
+            raise RendererUnavailableError(
+                "this Renderer has been closed; create a new Renderer to render again"
+            )
         ids = np.empty((self._spec.height, self._spec.width), np.int32)
+        if self._vertex_array is None:
+            return np.zeros_like(ids)  # an empty mesh: nothing is ever drawn
         with self._ctx:
-            self._draw(position, yaw, tilt).read_into(ids, components=1, attachment=2, dtype="i4")
+            if self._id_pass is None:
+                vertex_buffer, index_buffer = self._buffers
+                *_, id_attachment, depth_attachment = self._attachments
+                self._id_pass = InstanceIdPass(
+                    self._ctx, vertex_buffer, index_buffer, id_attachment, depth_attachment
+                )
+            indices = self._draw_list.indices(self._spec, position, yaw, tilt)
+            if len(indices) > 0:
+                self._index_buffer.write(indices)
+            view_projection = pose_uniforms(self._spec, position, yaw, tilt)["u_view_projection"]
+            self._id_pass.draw(view_projection, len(indices), ids)
         return ids
 
     def _draw(self, position: Position, yaw: float, tilt: float) -> moderngl.Framebuffer:
@@ -291,6 +310,9 @@ class Renderer:
         return out
 
     def _release_framebuffer(self) -> None:
+        if self._id_pass is not None:  # it draws into the attachments released here
+            self._id_pass.release()
+            self._id_pass = None
         if self._framebuffer is not None:
             self._framebuffer.release()
         for attachment in self._attachments:

@@ -219,6 +219,7 @@ flat out vec4 v_stripes;
 flat out vec4 v_cells;
 flat out vec4 v_grid;
 flat out int v_instance;
+invariant gl_Position;  // the id pass (vlln.sim.id_pass) must cover the same pixels
 
 const vec3 KEY_DIRECTION = vec3{KEY_LIGHT_DIRECTION};
 const vec3 KEY_COLOR = vec3(0.50, 0.47, 0.42);

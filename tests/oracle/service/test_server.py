@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import gc
 import threading
 import time
 
@@ -11,7 +12,7 @@ import pytest
 from vlln.cli import main
 from vlln.errors import ConfigError
 from vlln.oracle.service.config import ServiceConfig
-from vlln.oracle.service.server import build_server, is_loopback
+from vlln.oracle.service.server import build_server, freeze_startup_objects, is_loopback
 from vlln.tasks.spec import REFUSAL_MESSAGE
 
 from .conftest import TOKEN, World
@@ -85,3 +86,12 @@ def test_a_named_token_variable_that_is_unset_or_empty_is_refused(
     assert main(["oracle", "serve", "--token-env", "VLLN_TOKEN_TYPO", "--port", "1"]) == 2
     error = capsys.readouterr().err
     assert error.startswith("error: ") and "VLLN_TOKEN_TYPO" in error and error.count("\n") == 1
+
+
+def test_objects_alive_at_start_are_left_out_of_full_collections() -> None:
+    alive = len(gc.get_objects())
+    try:
+        assert freeze_startup_objects() >= alive // 2
+        assert len(gc.get_objects()) < alive // 2  # a full pass no longer scans them
+    finally:
+        gc.unfreeze()

@@ -18,9 +18,8 @@ import numpy as np
 
 from vlln import __version__
 from vlln.errors import VllnError
-from vlln.oracle.classify import analysed
 from vlln.oracle.protocol import EpisodeContext, Question, QuestionType
-from vlln.oracle.rule_oracle import RuleOracle
+from vlln.oracle.rule_oracle import RuleOracle, reads_view
 from vlln.oracle.service.config import ServiceConfig
 from vlln.oracle.service.limits import BuildLimiter
 from vlln.oracle.service.schemas import (
@@ -278,12 +277,12 @@ class HostedOracle:
 
 
 def _view(sim: Simulator, state: AgentState, question: str) -> Frame:
-    """The view a question is asked from, as far as the rule oracle looks at it: only
-    disambiguation and "other" answers read the view, and only its instance ids, so only
-    those are rendered; the colour and depth images are read-only zeros of the right shape
-    and every other question is answered without drawing anything."""
+    """The view a question is asked from, as far as the rule oracle looks at it: only answers
+    that read the view (:func:`reads_view`) read it, and only its instance ids, so only those
+    are rendered; the colour and depth images are read-only zeros of the right shape and
+    every other question is answered without drawing anything."""
     height, width = sim.config.camera.height, sim.config.camera.width
-    if analysed(question).question_type in _LOOKING:
+    if reads_view(question):
         ids = sim.render_instance_ids(state)
     else:
         ids = np.broadcast_to(np.zeros(1, np.int32), (height, width))
@@ -292,6 +291,3 @@ def _view(sim: Simulator, state: AgentState, question: str) -> Frame:
         depth=np.broadcast_to(np.zeros(1, np.float32), (height, width)),
         instance_ids=ids,
     )
-
-
-_LOOKING = (QuestionType.DISAMBIGUATION, QuestionType.OTHER)

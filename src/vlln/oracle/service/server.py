@@ -8,6 +8,7 @@ announced with a warning on stderr.
 
 from __future__ import annotations
 
+import gc
 import ipaddress
 import os
 import sys
@@ -95,6 +96,16 @@ def build_server(
     return uvicorn.Server(settings)
 
 
+def freeze_startup_objects() -> int:
+    """Leave every object alive now (the imported code, the app) out of the garbage
+    collector's full passes and return how many there are. They live as long as the process
+    anyway, and scanning them made each full pass stall every request for ~100 ms of CPU;
+    without them a pass scans only the houses and sessions (~20 ms)."""
+    gc.collect()
+    gc.freeze()
+    return gc.get_freeze_count()
+
+
 def serve(
     host: str = DEFAULT_HOST,
     port: int = DEFAULT_PORT,
@@ -121,4 +132,5 @@ def serve(
         client_builds_per_minute=client_builds_per_minute,
     )
     server = build_server(config, host, port, allow_remote=allow_remote, log_level=log_level)
+    freeze_startup_objects()
     server.run()
