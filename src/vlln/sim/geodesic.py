@@ -72,8 +72,12 @@ class GeodesicField:
         self._size = grid.cell_size
         self._rows, self._cols = rows, cols
 
-    def distance(self, x: float, z: float) -> float:
-        """Geodesic distance from the point to the nearest goal; ``inf`` if unreachable."""
+    def distance(self, x: float, z: float, y: float | None = None) -> float:
+        """Geodesic distance from the point to the nearest goal; ``inf`` if unreachable.
+
+        ``y`` (the point's height) is accepted for the interface of ``StoreyField``; one
+        storey does not need it.
+        """
         s = self._size
         col = math.floor((x - self._ox) / s)
         row = math.floor((z - self._oz) / s)
@@ -86,7 +90,7 @@ class GeodesicField:
         cz = self._oz + (row + 0.5) * s
         return d + math.hypot(x - cx, z - cz) * _ROUND_UP
 
-    def is_reachable(self, x: float, z: float) -> bool:
+    def is_reachable(self, x: float, z: float, y: float | None = None) -> bool:
         return self.distance(x, z) < math.inf
 
     def shortest_path(self, x: float, z: float, max_length: float | None = None) -> list[Point2]:
