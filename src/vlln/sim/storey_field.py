@@ -15,6 +15,7 @@ from numpy.typing import NDArray
 from scipy.sparse import csgraph
 
 from vlln.errors import NavigationError
+from vlln.sim.geodesic import pull_string
 from vlln.sim.storeys import Point3, Storeys
 
 _ROUND_UP = 1.0 + 1e-9
@@ -96,6 +97,22 @@ class StoreyField:
             travelled += math.dist(point, points[-1])
             points.append(point)
         return points
+
+    def shortest_path(
+        self, x: float, z: float, max_length: float | None = None, y: float | None = None
+    ) -> list[tuple[float, float]]:
+        """Floor-plan polyline ``(x, z)`` of the way on the point's storey, up to where it
+        leaves that storey's floor (the stairs) or the goal; the rest is :meth:`climb`'s."""
+        if y is None:
+            raise NavigationError("paths in a house with several storeys need the height y")
+        floor = self.grid.floor_ys[self.grid.level_of(y)]
+        limit = None if max_length is None else max_length * 1.2 + 1.0
+        points = [(x, z)]
+        for px, py, pz in self.path_nodes(x, y, z, limit)[1:]:
+            if py != floor and y == floor:
+                break
+            points.append((px, pz))
+        return pull_string(self.grid.grid_at(y), points)
 
     def climb(self, x: float, y: float, z: float, within: float) -> int:
         """+1 when the way to the goals goes up stairs within ``within`` metres, -1 when it

@@ -110,6 +110,11 @@ class Storeys:
         """The storey whose floor is nearest the height (the lower one on a tie)."""
         return min(range(len(self.floor_ys)), key=lambda k: (abs(self.floor_ys[k] - y), k))
 
+    def level_under(self, y: float) -> int:
+        """The highest storey whose floor is at or below the height: where an object whose
+        bottom is at ``y`` stands (a lamp under a ceiling belongs to the storey below it)."""
+        return max(k for k, floor in enumerate(self.floor_ys) if floor <= y + 0.05 or k == 0)
+
     def grid_at(self, y: float) -> NavGrid:
         return self.grids[self.level_of(y)]
 

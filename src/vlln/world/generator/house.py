@@ -45,7 +45,7 @@ def generate_house(
         instances = [obj.instance for obj in objects]
         mesh = Mesh.concatenate([shell, *(obj.mesh for obj in objects)])
     return House(
-        name=f"house_{int(seed):05d}",
+        name=f"house_{int(seed):05d}" + (f"_{params.floors}f" if params.floors > 1 else ""),
         rooms=rooms,
         doors=doors,
         instances=instances,
