@@ -383,8 +383,10 @@ def build_split(
     *,
     scenes: SceneCache | None = None,
     progress: bool = True,
+    floors: int = 1,
 ) -> Path:
-    """Write the episodes of the first ``houses`` houses of ``split`` to ``out_dir``.
+    """Write the episodes of the first ``houses`` houses of ``split`` to ``out_dir``
+    (houses of ``floors`` storeys: a target is often on another storey than the start).
 
     Writes ``<split>_iign.json.gz``, ``<split>_ign.json.gz``, ``<split>_objectnav.json.gz``
     and, last, ``<split>_stats.json``; the same arguments give byte-identical files. Houses
@@ -399,7 +401,7 @@ def build_split(
     per_house: list[HouseStats] = []
     try:
         for seed in tqdm(seeds, desc=f"{split} episodes", unit="house", disable=not progress):
-            sim = cache.get(procedural_scene_id(seed))
+            sim = cache.get(procedural_scene_id(seed, floors))
             made = generate_house_episodes(sim, house_rng(rng_seed, seed), config)
             for task in TaskType:
                 episodes[task].extend(made.of_task(task))
@@ -417,7 +419,7 @@ def build_split(
     for stats in per_house:
         totals.add(stats)
     document = {
-        "build": _build_settings(split, seeds, rng_seed, config),
+        "build": _build_settings(split, seeds, rng_seed, config, floors),
         "totals": {"houses": len(per_house), **totals.counts_json()},
         "houses": [stats.to_json() for stats in per_house],
     }
@@ -450,15 +452,18 @@ def load_or_build_split(
 
 
 def _build_settings(
-    split: str, seeds: list[int], rng_seed: int, config: EpisodeGenConfig
+    split: str, seeds: list[int], rng_seed: int, config: EpisodeGenConfig, floors: int = 1
 ) -> dict[str, Any]:
-    return {
+    settings = {
         "split": split,
         "house_seeds": seeds,
         "rng_seed": rng_seed,
         "config": asdict(config),
         "vlln_version": __version__,
     }
+    if floors != 1:  # one-storey settings stay as they were
+        settings["floors"] = floors
+    return settings
 
 
 def _recorded_settings(path: Path) -> Any:
