@@ -167,7 +167,9 @@ def shaft_mesh(
     )
     step = 1.0 if head > foot else -1.0
     width = abs(far - near)
-    for end, sign, lo_y, hi_y in ((head, step, bottom, top), (foot, -step, top, roof)):
+    # The wall above the foot starts at the lower ceiling, closing the slab between storeys.
+    above_foot = bottom + ceiling_height
+    for end, sign, lo_y, hi_y in ((head, step, bottom, top), (foot, -step, above_foot, roof)):
         centre = site.point(
             end + sign * wall_thickness / 2.0, (lo_y + hi_y) / 2.0, (near + far) / 2.0
         )
