@@ -109,6 +109,8 @@ def test_route_answers_on_and_near_the_stairs_say_which_way(
     far = _ask(oracle, sim, states[0], "What should I do next?")
     assert "stairs" not in far
     assert "upstairs" not in far and "downstairs" not in far
+    heading = _ask(oracle, sim, states[0], "Which way should I go?")
+    assert heading.startswith(f"It is {word}, take the stairs."), heading
     # And past the stairs, on the other storey, they are about the target again.
     after = _ask(oracle, sim, states[-1], "What should I do next?")
     assert after.startswith("You are there")

@@ -94,12 +94,11 @@ def answer_orientation(knowledge: EpisodeKnowledge, state: AgentState) -> str:
 
 def _other_storey(knowledge: EpisodeKnowledge, state: AgentState) -> str:
     """ "upstairs" or "downstairs" when the target is on another storey, else ""."""
-    index = knowledge.index
-    here = index.storey_at(state.position[1])
-    there = index.storey_at(knowledge.target.box.min[1])
-    if here is None or there is None or here == there:
+    here = knowledge.index.storey_at(state.position[1])
+    room = knowledge.target_room
+    if here is None or room is None or room.level == here:
         return ""
-    return "upstairs" if there > here else "downstairs"
+    return "upstairs" if room.level > here else "downstairs"
 
 
 def answer_step(knowledge: EpisodeKnowledge, analysis: QuestionAnalysis, state: AgentState) -> str:

@@ -11,8 +11,8 @@ for ``origin = (ox, oz)`` and cell size ``s``. The continuous navigable region i
 navigable cells; motion and line-of-sight checks walk every cell a segment crosses.
 
 A grid knows its storey (``level``, ``floor_y``). Everything that measures distances works on a
-grid and cell indices, so several storeys can later be joined by stair cells without a global
-floor height.
+grid and cell indices; :mod:`vlln.sim.storeys` joins the grids of several storeys through the
+cells of their stairs.
 """
 
 from __future__ import annotations
