@@ -27,7 +27,7 @@ class StoreyRun:
     episodes: int
     successes: int
     steps: int
-    climbed: float  # mean geodesic distance from start to goal, m
+    mean_distance: float  # mean geodesic distance from start to goal, m
 
     @property
     def success_rate(self) -> float:
@@ -93,26 +93,25 @@ def run_storeys_benchmark(
             f"and {floors}"
         )
     scenes = SceneCache(capacity=1)
+    runs: list[StoreyRun] = []
     try:
-        seeds = list(range(first_seed, first_seed + houses))
-        episodes: list[Episode] = []
-        runs: list[StoreyRun] = []
-        for seed in seeds:  # one house at a time: the cache keeps one simulator
-            own = other_storey_episodes(scenes, [seed], floors, per_house)
-            episodes += own
-            runs.append(play_expert(scenes, own))
+        for seed in range(first_seed, first_seed + houses):  # the cache keeps one simulator
+            runs.append(
+                play_expert(scenes, other_storey_episodes(scenes, [seed], floors, per_house))
+            )
     finally:
         scenes.close()
+    count = sum(r.episodes for r in runs)
     total = StoreyRun(
-        sum(r.episodes for r in runs),
+        count,
         sum(r.successes for r in runs),
         sum(r.steps for r in runs),
-        sum(r.climbed * r.episodes for r in runs) / max(1, len(episodes)),
+        sum(r.mean_distance * r.episodes for r in runs) / max(1, count),
     )
     figures = [
         Figure("other_storey_episodes", float(total.episodes), "episodes"),
         Figure("expert_success_rate", 100.0 * total.success_rate, "%"),
-        Figure("mean_start_distance", total.climbed, "m"),
+        Figure("mean_start_distance", total.mean_distance, "m"),
         Figure("mean_steps", total.steps / max(1, total.episodes), "steps"),
     ]
     for figure in figures:
