@@ -15,11 +15,10 @@ oracle and instruction tools read:
   a pair has several). ``position`` is the box centre; it is written for the reference tools
   and only checked on import, where the box is ``min_points``/``max_points``.
 * ``region_dict.json``: ``{scope: [{label, id, poly, enlarge_poly}]}`` with rooms in id
-  order, one scope per floor (``<house>_<level>`` for a house with several floors, else the
-  house's name, also the ``scope`` of each object). Polygons are ``[x, -z]`` (this module
-  is the only place that frame appears) and ``enlarge_poly`` is ``poly`` grown outward by
-  :data:`ENLARGE_MARGIN`, which the reference falls back to for points in doorways and on
-  walls.
+  order, one scope per floor (``<house>_<level>`` with several floors). Polygons are
+  ``[x, -z]`` (this module is the only place that frame appears) and ``enlarge_poly`` is
+  ``poly`` grown outward by :data:`ENLARGE_MARGIN`, which the reference falls back to for
+  points in doorways and on walls.
 
 Files are byte-identical for equal houses: fixed key order, numbers rounded to
 :data:`DECIMALS` decimals (so a round trip is exact only to 0.1 mm), two-space indent with each
@@ -216,26 +215,18 @@ def _object_dict(house: House) -> dict[str, Any]:
 
 def _scope(house: House, level: int) -> str:
     """A floor's scope: the house's name, with ``_<level>`` when it has several floors."""
-    if len({room.level for room in house.rooms}) < 2:
-        return house.name
-    return f"{house.name}_{level}"
+    several = len({room.level for room in house.rooms}) > 1
+    return f"{house.name}_{level}" if several else house.name
 
 
 def _region_dict(house: House) -> dict[str, Any]:
     """One scope per floor, floors in order, rooms in id order within each."""
-    out: dict[str, Any] = {}
-    for level in sorted({room.level for room in house.rooms}) or [0]:
-        out[_scope(house, level)] = [
-            {
-                "label": _room_label(room),
-                "id": room.id,
-                "poly": _plan_points(room.polygon),
-                "enlarge_poly": _plan_points(grown_polygon(room.polygon, ENLARGE_MARGIN)),
-            }
-            for room in sorted(house.rooms, key=lambda r: r.id)
-            if room.level == level
-        ]
-    return out
+    out: dict[str, Any] = {_scope(house, k): [] for k in sorted({r.level for r in house.rooms})}
+    for room in sorted(house.rooms, key=lambda r: r.id):
+        grown = _plan_points(grown_polygon(room.polygon, ENLARGE_MARGIN))
+        region = {"label": _room_label(room), "id": room.id, "poly": _plan_points(room.polygon)}
+        out[_scope(house, room.level)].append({**region, "enlarge_poly": grown})
+    return out or {house.name: []}
 
 
 # A list of numbers that json.dumps spread over lines (raw newlines never occur in strings).
