@@ -49,6 +49,15 @@ def _bench_oracle(args: argparse.Namespace) -> int:
     return 0
 
 
+def _bench_storeys(args: argparse.Namespace) -> int:
+    from vlln.bench.storeys import run_storeys_benchmark
+
+    run_storeys_benchmark(
+        houses=args.houses, floors=args.floors, per_house=args.per_house, as_json=args.json
+    )
+    return 0
+
+
 def _bench_agent(args: argparse.Namespace) -> int:
     from vlln.bench.agent import run_agent_benchmark
     from vlln.bench.agent_model import run_model_benchmark
@@ -118,6 +127,14 @@ def add_bench_commands(commands: Commands) -> None:
     bench_agent.add_argument("--json", action="store_true", help="print one JSON object per line")
     bench_agent.set_defaults(handler=_bench_agent)
 
+    storeys = bench.add_parser(
+        "storeys", help="the expert's success on targets on another storey (2- or 3-storey houses)"
+    )
+    storeys.add_argument("--houses", type=int, default=10, help="houses (default 10)")
+    storeys.add_argument("--floors", type=int, default=2, help="storeys, 2 or 3 (default 2)")
+    storeys.add_argument("--per-house", type=int, default=6, help="episodes per house (6)")
+    storeys.add_argument("--json", action="store_true", help="print one JSON object per line")
+    storeys.set_defaults(handler=_bench_storeys)
     bench_data = bench.add_parser("data", help="trajectories per hour of the data pipeline")
     bench_data.add_argument("--houses", type=int, default=2, help="training houses (default 2)")
     bench_data.add_argument(

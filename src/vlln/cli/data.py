@@ -69,6 +69,22 @@ def _data_export_sft(args: argparse.Namespace) -> int:
     return 0
 
 
+def _data_episodes(args: argparse.Namespace) -> int:
+    from vlln.tasks.generation import build_split
+
+    out = build_split(
+        args.split,
+        args.houses,
+        Path(args.out),
+        args.seed,
+        floors=args.floors,
+        progress=not args.quiet,
+    )
+    ign = out / f"{args.split}_ign.json.gz"
+    print(f"episodes in {out} (evaluate with: vlln eval --episode-file {ign})")
+    return 0
+
+
 def add_data_commands(commands: Commands) -> None:
     data = commands.add_parser("data", help="the training-data pipeline").add_subparsers(
         dest="data_command", required=True
@@ -93,6 +109,18 @@ def add_data_commands(commands: Commands) -> None:
         "--yes", action="store_true", help="start a large build without asking (it states its cost)"
     )
     build.set_defaults(handler=_data_build)
+    episodes = data.add_parser(
+        "episodes", help="episode files (IIGN, IGN, ObjectNav) of a split's procedural houses"
+    )
+    episodes.add_argument("--houses", type=int, required=True, help="houses of the split")
+    episodes.add_argument("--out", required=True, help="folder for <split>_<task>.json.gz")
+    episodes.add_argument("--split", default="test", help="house split (default test)")
+    episodes.add_argument("--seed", type=int, default=0, help="seed of every random choice")
+    episodes.add_argument(
+        "--floors", type=int, default=1, help="storeys joined by stairs, 1 to 3 (default 1)"
+    )
+    episodes.add_argument("--quiet", action="store_true", help="no progress bar")
+    episodes.set_defaults(handler=_data_episodes)
     stats = data.add_parser("stats", help="statistics, figure and report of a built dataset")
     stats.add_argument("dataset", help="a folder made by vlln data build")
     stats.add_argument("--out", help="where to write them (default DATASET/stats)")

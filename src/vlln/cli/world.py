@@ -12,7 +12,7 @@ def _world_show(args: argparse.Namespace) -> int:
     from vlln.viz.show import show_world
     from vlln.world.generator import parameters_from_overrides
 
-    params = parameters_from_overrides(args.param)
+    params = parameters_from_overrides([*args.param, *_floors(args)])
     files = show_world(args.seed, Path(args.out), n_views=args.views, params=params)
     print(f"wrote {len(files)} images to {args.out} (map: {files[0]})")
     return 0
@@ -22,7 +22,7 @@ def _world_export(args: argparse.Namespace) -> int:
     from vlln.world.generator import generate_house, parameters_from_overrides
     from vlln.world.scans import export_scene
 
-    house = generate_house(args.seed, parameters_from_overrides(args.param))
+    house = generate_house(args.seed, parameters_from_overrides([*args.param, *_floors(args)]))
     for style in args.style or ["mp3d", "hm3d"]:
         print(f"wrote {export_scene(house, Path(args.out) / style, style)}")
     return 0
@@ -52,6 +52,11 @@ def _world_catalogue(args: argparse.Namespace) -> int:
     return 0
 
 
+def _floors(args: argparse.Namespace) -> list[str]:
+    """``--floors N`` as the house parameter it sets."""
+    return [] if args.floors is None else [f"floors={args.floors}"]
+
+
 def add_world_commands(commands: Commands) -> None:
     world = commands.add_parser("world", help="procedural houses").add_subparsers(
         dest="world_command", required=True
@@ -67,12 +72,14 @@ def add_world_commands(commands: Commands) -> None:
         metavar="NAME=VALUE",
         help="a house-generator parameter, e.g. --param max_rooms=6 (repeatable)",
     )
+    show.add_argument("--floors", type=int, help="storeys joined by stairs, 1 to 3 (default 1)")
     show.set_defaults(handler=_world_show)
     export = world.add_parser("export", help="write a house as Matterport3D/HM3D scene folders")
     export.add_argument("--seed", type=int, default=0, help="house seed (default 0)")
     export.add_argument("--out", required=True, help="output folder (<out>/<style>/<scene>/)")
     export.add_argument("--style", action="append", choices=["mp3d", "hm3d"], help="repeatable")
     export.add_argument("--param", action="append", default=[], metavar="NAME=VALUE")
+    export.add_argument("--floors", type=int, help="storeys joined by stairs, 1 to 3")
     export.set_defaults(handler=_world_export)
     imported = world.add_parser("import", help="read a Matterport3D or HM3D scene folder")
     imported.add_argument("scene", help="scene folder <dir>/<scene>/ (.glb + .house or semantic)")

@@ -154,8 +154,8 @@ def room_phrase(
     """How to name the room to the agent: "the kitchen"; "this bedroom, the one you are in"
     (``short``: "this bedroom") when it stands in it; "the bedroom to your left" when the
     house has several bedrooms."""
-    x, _, z = state.position
-    here = knowledge.index.room_at(x, z)
+    x, y, z = state.position
+    here = knowledge.index.room_at(x, z, y)
     name = room_name(room)
     if here is not None and here.id == room.id:
         return f"this {name}" if short else f"this {name}, the one you are in"
@@ -181,8 +181,8 @@ def _room_answer(knowledge: EpisodeKnowledge, analysis: QuestionAnalysis, state:
         return DONT_KNOW
     sentence = f"It is in {room_phrase(knowledge, room, state)}."
     if analysis.this_room:
-        x, _, z = state.position
-        here = knowledge.index.room_at(x, z)
+        x, y, z = state.position
+        here = knowledge.index.room_at(x, z, y)
         return ("Yes, " if here is not None and here.id == room.id else "No, ") + sentence.lower()
     if len(analysis.rooms) == 1:
         asked = analysis.rooms[0]
@@ -282,11 +282,11 @@ def answer_other(
     knowledge: EpisodeKnowledge, analysis: QuestionAnalysis, state: AgentState, frame: Frame
 ) -> str:
     """The agent's room, the distance, progress or visibility; else :data:`CANNOT_ANSWER`."""
-    x, _, z = state.position
+    x, y, z = state.position
     topic = analysis.other
     rng = knowledge.rng
     if topic == OtherTopic.AGENT_ROOM:
-        here = knowledge.index.room_at(x, z)
+        here = knowledge.index.room_at(x, z, y)
         if here is None:
             return CANNOT_ANSWER
         if len(analysis.rooms) == 1:
@@ -297,7 +297,7 @@ def answer_other(
         return _visibility(knowledge, frame)
     if topic not in (OtherTopic.DISTANCE, OtherTopic.PROGRESS):
         return CANNOT_ANSWER
-    distance = knowledge.geodesic(x, z)
+    distance = knowledge.geodesic(x, z, y)
     if distance == math.inf:
         return CANNOT_ANSWER
     if distance < knowledge.follower.goal_radius:

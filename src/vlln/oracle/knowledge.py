@@ -19,6 +19,7 @@ from numpy.typing import NDArray
 from vlln.oracle.protocol import EpisodeContext
 from vlln.sim.follower import GreedyFollower
 from vlln.sim.geodesic import GeodesicField
+from vlln.sim.storey_field import StoreyField
 from vlln.world.catalogue.aliases import aliases_of
 from vlln.world.model import House, ObjectInstance, Relation, Room
 
@@ -104,12 +105,26 @@ class HouseIndex:
             edges,
         )
 
-    def rooms_at(self, points: NDArray[np.float64]) -> NDArray[np.int64]:
-        """Room id of each floor-plan point ``(n, 2)``; -1 where no room contains it."""
+    def storey_at(self, y: float | None) -> int | None:
+        """The storey whose floor is nearest the height; None in a one-storey house (or
+        without a height), where every room is on the one storey."""
+        floors = {room.level: room.floor_y for room in self.house.rooms}
+        if y is None or len(floors) < 2:
+            return None
+        return min(floors, key=lambda level: (abs(floors[level] - y), level))
+
+    def rooms_at(self, points: NDArray[np.float64], y: float | None = None) -> NDArray[np.int64]:
+        """Room id of each floor-plan point ``(n, 2)``; -1 where no room contains it. With
+        several storeys, ``y`` (the height) picks the storey's rooms."""
         result = np.full(len(points), -1, np.int64)
         x = points[:, 0:1]
         z = points[:, 1:2]
-        for room_id, (start, end) in zip(self._room_ids, self._edges, strict=True):
+        storey = self.storey_at(y)
+        for room, room_id, (start, end) in zip(
+            self.house.rooms, self._room_ids, self._edges, strict=True
+        ):
+            if storey is not None and room.level != storey:
+                continue
             crosses = (start[:, 1] > z) != (end[:, 1] > z)
             dz = np.where(crosses, end[:, 1] - start[:, 1], 1.0)
             x_cross = start[:, 0] + (z - start[:, 1]) * (end[:, 0] - start[:, 0]) / dz
@@ -117,13 +132,17 @@ class HouseIndex:
             result[inside & (result < 0)] = room_id
         return result
 
-    def room_at(self, x: float, z: float) -> Room | None:
-        """The room containing the point or, for a point in a wall or doorway, the nearest."""
-        room_id = int(self.rooms_at(np.array([[x, z]]))[0])
+    def room_at(self, x: float, z: float, y: float | None = None) -> Room | None:
+        """The room containing the point or, for a point in a wall or doorway, the nearest
+        (on the storey of height ``y`` when the house has several)."""
+        room_id = int(self.rooms_at(np.array([[x, z]]), y)[0])
         if room_id >= 0:
             return self.house.room(room_id)
+        storey = self.storey_at(y)
         best: tuple[float, Room] | None = None
         for room, (start, end) in zip(self.house.rooms, self._edges, strict=True):
+            if storey is not None and room.level != storey:
+                continue
             gap = _distance_to_edges(x, z, start, end)
             if best is None or gap < best[0]:
                 best = (gap, room)
@@ -165,7 +184,7 @@ class EpisodeKnowledge:
 
     index: HouseIndex
     target: ObjectInstance
-    field: GeodesicField
+    field: GeodesicField | StoreyField
     follower: GreedyFollower
     rng: np.random.Generator
 
@@ -176,8 +195,8 @@ class EpisodeKnowledge:
         """Build the episode's look-ups once; paraphrases are seeded by (seed, house, target)
         so the same seed and episode give the same words."""
         simulator = context.simulator
-        field = simulator.geodesic_field(context.view_points)
-        follower = GreedyFollower(simulator.grid, field, goal_radius, simulator.config.motion)
+        field = simulator.distance_field(context.view_points)
+        follower = GreedyFollower(simulator.nav, field, goal_radius, simulator.config.motion)
         entropy = [seed, zlib.crc32(index.house.name.encode("utf-8")), context.target.id]
         return EpisodeKnowledge(
             index=index,
@@ -202,6 +221,7 @@ class EpisodeKnowledge:
         dz = max(box.min[2] - z, 0.0, z - box.max[2])
         return math.hypot(dx, dz)
 
-    def geodesic(self, x: float, z: float) -> float:
-        """Walking distance to the nearest view point; ``inf`` when it cannot be reached."""
-        return self.field.distance(x, z)
+    def geodesic(self, x: float, z: float, y: float | None = None) -> float:
+        """Walking distance to the nearest view point; ``inf`` when it cannot be reached
+        (``y``, the height, is needed in a house with several storeys)."""
+        return self.field.distance(x, z, y)

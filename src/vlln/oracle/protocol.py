@@ -26,7 +26,7 @@ class EpisodeContext:
 
     simulator: Simulator
     target: ObjectInstance
-    view_points: tuple[tuple[float, float], ...]
+    view_points: tuple[tuple[float, ...], ...]  # (x, z), or (x, y, z) on several storeys
 
 
 @dataclass(frozen=True)

@@ -20,6 +20,7 @@ from vlln.errors import NavigationError
 from vlln.oracle.classify import QuestionAnalysis, StepChoice
 from vlln.oracle.knowledge import EpisodeKnowledge, choose, object_phrase, room_name
 from vlln.sim.agent import Action, AgentState
+from vlln.sim.storey_field import StoreyField
 from vlln.world.frame import wrap_angle, yaw_of
 from vlln.world.model import ObjectInstance, Room
 
@@ -30,6 +31,8 @@ ROOM_SAMPLE_SPACING = 0.1  # m between the points tested for a room change
 LANDMARK_REACH = 3.0  # m from a turn to the landmark it is anchored to
 _MERGE = 0.5  # m: events closer than this share a numbered step
 NEXT_TO = 0.3  # m from the target's footprint: "it is right next to you"
+STAIRS_NEAR = 1.0  # m: a step answer this close to stairs says "go upstairs" / "downstairs"
+_ON_STAIRS = 0.05  # m of height change that means the way is on stairs
 CANNOT_ANSWER = "Sorry, I cannot answer your question now."
 
 
@@ -81,9 +84,21 @@ def answer_orientation(knowledge: EpisodeKnowledge, state: AgentState) -> str:
                 f"{turn.capitalize()} to face it.",
             ),
         )
+    storey = _other_storey(knowledge, state)
+    if storey:
+        return f"It is {storey}, take the stairs. {words}"
     if knowledge.plan_distance(x, z) < NEXT_TO:
         return f"It is right next to you. {words}"
     return words
+
+
+def _other_storey(knowledge: EpisodeKnowledge, state: AgentState) -> str:
+    """ "upstairs" or "downstairs" when the target is on another storey, else ""."""
+    here = knowledge.index.storey_at(state.position[1])
+    room = knowledge.target_room
+    if here is None or room is None or room.level == here:
+        return ""
+    return "upstairs" if room.level > here else "downstairs"
 
 
 def answer_step(knowledge: EpisodeKnowledge, analysis: QuestionAnalysis, state: AgentState) -> str:
@@ -93,6 +108,13 @@ def answer_step(knowledge: EpisodeKnowledge, analysis: QuestionAnalysis, state: 
     except NavigationError:
         return CANNOT_ANSWER
     words = choose(knowledge.rng, _ACTION_WORDS[action])
+    stairs = stairs_ahead(knowledge, state, STAIRS_NEAR)
+    if stairs is not None and action != Action.STOP:
+        way = _STAIRS_WORD[stairs[1]]
+        if action == Action.MOVE_FORWARD:
+            words = choose(knowledge.rng, (f"Go {way}.", f"Go forward and {way} the stairs."))
+        else:
+            words = f"{words[:-1]}, then go {way}."
     proposed = analysis.step_choice
     if proposed is None:
         return words
@@ -115,27 +137,74 @@ _CHOICE_ACTION = {
 
 
 def answer_path(knowledge: EpisodeKnowledge, state: AgentState) -> str:
-    """Numbered directions for the next 4 m, closing on the target when it is that close."""
-    x, _, z = state.position
-    distance = knowledge.geodesic(x, z)
+    """Numbered directions for the next 4 m, closing on the target when it is that close;
+    where the way reaches stairs within them, the directions end with "go upstairs" (or
+    downstairs) and how far the target is from there."""
+    x, y, z = state.position
+    distance = knowledge.geodesic(x, z, y)
     if distance == math.inf:
         return CANNOT_ANSWER
     if distance < knowledge.follower.goal_radius:
         return choose(knowledge.rng, ("You are there.", "You are already there."))
+    stairs = stairs_ahead(knowledge, state, ROUTE_HORIZON)
+    if stairs is not None:
+        return _stairs_sentence(knowledge, state, distance, *stairs)
     return path_sentence(knowledge, describe_path(knowledge, state))
+
+
+def stairs_ahead(
+    knowledge: EpisodeKnowledge, state: AgentState, within: float
+) -> tuple[float, int] | None:
+    """How far along the way the stairs begin and which way they go (+1 up, -1 down), when
+    the way takes stairs within ``within`` metres; None on one storey."""
+    field = knowledge.field
+    if not isinstance(field, StoreyField):
+        return None
+    x, y, z = state.position
+    if not field.is_reachable(x, z, y):
+        return None
+    travelled, previous = 0.0, (x, y, z)
+    for point in field.path_nodes(x, y, z, within):
+        travelled += math.dist(previous, point)
+        previous = point
+        if abs(point[1] - y) > _ON_STAIRS:
+            return travelled, 1 if point[1] > y else -1
+    return None
+
+
+def _stairs_sentence(
+    knowledge: EpisodeKnowledge, state: AgentState, distance: float, gap: float, way: int
+) -> str:
+    x, y, z = state.position
+    path = knowledge.field.shortest_path(x, z, gap, y)
+    opening = 0.0
+    if len(path) >= 2:
+        dx, dz = path[1][0] - path[0][0], path[1][1] - path[0][1]
+        opening = math.degrees(wrap_angle(yaw_of(dx, dz) - state.yaw))
+    word = _STAIRS_WORD[way]
+    step = _with_forward(gap, f"go {word}") if gap >= _MERGE else f"go {word}"
+    category = knowledge.target.category
+    further = _metres(max(0.0, distance - gap))
+    return (
+        f"{_opening(opening, knowledge.rng)} 1. {step[0].upper()}{step[1:]} by the stairs. "
+        f"From there the {category} is still {further} away."
+    )
+
+
+_STAIRS_WORD = {1: "upstairs", -1: "downstairs"}
 
 
 def describe_path(knowledge: EpisodeKnowledge, state: AgentState) -> PathDescription:
     """The turns and room entries of the first :data:`ROUTE_HORIZON` metres of the path."""
-    x, _, z = state.position
-    path = np.asarray(knowledge.field.shortest_path(x, z, ROUTE_HORIZON), np.float64)
+    x, y, z = state.position
+    path = np.asarray(knowledge.field.shortest_path(x, z, ROUTE_HORIZON, y), np.float64)
     legs = np.linalg.norm(np.diff(path, axis=0), axis=1)
     arc = np.concatenate([[0.0], np.cumsum(legs)])
     # A prefix was traced when the way is long: the rest is the geodesic distance left.
     total = (
         float(arc[-1])
         if arc[-1] <= ROUTE_HORIZON
-        else max(float(arc[-1]), knowledge.geodesic(x, z))
+        else max(float(arc[-1]), knowledge.geodesic(x, z, y))
     )
     cut = _cut(path, arc, ROUTE_HORIZON)
     arc_cut = [*arc[: len(cut) - 1].tolist(), min(total, ROUTE_HORIZON)]
@@ -144,8 +213,9 @@ def describe_path(knowledge: EpisodeKnowledge, state: AgentState) -> PathDescrip
     for i in range(1, len(waypoints) - 1):
         turn = _turn_deg(waypoints[i - 1], waypoints[i], waypoints[i + 1])
         if abs(turn) > TURN_THRESHOLD_DEG:
-            events.append(PathEvent(where[i], turn, None, _landmark(knowledge, waypoints[i])))
-    events.extend(_room_entries(knowledge, cut, arc_cut))
+            landmark = _landmark(knowledge, waypoints[i], y)
+            events.append(PathEvent(where[i], turn, None, landmark))
+    events.extend(_room_entries(knowledge, cut, arc_cut, y))
     events.sort(key=lambda e: e.distance)
     opening = 0.0
     if len(waypoints) >= 2:
@@ -254,10 +324,10 @@ def _turn_deg(a: np.ndarray, b: np.ndarray, c: np.ndarray) -> float:
     return math.degrees(wrap_angle(after - before))
 
 
-def _landmark(knowledge: EpisodeKnowledge, point: np.ndarray) -> ObjectInstance | None:
+def _landmark(knowledge: EpisodeKnowledge, point: np.ndarray, y: float) -> ObjectInstance | None:
     """The nearest landmark in the point's room, not of the target's category."""
     x, z = float(point[0]), float(point[1])
-    room = knowledge.index.room_at(x, z)
+    room = knowledge.index.room_at(x, z, y)
     if room is None:
         return None
     best: tuple[float, ObjectInstance] | None = None
@@ -274,7 +344,7 @@ def _landmark(knowledge: EpisodeKnowledge, point: np.ndarray) -> ObjectInstance 
 
 
 def _room_entries(
-    knowledge: EpisodeKnowledge, points: np.ndarray, arc: list[float]
+    knowledge: EpisodeKnowledge, points: np.ndarray, arc: list[float], y: float
 ) -> list[PathEvent]:
     """A room entry wherever a sample of the path lies in a room other than the last one."""
     samples: list[np.ndarray] = []
@@ -287,8 +357,8 @@ def _room_entries(
             where.append(arc[k] + t * (arc[k + 1] - arc[k]))
     samples.append(points[-1])
     where.append(arc[-1])
-    rooms = knowledge.index.rooms_at(np.array(samples))
-    start = knowledge.index.room_at(float(points[0][0]), float(points[0][1]))
+    rooms = knowledge.index.rooms_at(np.array(samples), y)
+    start = knowledge.index.room_at(float(points[0][0]), float(points[0][1]), y)
     current = -1 if start is None else start.id
     events = []
     for room_id, distance in zip(rooms.tolist(), where, strict=True):

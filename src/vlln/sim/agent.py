@@ -19,6 +19,7 @@ from typing import Any
 
 from vlln.errors import ConfigError, DataFormatError
 from vlln.sim.navgrid import NavGrid, Point2
+from vlln.sim.storeys import Storeys
 from vlln.world.frame import heading_vector, wrap_angle, yaw_to_quaternion
 
 Point3 = tuple[float, float, float]
@@ -128,9 +129,21 @@ class StepResult:
     collided: bool
 
 
-def step(state: AgentState, action: Action, grid: NavGrid, config: MotionConfig) -> StepResult:
-    """Apply one action. Only MOVE_FORWARD can collide; STOP changes nothing."""
+def step(
+    state: AgentState, action: Action, grid: NavGrid | Storeys, config: MotionConfig
+) -> StepResult:
+    """Apply one action. Only MOVE_FORWARD can collide; STOP changes nothing.
+
+    With several storeys the move is made on the storey of the agent's height, and the
+    height then follows that storey's floor or the steps under the agent.
+    """
     if action == Action.MOVE_FORWARD:
+        if isinstance(grid, Storeys):
+            level = grid.level_of(state.position[1])
+            moved = _forward(state, grid.grids[level], config.forward_step)
+            x, _, z = moved.state.position
+            position = (x, grid.height_at(level, x, z), z)
+            return StepResult(AgentState(position, state.yaw, state.tilt), moved.collided)
         return _forward(state, grid, config.forward_step)
     if action in (Action.TURN_LEFT, Action.TURN_RIGHT):
         sign = 1.0 if action == Action.TURN_LEFT else -1.0

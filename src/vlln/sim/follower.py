@@ -18,6 +18,8 @@ from vlln.errors import ConfigError, NavigationError
 from vlln.sim.agent import Action, AgentState, MotionConfig, step
 from vlln.sim.geodesic import GeodesicField
 from vlln.sim.navgrid import NavGrid
+from vlln.sim.storey_field import StoreyField
+from vlln.sim.storeys import Storeys
 
 # Headings gaining within this share of a step of the best are as good; the one needing the
 # fewest turns wins.
@@ -34,8 +36,8 @@ class GreedyFollower:
 
     def __init__(
         self,
-        grid: NavGrid,
-        field: GeodesicField,
+        grid: NavGrid | Storeys,
+        field: GeodesicField | StoreyField,
         goal_radius: float = 0.25,
         motion: MotionConfig | None = None,
     ) -> None:
@@ -56,8 +58,8 @@ class GreedyFollower:
             self._offsets += [k, -k] if k <= right else [k]
 
     def next_action(self, state: AgentState) -> Action:
-        x, _, z = state.position
-        distance = self.field.distance(x, z)
+        x, y, z = state.position
+        distance = self.field.distance(x, z, y)
         if distance < self.goal_radius:
             return Action.STOP
         if distance == math.inf:
@@ -81,8 +83,8 @@ class GreedyFollower:
         for k in self._offsets:
             probe = AgentState(state.position, state.yaw + k * self.motion.turn, state.tilt)
             result = step(probe, Action.MOVE_FORWARD, self.grid, self.motion)
-            x, _, z = result.state.position
-            gain = distance - self.field.distance(x, z)
+            x, y, z = result.state.position
+            gain = distance - self.field.distance(x, z, y)
             if gain > 0.0:
                 (colliding if result.collided else free).append((gain, k))
         candidates = free or colliding

@@ -72,8 +72,12 @@ class GeodesicField:
         self._size = grid.cell_size
         self._rows, self._cols = rows, cols
 
-    def distance(self, x: float, z: float) -> float:
-        """Geodesic distance from the point to the nearest goal; ``inf`` if unreachable."""
+    def distance(self, x: float, z: float, y: float | None = None) -> float:
+        """Geodesic distance from the point to the nearest goal; ``inf`` if unreachable.
+
+        ``y`` (the point's height) is accepted for the interface of ``StoreyField``; one
+        storey does not need it.
+        """
         s = self._size
         col = math.floor((x - self._ox) / s)
         row = math.floor((z - self._oz) / s)
@@ -86,16 +90,19 @@ class GeodesicField:
         cz = self._oz + (row + 0.5) * s
         return d + math.hypot(x - cx, z - cz) * _ROUND_UP
 
-    def is_reachable(self, x: float, z: float) -> bool:
+    def is_reachable(self, x: float, z: float, y: float | None = None) -> bool:
         return self.distance(x, z) < math.inf
 
-    def shortest_path(self, x: float, z: float, max_length: float | None = None) -> list[Point2]:
+    def shortest_path(
+        self, x: float, z: float, max_length: float | None = None, y: float | None = None
+    ) -> list[Point2]:
         """Polyline from the point to the nearest goal along navigable cells.
 
         The cell path from Dijkstra is shortened by line of sight (string pulling): a corner
         is kept only where the straight segment past it would leave the navigable area. With
         ``max_length`` only a prefix at least that long is traced (the whole path when it is
-        shorter), for callers that describe the first metres of a long way.
+        shorter), for callers that describe the first metres of a long way. ``y`` is
+        accepted for the interface of ``StoreyField``.
         """
         if not self.is_reachable(x, z):
             raise NavigationError(
@@ -114,7 +121,7 @@ class GeodesicField:
             dr, dc = node // cols - previous // cols, node % cols - previous % cols
             travelled += size * math.hypot(dr, dc)
         points = [(x, z), *(self._centre(n) for n in _turning_nodes(chain, self._cols))]
-        return _pull_string(self.grid, points)
+        return pull_string(self.grid, points)
 
     def _centre(self, node: int) -> Point2:
         return self.grid.cell_to_world(node // self._cols, node % self._cols)
@@ -137,7 +144,7 @@ def _turning_nodes(chain: list[int], cols: int) -> list[int]:
     return kept
 
 
-def _pull_string(grid: NavGrid, points: list[Point2]) -> list[Point2]:
+def pull_string(grid: NavGrid, points: list[Point2]) -> list[Point2]:
     """Drop every point that the previous kept point can see past."""
     path = [points[0]]
     for k in range(1, len(points) - 1):

@@ -11,8 +11,8 @@ for ``origin = (ox, oz)`` and cell size ``s``. The continuous navigable region i
 navigable cells; motion and line-of-sight checks walk every cell a segment crosses.
 
 A grid knows its storey (``level``, ``floor_y``). Everything that measures distances works on a
-grid and cell indices, so several storeys can later be joined by stair cells without a global
-floor height.
+grid and cell indices; :mod:`vlln.sim.storeys` joins the grids of several storeys through the
+cells of their stairs.
 """
 
 from __future__ import annotations
@@ -97,6 +97,8 @@ class NavGrid:
         agent_height: float = 1.5,
         step_height: float = 0.15,
         level: int = 0,
+        ramp_ids: frozenset[int] = frozenset(),
+        extent: tuple[Point2, tuple[int, int]] | None = None,
     ) -> NavGrid:
         """Rasterise the storey whose floor is at ``floor_y``.
 
@@ -106,6 +108,10 @@ class NavGrid:
         the test is exact for vertical faces), plus cells enclosed by one object's footprint
         (the inside of a closed wardrobe is not floor). Free cells within ``agent_radius``
         (centre to centre) of a blocked or non-floor cell are dropped.
+
+        The horizontal faces of the instances in ``ramp_ids`` (flights of stairs that reach
+        this storey) are walkable at any height and never block. ``extent`` (origin, shape)
+        fixes the cell lattice, so that the storeys of one house share it.
         """
         if not cell_size > 0.0:
             raise ConfigError(f"cell_size must be positive, got {cell_size}")
@@ -121,20 +127,21 @@ class NavGrid:
         heights = triangles[:, :, 1]
         on_level = np.all(np.abs(heights - floor_y) <= step_height, axis=1)
         is_floor = (ids == StructureId.FLOOR) & on_level
+        is_ramp = np.isin(ids, list(ramp_ids)) if ramp_ids else np.zeros(len(ids), bool)
+        if ramp_ids:
+            is_floor |= is_ramp & (np.ptp(heights, axis=1) == 0.0)
         if not is_floor.any():
             raise NavigationError(
                 f"the mesh has no floor triangles (instance id {int(StructureId.FLOOR)}) "
                 f"within {step_height} m of floor_y={floor_y}; check floor_y"
             )
-        floor_xz = triangles[is_floor][:, :, [0, 2]].reshape(-1, 2)
-        low = np.floor(floor_xz.min(axis=0) / cell_size) - 1.0
-        high = np.ceil(floor_xz.max(axis=0) / cell_size) + 1.0
-        origin = (float(low[0] * cell_size), float(low[1] * cell_size))
-        shape = (int(high[1] - low[1]), int(high[0] - low[0]))
+        if extent is None:
+            extent = lattice_extent(triangles[is_floor], cell_size)
+        origin, shape = extent
 
         floor = floor_cells(triangles[is_floor], origin, cell_size, shape)
         band = (floor_y + step_height, floor_y + agent_height)
-        others = ~is_floor
+        others = ~is_floor & ~is_ramp
         blocked = obstacle_cells(triangles[others], ids[others], band, origin, cell_size, shape)
         free = floor & ~blocked
         clearance = ndimage.distance_transform_edt(free, sampling=cell_size)
@@ -317,6 +324,17 @@ class NavGrid:
         if self._graph is None:
             self._graph = _build_cell_graph(self.navigable, self.cell_size)
         return self._graph
+
+
+def lattice_extent(
+    floor_triangles: NDArray[np.float64], cell_size: float
+) -> tuple[Point2, tuple[int, int]]:
+    """Origin and ``(rows, cols)`` of a cell lattice covering the triangles, one cell spare."""
+    floor_xz = floor_triangles[:, :, [0, 2]].reshape(-1, 2)
+    low = np.floor(floor_xz.min(axis=0) / cell_size) - 1.0
+    high = np.ceil(floor_xz.max(axis=0) / cell_size) + 1.0
+    origin = (float(low[0] * cell_size), float(low[1] * cell_size))
+    return origin, (int(high[1] - low[1]), int(high[0] - low[0]))
 
 
 def _build_cell_graph(navigable: NDArray[np.bool_], cell_size: float) -> sparse.csr_matrix:

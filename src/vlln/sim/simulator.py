@@ -9,20 +9,24 @@ the same goals at every step.
 from __future__ import annotations
 
 from collections import OrderedDict
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import NDArray
 
-from vlln.errors import ConfigError
+from vlln.errors import ConfigError, NavigationError
 from vlln.sim.agent import Action, AgentState, MotionConfig, step
 from vlln.sim.camera import CameraSpec
 from vlln.sim.geodesic import GeodesicField
 from vlln.sim.navgrid import NavGrid
 from vlln.sim.renderer import Frame, Renderer
+from vlln.sim.storey_field import StoreyField
+from vlln.sim.storeys import Storeys
 from vlln.world.model import House
 
 Point2 = tuple[float, float]
+Field = GeodesicField | StoreyField
 
 
 @dataclass(frozen=True)
@@ -65,27 +69,59 @@ class Simulator:
         self.config = config or SimulatorConfig()
         nav = self.config.navigation
         floor_y = min((room.floor_y for room in house.rooms), default=0.0)
-        self.grid = NavGrid.from_mesh(
-            house.geometry.mesh,
-            floor_y=floor_y,
-            cell_size=nav.cell_size,
-            agent_radius=nav.agent_radius,
-            agent_height=nav.agent_height,
-            step_height=nav.step_height,
-        )
+        floor_ys = sorted({room.floor_y for room in house.rooms})
+        flights = [inst.id for inst in house.instances if inst.category == "stairs"]
+        self.storeys: Storeys | None = None
+        self._grid: NavGrid | None = None
+        if len(floor_ys) > 1 and flights:
+            self.storeys = Storeys.from_mesh(
+                house.geometry.mesh,
+                floor_ys,
+                flights,
+                cell_size=nav.cell_size,
+                agent_radius=nav.agent_radius,
+                agent_height=nav.agent_height,
+                step_height=nav.step_height,
+            )
+        else:
+            self._grid = NavGrid.from_mesh(
+                house.geometry.mesh,
+                floor_y=floor_y,
+                cell_size=nav.cell_size,
+                agent_radius=nav.agent_radius,
+                agent_height=nav.agent_height,
+                step_height=nav.step_height,
+            )
         self.renderer = Renderer(house.geometry.mesh, self.config.camera)
-        self._fields: OrderedDict[tuple[Point2, ...], GeodesicField] = OrderedDict()
+        self._fields: OrderedDict[tuple[tuple[float, ...], ...], Field] = OrderedDict()
         self._state = AgentState(position=(0.0, floor_y, 0.0), yaw=0.0, tilt=0.0)
 
     @property
     def state(self) -> AgentState:
         return self._state
 
+    @property
+    def grid(self) -> NavGrid:
+        """The navigable grid of a one-storey house."""
+        if self._grid is None:
+            storeys = len(self.storeys.grids) if self.storeys is not None else 0
+            raise NavigationError(
+                f"{self.house.name} has {storeys} storeys and this feature works "
+                "on one storey; use a one-storey house (floors=1)"
+            )
+        return self._grid
+
+    @property
+    def nav(self) -> Storeys | NavGrid:
+        """Where the agent can walk: the storeys of the house, or the grid of its one storey."""
+        return self.storeys if self.storeys is not None else self.grid
+
     def reset(self, state: AgentState) -> Observation:
         """Put the agent at ``state`` (which must be navigable) and render its view."""
-        x, _, z = state.position
-        if not self.grid.is_navigable(x, z):
-            sx, sz = self.grid.snap_point(x, z)
+        x, y, z = state.position
+        plane = self.storeys.grid_at(y) if self.storeys is not None else self.grid
+        if not plane.is_navigable(x, z):
+            sx, sz = plane.snap_point(x, z)
             raise ConfigError(
                 f"start position ({x:.3f}, {z:.3f}) is not navigable in {self.house.name}; "
                 f"the nearest navigable point is ({sx:.3f}, {sz:.3f})"
@@ -95,13 +131,13 @@ class Simulator:
 
     def step(self, action: Action) -> Observation:
         """Apply one action, then render the new view."""
-        result = step(self._state, action, self.grid, self.config.motion)
+        result = step(self._state, action, self.nav, self.config.motion)
         self._state = result.state
         return Observation(self.render(), result.state, result.collided)
 
     def move(self, action: Action) -> bool:
         """Apply one action without rendering; returns whether it collided."""
-        result = step(self._state, action, self.grid, self.config.motion)
+        result = step(self._state, action, self.nav, self.config.motion)
         self._state = result.state
         return result.collided
 
@@ -113,14 +149,28 @@ class Simulator:
         """The instance-id image of :meth:`render` alone (cheaper: one read-back)."""
         return self.renderer.render_instance_ids(state.position, state.yaw, state.tilt)
 
-    def geodesic_field(self, goals: list[Point2] | tuple[Point2, ...]) -> GeodesicField:
-        """The distance field to a goal set, built once and then cached."""
-        key = tuple((float(x), float(z)) for x, z in goals)
+    def geodesic_field(self, goals: Sequence[Sequence[float]]) -> GeodesicField:
+        """The distance field to ``(x, z)`` goals on a one-storey house, built once, cached."""
+        built = self.distance_field([(goal[0], goal[-1]) for goal in goals], one_storey=True)
+        if not isinstance(built, GeodesicField):
+            raise NavigationError("geodesic_field works on one storey; use distance_field")
+        return built
+
+    def distance_field(self, goals: Sequence[Sequence[float]], one_storey: bool = False) -> Field:
+        """The distance field to a goal set, built once and then cached. Goals are ``(x, z)``
+        on one storey and ``(x, y, z)`` in a house with several."""
+        if one_storey:
+            self.grid  # noqa: B018 - refuses a house with several storeys
+        key = tuple(tuple(float(v) for v in goal) for goal in goals)
         cached = self._fields.get(key)
         if cached is not None:
             self._fields.move_to_end(key)
             return cached
-        built = GeodesicField(self.grid, list(key))
+        built: Field
+        if self.storeys is not None:
+            built = StoreyField(self.storeys, list(key))
+        else:
+            built = GeodesicField(self.grid, [(goal[0], goal[-1]) for goal in key])
         self._fields[key] = built
         if len(self._fields) > self.config.field_cache_size:
             self._fields.popitem(last=False)

@@ -14,9 +14,12 @@ import numpy as np
 
 from vlln.errors import ConfigError
 from vlln.sim.navgrid import NavGrid, Point2
+from vlln.sim.storeys import Point3, Storeys
 from vlln.world.model import Box3
 
 VIEW_POINT_MARGIN = 0.6
+# A goal view point: (x, z) on one storey, (x, y, z) in a house with several.
+GoalPoint = tuple[float, float] | tuple[float, float, float]
 
 
 def view_points(
@@ -53,3 +56,19 @@ def view_points(
         if x_lo <= x <= x_hi and z_lo <= z <= z_hi:
             points.append((x, z))
     return points
+
+
+def storey_view_points(
+    storeys: Storeys, box: Box3, margin: float = VIEW_POINT_MARGIN, stride: int = 1
+) -> list[Point3]:
+    """:func:`view_points` on the storey the box stands on, with each point's height; on
+    stairs only the points within ``margin`` of the box's height range are kept (the box is
+    grown in 3-D), while the storey's floor always counts (for objects on a wall)."""
+    level = storeys.level_under(box.min[1])
+    grid = storeys.grids[level]
+    floor = storeys.floor_ys[level]
+    low, high = box.min[1] - margin, box.max[1] + margin
+    points = [
+        (x, storeys.height_at(level, x, z), z) for x, z in view_points(grid, box, margin, stride)
+    ]
+    return [p for p in points if p[1] == floor or low <= p[1] <= high]

@@ -49,9 +49,8 @@ from vlln.oracle.protocol import EpisodeContext, Oracle, Question
 from vlln.sim.agent import Action, AgentState, MotionConfig
 from vlln.sim.camera import CameraSpec
 from vlln.sim.follower import GreedyFollower
-from vlln.sim.navgrid import Point2
 from vlln.sim.simulator import Simulator
-from vlln.sim.viewpoints import view_points
+from vlln.sim.viewpoints import GoalPoint, storey_view_points, view_points
 from vlln.tasks.episode import Episode
 from vlln.tasks.record import DialogTurn, EndReason, EpisodeRecord, ModelCall
 from vlln.tasks.scenes import SceneCache
@@ -139,9 +138,9 @@ class NavigationEnv:
         house = self.sim.house
         self.targets = self._goal_instances(episode)
         self.goal_points = self._goal_points(episode)
-        self.field = self.sim.geodesic_field(self.goal_points)
+        self.field = self.sim.distance_field(self.goal_points)
         self.follower = GreedyFollower(
-            self.sim.grid, self.field, self.config.success_radius, self.sim.config.motion
+            self.sim.nav, self.field, self.config.success_radius, self.sim.config.motion
         )
         x0, y0, z0 = episode.start_position
         start = AgentState(
@@ -163,7 +162,7 @@ class NavigationEnv:
         self._failures: dict[str, int] = {}
         self._waypoint: Waypoint | None = None
         self._waypoint_action: Action | None = None
-        self._distance = self.field.distance(start.position[0], start.position[2])
+        self._distance = self.field.distance(start.position[0], start.position[2], y0)
         self._d0 = self._distance
         if self.oracle is not None and self.config.dialog_enabled:
             self.oracle.start(EpisodeContext(self.sim, self.targets[0], tuple(self.goal_points)))
@@ -241,8 +240,9 @@ class NavigationEnv:
             self._looks += 1
         else:
             self._steps += 1
-            self._path_length += math.hypot(after[0] - before[0], after[2] - before[2])
-            self._distance = self.field.distance(after[0], after[2])
+            dx, dy, dz = (a - b for a, b in zip(after, before, strict=True))
+            self._path_length += math.hypot(dx, dz) if dy == 0.0 else math.hypot(dx, dy, dz)
+            self._distance = self.field.distance(after[0], after[2], after[1])
             self._trace.append(self._distance)
             self._positions.append([after[0], after[2], observation.state.yaw])
         self._note_target_seen()
@@ -422,10 +422,15 @@ class NavigationEnv:
         instance_id = best[3]
         return instance_id, house.instance(instance_id).category
 
-    def _goal_points(self, episode: Episode) -> list[Point2]:
-        """The goals' view points; a goal listing none gets those of its box (reference §1)."""
-        points: list[Point2] = []
+    def _goal_points(self, episode: Episode) -> list[GoalPoint]:
+        """The goals' view points; a goal listing none gets those of its box (reference §1).
+        ``(x, z)`` on one storey, ``(x, y, z)`` in a house with several."""
+        points: list[GoalPoint] = []
+        storeys = self.sim.storeys
         for k, goal in enumerate(episode.goals):
+            if goal.view_points and storeys is not None:
+                points += [vp.position for vp in goal.view_points]
+                continue
             if goal.view_points:
                 points += [(vp.position[0], vp.position[2]) for vp in goal.view_points]
                 continue
@@ -436,7 +441,10 @@ class NavigationEnv:
                 box = self.targets[k].box
             else:
                 box = Box3(goal.position, goal.position)
-            points += view_points(self.sim.grid, box)
+            if storeys is not None:
+                points += storey_view_points(storeys, box)
+            else:
+                points += view_points(self.sim.grid, box)
         if not points:
             raise ConfigError(
                 f"episode {episode.episode_id} in {episode.scene_id}: no goal has a navigable "

@@ -37,9 +37,9 @@ from tqdm import tqdm
 from vlln import __version__
 from vlln.errors import ConfigError, DataFormatError
 from vlln.files import write_text_atomic
-from vlln.sim.navgrid import Point2
 from vlln.sim.simulator import Simulator
-from vlln.sim.viewpoints import view_points
+from vlln.sim.storeys import Point3
+from vlln.sim.viewpoints import storey_view_points, view_points
 from vlln.tasks.episode import (
     Episode,
     Goal,
@@ -50,7 +50,7 @@ from vlln.tasks.episode import (
     write_episodes,
 )
 from vlln.tasks.instructions import AmbiguousTargetError, InstructionWriter, partial_instruction
-from vlln.tasks.scenes import SceneCache, procedural_scene_id
+from vlln.tasks.scenes import SceneCache, house_scene_id, procedural_scene_id
 from vlln.tasks.spec import TaskType
 from vlln.tasks.splits import house_seeds
 from vlln.world.frame import yaw_to_quaternion
@@ -171,8 +171,8 @@ def generate_house_episodes(
             f"house {house.name!r} has no seed; episodes are generated for procedural houses "
             "made by vlln.world.generator.generate_house"
         )
-    stats = HouseStats(house.seed, procedural_scene_id(house.seed), len(house.instances))
-    if not sim.grid.navigable.any():
+    stats = HouseStats(house.seed, house_scene_id(house), len(house.instances))
+    if sim.storeys is None and not sim.grid.navigable.any():
         return HouseEpisodes([], [], [], stats)
     context = _HouseContext(sim, rng, config)
     targets = sorted(house.instances, key=lambda inst: inst.id)
@@ -199,25 +199,46 @@ def generate_house_episodes(
 
 
 class _HouseContext:
-    """One house's start pool, instruction writer and goal records, shared by its targets."""
+    """One house's start pool, instruction writer and goal records, shared by its targets.
+
+    With several storeys, starts and view points lie on every storey of the main walkable
+    structure, so a target is often on another storey than the start.
+    """
 
     def __init__(self, sim: Simulator, rng: np.random.Generator, config: EpisodeGenConfig) -> None:
-        self.house, self.grid, self.rng, self.config = sim.house, sim.grid, rng, config
-        self.scene_id = procedural_scene_id(int(self.house.seed or 0))
-        self.main_floor = self.grid.largest_component()
+        self.house, self.rng, self.config = sim.house, rng, config
+        self.storeys = sim.storeys
+        self.scene_id = house_scene_id(self.house)
         self.writer = InstructionWriter(self.house)
         self._sites: dict[int, _Site] = {}
-        self.starts = [
-            self.grid.sample_navigable_point(rng, self.main_floor)
-            for _ in range(config.start_pool_size)
-        ]
+        self.starts: list[Point3]
+        if self.storeys is not None:
+            self.main_floor = self.storeys.largest_component()
+            self.starts = [
+                self.storeys.sample_navigable_point(rng, self.main_floor)
+                for _ in range(config.start_pool_size)
+            ]
+            graph = self.storeys.cell_graph()
+        else:
+            self.grid = sim.grid
+            self.main_floor = self.grid.largest_component()
+            self.starts = [
+                (x, self.grid.floor_y, z)
+                for x, z in (
+                    self.grid.sample_navigable_point(rng, self.main_floor)
+                    for _ in range(config.start_pool_size)
+                )
+            ]
+            graph = self.grid.cell_graph()
         # Row i: geodesic distance from start i to every cell (the cell graph is symmetric).
         self.start_distances: NDArray[np.float64] = csgraph.dijkstra(
-            self.grid.cell_graph(), directed=True, indices=[self._node(p) for p in self.starts]
+            graph, directed=True, indices=[self._node(p) for p in self.starts]
         )
 
-    def _node(self, point: Point2) -> int:
-        row, col = self.grid.world_to_cell(*point)
+    def _node(self, point: Point3) -> int:
+        if self.storeys is not None:
+            return self.storeys.node(*point)
+        row, col = self.grid.world_to_cell(point[0], point[2])
         return row * self.grid.shape[1] + col
 
     def distance_to(self, cells: NDArray[np.intp]) -> NDArray[np.float64]:
@@ -230,15 +251,26 @@ class _HouseContext:
     def site(self, instance: ObjectInstance) -> _Site:
         """The instance's goal, with its view points on the main floor (built once)."""
         if instance.id not in self._sites:
-            grid, box = self.grid, instance.box
-            points = view_points(grid, box, stride=self.config.view_point_stride)
-            labels = grid.components()[0]
-            kept = [p for p in points if labels[grid.world_to_cell(*p)] == self.main_floor]
+            box, stride = instance.box, self.config.view_point_stride
+            points: list[Point3]
+            if self.storeys is not None:
+                points = storey_view_points(self.storeys, box, stride=stride)
+                labels = self.storeys.components()[0]
+                kept = [p for p in points if labels[self._node(p)] == self.main_floor]
+            else:
+                grid = self.grid
+                points = [(x, grid.floor_y, z) for x, z in view_points(grid, box, stride=stride)]
+                plan_labels = grid.components()[0]
+                kept = [
+                    p
+                    for p in points
+                    if plan_labels[grid.world_to_cell(p[0], p[2])] == self.main_floor
+                ]
             goal = Goal(
                 position=box.center,
                 radius=None,
                 bbox=(*box.min, *box.max),
-                view_points=tuple(ViewPoint((x, grid.floor_y, z)) for x, z in kept),
+                view_points=tuple(ViewPoint(p) for p in kept),
             )
             cells = np.array([self._node(p) for p in kept], dtype=np.intp)
             self._sites[instance.id] = _Site(goal, cells, len(points))
@@ -281,14 +313,13 @@ class _HouseContext:
         goals = ((own.goal,), (own.goal,), tuple(s.goal for s in category))
         made: list[_Triple] = []
         for k, start in enumerate(chosen.tolist()):
-            x, z = self.starts[start]
             qx, qy, qz, qw = yaw_to_quaternion(float(rng.uniform(-math.pi, math.pi)))
             distances = (to_target[start], to_target[start], to_category[start])
             iign, ign, objectnav = (
                 Episode(
                     episode_id=episode_id(int(self.house.seed or 0), target.id, k),
                     scene_id=self.scene_id,
-                    start_position=(x, self.grid.floor_y, z),
+                    start_position=self.starts[start],
                     start_rotation=(qx, qy, qz, qw),
                     object_category=target.category,
                     goals=goals[i],
@@ -352,8 +383,10 @@ def build_split(
     *,
     scenes: SceneCache | None = None,
     progress: bool = True,
+    floors: int = 1,
 ) -> Path:
-    """Write the episodes of the first ``houses`` houses of ``split`` to ``out_dir``.
+    """Write the episodes of the first ``houses`` houses of ``split`` to ``out_dir``
+    (houses of ``floors`` storeys: a target is often on another storey than the start).
 
     Writes ``<split>_iign.json.gz``, ``<split>_ign.json.gz``, ``<split>_objectnav.json.gz``
     and, last, ``<split>_stats.json``; the same arguments give byte-identical files. Houses
@@ -368,7 +401,7 @@ def build_split(
     per_house: list[HouseStats] = []
     try:
         for seed in tqdm(seeds, desc=f"{split} episodes", unit="house", disable=not progress):
-            sim = cache.get(procedural_scene_id(seed))
+            sim = cache.get(procedural_scene_id(seed, floors))
             made = generate_house_episodes(sim, house_rng(rng_seed, seed), config)
             for task in TaskType:
                 episodes[task].extend(made.of_task(task))
@@ -386,7 +419,7 @@ def build_split(
     for stats in per_house:
         totals.add(stats)
     document = {
-        "build": _build_settings(split, seeds, rng_seed, config),
+        "build": _build_settings(split, seeds, rng_seed, config, floors),
         "totals": {"houses": len(per_house), **totals.counts_json()},
         "houses": [stats.to_json() for stats in per_house],
     }
@@ -419,15 +452,18 @@ def load_or_build_split(
 
 
 def _build_settings(
-    split: str, seeds: list[int], rng_seed: int, config: EpisodeGenConfig
+    split: str, seeds: list[int], rng_seed: int, config: EpisodeGenConfig, floors: int = 1
 ) -> dict[str, Any]:
-    return {
+    settings = {
         "split": split,
         "house_seeds": seeds,
         "rng_seed": rng_seed,
         "config": asdict(config),
         "vlln_version": __version__,
     }
+    if floors != 1:  # one-storey settings stay as they were
+        settings["floors"] = floors
+    return settings
 
 
 def _recorded_settings(path: Path) -> Any:

@@ -17,17 +17,37 @@ from pathlib import Path
 from vlln.errors import ConfigError
 from vlln.sim.simulator import Simulator, SimulatorConfig
 from vlln.tasks.episode import scene_name
-from vlln.world.generator import generate_house
+from vlln.world.generator import HouseParameters, generate_house
 from vlln.world.model import House
 from vlln.world.scans import load_scene
 
-_PROCEDURAL = re.compile(r"^vlln/house_([0-9]{1,12})(?:/house_\1\.glb)?$", re.ASCII)
+_PROCEDURAL = re.compile(
+    r"^vlln/house_([0-9]{1,12})(_[23]f)?(?:/house_\1(?(2)\2)\.glb)?$", re.ASCII
+)
 MAX_SEED = 999_999_999
 """The largest house seed a scene id may name."""
 
 
-def procedural_scene_id(seed: int) -> str:
-    return f"vlln/house_{seed:05d}/house_{seed:05d}.glb"
+def procedural_scene_id(seed: int, floors: int = 1) -> str:
+    """``vlln/house_<seed>/house_<seed>.glb``; a house of 2 or 3 storeys (a different house
+    for the same seed) adds ``_2f`` or ``_3f`` to the name."""
+    name = f"house_{seed:05d}" if floors == 1 else f"house_{seed:05d}_{floors}f"
+    return f"vlln/{name}/{name}.glb"
+
+
+def house_scene_id(house: House) -> str:
+    """The scene id of a procedural house, storeys included."""
+    if house.seed is None:
+        raise ConfigError(f"house {house.name!r} is not a procedural house (it has no seed)")
+    return procedural_scene_id(house.seed, len({room.level for room in house.rooms}) or 1)
+
+
+def procedural_floors(scene_id: str) -> int:
+    """How many storeys the procedural house of a scene id has."""
+    procedural_seed(scene_id)
+    match = _PROCEDURAL.match(scene_id)
+    suffix = match.group(2) if match is not None else None
+    return 1 if not suffix else int(suffix[1])
 
 
 def is_procedural(scene_id: str) -> bool:
@@ -53,10 +73,9 @@ def canonical_seed(scene_id: str) -> int:
     """:func:`procedural_seed` of a scene id in its one spelling, :func:`procedural_scene_id`;
     ``vlln/house_76`` and ``vlln/house_076`` are refused, naming ``vlln/house_00076``."""
     seed = procedural_seed(scene_id)
-    if scene_id != procedural_scene_id(seed):
-        raise ConfigError(
-            f"scene {scene_id!r} is spelled {procedural_scene_id(seed)!r}; each house has one id"
-        )
+    spelled = procedural_scene_id(seed, procedural_floors(scene_id))
+    if scene_id != spelled:
+        raise ConfigError(f"scene {scene_id!r} is spelled {spelled!r}; each house has one id")
     return seed
 
 
@@ -88,6 +107,9 @@ class SceneCache:
 
     def _house(self, scene_id: str) -> House:
         if is_procedural(scene_id) or self.scenes_dir is None:
+            floors = procedural_floors(scene_id)
+            if floors > 1:
+                return generate_house(procedural_seed(scene_id), HouseParameters(floors=floors))
             return generate_house(procedural_seed(scene_id))
         return load_scene(self.scenes_dir / scene_name(scene_id))
 

@@ -37,7 +37,8 @@ def pick_views(sim: Simulator, n_views: int) -> list[View]:
     views = []
     for room in rooms:
         cx, cz = np.mean(np.asarray(room.polygon), axis=0)
-        x, z = sim.grid.snap_point(float(cx), float(cz))
+        plane = sim.storeys.grids[room.level] if sim.storeys is not None else sim.grid
+        x, z = plane.snap_point(float(cx), float(cz))
         best_yaw, best_count = 0.0, -1
         for k in range(TURNS):
             yaw = -math.pi + 2.0 * math.pi * k / TURNS
@@ -67,7 +68,7 @@ def _is_ours(path: Path) -> bool:
 def _write_views(house: House, out: Path, n_views: int) -> list[Path]:
     written = [out / "map.png"]
     with Simulator(house) as sim:
-        save_house_map(house, written[0], sim.grid)
+        save_house_map(house, written[0], sim.nav)
         max_depth = sim.config.camera.max_depth
         for index, view in enumerate(pick_views(sim, n_views)):
             for tilt_name, tilt in (("level", 0.0), ("down", -math.pi / 6)):

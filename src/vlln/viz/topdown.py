@@ -16,8 +16,9 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Polygon, Rectangle
 
 from vlln.sim.navgrid import NavGrid
+from vlln.sim.storeys import Storeys
 from vlln.viz.labels import declutter
-from vlln.world.model import House
+from vlln.world.model import House, ObjectInstance
 
 ROOM_LABEL = "room-label"
 OBJECT_LABEL = "object-label"
@@ -41,11 +42,17 @@ def draw_house(
     grid: NavGrid | None = None,
     label_objects: bool = True,
     highlight: Sequence[int] = (),
+    storey: int | None = None,
 ) -> None:
     """Draw the floor plan on ``ax`` in pose coordinates, as seen from above: x to the right
     and z downwards, so -z (where yaw 0 looks) is up and a point read off the map is an
-    (x, z) a pose can use. Call :func:`declutter_map` once the figure's layout is final."""
-    for room in house.rooms:
+    (x, z) a pose can use. Call :func:`declutter_map` once the figure's layout is final.
+
+    ``storey`` draws one storey of a house with several: its rooms, doors and objects, and
+    the stairs that reach it."""
+    rooms = [room for room in house.rooms if storey is None or room.level == storey]
+    on_storey = {room.id for room in rooms}
+    for room in rooms:
         xs = [p[0] for p in room.polygon]
         zs = [p[1] for p in room.polygon]
         ax.add_patch(
@@ -84,9 +91,12 @@ def draw_house(
             interpolation="nearest",
         )
     for door in house.doors:
+        if door.room_a not in on_storey and door.room_b not in on_storey:
+            continue
         ax.plot(door.center[0], door.center[1], marker="s", color="#8b5a2b", markersize=5)
     chosen = set(highlight)
-    by_size = sorted(house.instances, key=lambda inst: -inst.box.size[0] * inst.box.size[2])
+    shown = [inst for inst in house.instances if storey is None or _stands_on(house, inst, storey)]
+    by_size = sorted(shown, key=lambda inst: -inst.box.size[0] * inst.box.size[2])
     for inst in by_size:
         (x0, _, z0), (x1, _, z1) = inst.box.min, inst.box.max
         is_chosen = inst.id in chosen
@@ -134,21 +144,57 @@ def declutter_map(fig: Figure) -> int:
     return declutter(fig, rooms, objects)
 
 
-def house_figure(house: House, grid: NavGrid | None = None, title: str | None = None) -> Figure:
+def _stands_on(house: House, inst: ObjectInstance, storey: int) -> bool:
+    """Whether an object is drawn on a storey's map: it is in one of its rooms, or it is a
+    flight of stairs whose top reaches the storey."""
+    levels = {room.id: room.level for room in house.rooms}
+    if inst.category == "stairs":
+        floors = {room.level: room.floor_y for room in house.rooms}
+        top = floors.get(storey)
+        if top is not None and abs(inst.box.max[1] - top) < 0.05:
+            return True
+    return levels.get(inst.room_id, 0) == storey
+
+
+def storey_name(storey: int) -> str:
+    return (
+        ("ground floor", "first floor", "second floor")[storey] if storey < 3 else f"floor {storey}"
+    )
+
+
+def house_figure(
+    house: House, grid: NavGrid | Storeys | None = None, title: str | None = None
+) -> Figure:
+    """The map of a house; one panel per storey, side by side, when it has several."""
     xs = [p[0] for r in house.rooms for p in r.polygon]
     zs = [p[1] for r in house.rooms for p in r.polygon]
     span_x = max(xs) - min(xs) if xs else 10.0
     span_z = max(zs) - min(zs) if zs else 10.0
     scale = 12.0 / max(span_x, span_z, 1.0)
+    storeys = sorted({room.level for room in house.rooms})
+    heading = title or f"{house.name}: {len(house.rooms)} rooms, {len(house.instances)} objects"
+    if len(storeys) > 1:
+        width = max(4.0, span_x * scale * 0.6)
+        fig, axes = plt.subplots(
+            1, len(storeys), figsize=(width * len(storeys), max(4.0, span_z * scale * 0.6) + 0.9)
+        )
+        for ax, storey in zip(axes, storeys, strict=True):
+            plane = grid.grids[storey] if isinstance(grid, Storeys) else None
+            draw_house(ax, house, plane, storey=storey)
+            ax.set_title(storey_name(storey))
+        fig.suptitle(heading)
+        fig.tight_layout()
+        declutter_map(fig)
+        return fig
     fig, ax = plt.subplots(figsize=(max(4.0, span_x * scale), max(4.0, span_z * scale) + 0.6))
-    draw_house(ax, house, grid)
-    ax.set_title(title or f"{house.name}: {len(house.rooms)} rooms, {len(house.instances)} objects")
+    draw_house(ax, house, grid if isinstance(grid, NavGrid) else None)
+    ax.set_title(heading)
     fig.tight_layout()
     declutter_map(fig)
     return fig
 
 
-def save_house_map(house: House, path: Path, grid: NavGrid | None = None) -> None:
+def save_house_map(house: House, path: Path, grid: NavGrid | Storeys | None = None) -> None:
     path.parent.mkdir(parents=True, exist_ok=True)
     fig = house_figure(house, grid)
     fig.savefig(path, dpi=150)

@@ -15,9 +15,10 @@ oracle and instruction tools read:
   a pair has several). ``position`` is the box centre; it is written for the reference tools
   and only checked on import, where the box is ``min_points``/``max_points``.
 * ``region_dict.json``: ``{scope: [{label, id, poly, enlarge_poly}]}`` with rooms in id
-  order. Polygons are ``[x, -z]`` (this module is the only place that frame appears) and
-  ``enlarge_poly`` is ``poly`` grown outward by :data:`ENLARGE_MARGIN`, which the reference
-  falls back to for points in doorways and on walls.
+  order, one scope per floor (``<house>_<level>`` with several floors). Polygons are
+  ``[x, -z]`` (this module is the only place that frame appears) and ``enlarge_poly`` is
+  ``poly`` grown outward by :data:`ENLARGE_MARGIN`, which the reference falls back to for
+  points in doorways and on walls.
 
 Files are byte-identical for equal houses: fixed key order, numbers rounded to
 :data:`DECIMALS` decimals (so a round trip is exact only to 0.1 mm), two-space indent with each
@@ -177,6 +178,7 @@ def _room_label(room: Room) -> str:
 
 def _object_dict(house: House) -> dict[str, Any]:
     labels = {room.id: _room_label(room) for room in house.rooms}
+    scopes = {room.id: _scope(house, room.level) for room in house.rooms}
     nearby: dict[int, dict[str, list[str]]] = {}
     for rel in sorted(house.relations, key=lambda r: (r.subject, r.object)):
         nearby.setdefault(rel.subject, {}).setdefault(str(rel.object), []).append(rel.word)
@@ -196,7 +198,7 @@ def _object_dict(house: House) -> dict[str, Any]:
             "position": [_num((a + b) / 2.0) for a, b in zip(lo, hi, strict=True)],
             "min_points": lo,
             "max_points": hi,
-            "scope": house.name,
+            "scope": scopes.get(inst.room_id, _scope(house, 0)),
             "room": labels.get(inst.room_id, ""),
             "region_id": inst.room_id,
             "unique_description": {
@@ -212,17 +214,20 @@ def _object_dict(house: House) -> dict[str, Any]:
     return out
 
 
+def _scope(house: House, level: int) -> str:
+    """A floor's scope: the house's name, with ``_<level>`` when it has several floors."""
+    several = len({room.level for room in house.rooms}) > 1
+    return f"{house.name}_{level}" if several else house.name
+
+
 def _region_dict(house: House) -> dict[str, Any]:
-    regions = [
-        {
-            "label": _room_label(room),
-            "id": room.id,
-            "poly": _plan_points(room.polygon),
-            "enlarge_poly": _plan_points(grown_polygon(room.polygon, ENLARGE_MARGIN)),
-        }
-        for room in sorted(house.rooms, key=lambda r: r.id)
-    ]
-    return {house.name: regions}
+    """One scope per floor, floors in order, rooms in id order within each."""
+    out: dict[str, Any] = {_scope(house, k): [] for k in sorted({r.level for r in house.rooms})}
+    for room in sorted(house.rooms, key=lambda r: r.id):
+        grown = _plan_points(grown_polygon(room.polygon, ENLARGE_MARGIN))
+        region = {"label": _room_label(room), "id": room.id, "poly": _plan_points(room.polygon)}
+        out[_scope(house, room.level)].append({**region, "enlarge_poly": grown})
+    return out or {house.name: []}
 
 
 # A list of numbers that json.dumps spread over lines (raw newlines never occur in strings).

@@ -14,6 +14,7 @@ from vlln.world.catalogue.registry import Catalogue, default_catalogue
 from vlln.world.generator.furnishing import furnish
 from vlln.world.generator.layout import plan_floor
 from vlln.world.generator.params import HouseParameters
+from vlln.world.generator.storeys import build_storeys
 from vlln.world.generator.structure import build_structure
 from vlln.world.mesh import Mesh
 from vlln.world.model import House, HouseGeometry
@@ -32,15 +33,21 @@ def generate_house(
     plan_rng, shell_rng, furniture_rng = (
         np.random.default_rng(child) for child in np.random.SeedSequence(int(seed)).spawn(3)
     )
-    plan = plan_floor(params, plan_rng)
-    shell = build_structure(plan, params, shell_rng)
-    objects = furnish(plan, params, catalogue, furniture_rng)
-    instances = [obj.instance for obj in objects]
-    mesh = Mesh.concatenate([shell, *(obj.mesh for obj in objects)])
+    if params.floors > 1:
+        rooms, doors, instances, mesh = build_storeys(
+            params, catalogue, plan_rng, shell_rng, furniture_rng
+        )
+    else:
+        plan = plan_floor(params, plan_rng)
+        shell = build_structure(plan, params, shell_rng)
+        objects = furnish(plan, params, catalogue, furniture_rng)
+        rooms, doors = plan.rooms, plan.doors
+        instances = [obj.instance for obj in objects]
+        mesh = Mesh.concatenate([shell, *(obj.mesh for obj in objects)])
     return House(
-        name=f"house_{int(seed):05d}",
-        rooms=plan.rooms,
-        doors=plan.doors,
+        name=f"house_{int(seed):05d}" + (f"_{params.floors}f" if params.floors > 1 else ""),
+        rooms=rooms,
+        doors=doors,
         instances=instances,
         relations=build_relations(instances),
         geometry=HouseGeometry(mesh),

@@ -39,6 +39,7 @@ class HouseParameters:
     clutter: float = field(
         default=1.0, metadata={"help": "multiplies the mean number of objects per room"}
     )
+    floors: int = field(default=1, metadata={"help": "storeys joined by stairs (1 to 3)"})
 
     def validate(self) -> None:
         """Raise :class:`HouseParametersError` naming the first parameter that cannot work."""
@@ -84,6 +85,7 @@ class HouseParameters:
                 f"walls allow wider doors)"
             )
         _check_number("clutter", self.clutter, 0.0, 3.0)
+        _check_int("floors", self.floors, 1, 3)
 
 
 @dataclass(frozen=True)
