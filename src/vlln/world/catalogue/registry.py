@@ -66,10 +66,12 @@ def default_catalogue() -> Catalogue:
         electronics,
         kitchen,
         misc,
+        personal,
         seating,
         storage,
         tables,
         tableware,
+        toiletries,
     )
 
     modules = (
@@ -83,5 +85,7 @@ def default_catalogue() -> Catalogue:
         decor,
         tableware,
         misc,
+        personal,
+        toiletries,
     )
     return Catalogue([c for module in modules for c in module.CATEGORIES])
