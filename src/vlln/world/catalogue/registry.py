@@ -64,7 +64,9 @@ def default_catalogue() -> Catalogue:
         bedroom,
         decor,
         electronics,
+        groceries,
         kitchen,
+        kitchenware,
         misc,
         personal,
         seating,
@@ -87,5 +89,7 @@ def default_catalogue() -> Catalogue:
         misc,
         personal,
         toiletries,
+        kitchenware,
+        groceries,
     )
     return Catalogue([c for module in modules for c in module.CATEGORIES])
