@@ -18,20 +18,30 @@ import pytest
 from vlln.oracle.normalisation import MATERIAL_SYNONYMS
 from vlln.sim.camera import CameraSpec
 from vlln.sim.renderer import Renderer
-from vlln.world.catalogue import groceries, kitchenware, personal, toiletries
+from vlln.world.catalogue import (
+    gadgets,
+    groceries,
+    household,
+    keepsakes,
+    kitchenware,
+    personal,
+    toiletries,
+)
 from vlln.world.catalogue.base import Category, ObjectModel, Placement, Style
 from vlln.world.catalogue.registry import ROOM_TYPES, Catalogue, default_catalogue
 from vlln.world.generator.house import generate_house
 from vlln.world.materials import COLORS, MATERIALS, color_rgb, material_index
 from vlln.world.mesh import Mesh
 
-MODULES = (personal, toiletries, kitchenware, groceries)
+MODULES = (personal, toiletries, kitchenware, groceries, household, gadgets, keepsakes)
 CATEGORIES: list[Category] = [c for module in MODULES for c in module.CATEGORIES]
 BY_NAME = {c.name: c for c in CATEGORIES}
 REFERENCE_NAMES = (
     "shoe", "purse", "hat", "cap", "glove", "soap", "soap dispenser", "soap dish", "shampoo",
     "body loofah", "cosmetics", "hair dryer", "pan", "knife", "seasoning", "tray", "pitcher",
-    "bread", "can", "jar", "wine",
+    "bread", "can", "jar", "wine", "detergent", "sponge", "brush", "tissue box", "tissue",
+    "telephone", "camera", "tablet", "remote control", "mouse", "radio", "toy", "trophy",
+    "candlestick", "mask",
 )  # fmt: skip
 SCALES = (0.85, 1.15)
 CEILING_HEIGHT = 2.7

@@ -64,7 +64,10 @@ def default_catalogue() -> Catalogue:
         bedroom,
         decor,
         electronics,
+        gadgets,
         groceries,
+        household,
+        keepsakes,
         kitchen,
         kitchenware,
         misc,
@@ -91,5 +94,8 @@ def default_catalogue() -> Catalogue:
         toiletries,
         kitchenware,
         groceries,
+        household,
+        gadgets,
+        keepsakes,
     )
     return Catalogue([c for module in modules for c in module.CATEGORIES])

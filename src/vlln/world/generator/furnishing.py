@@ -57,6 +57,9 @@ PREFERRED_SUPPORTS: dict[str, tuple[str, ...]] = {
     "kettle": ("kitchen counter", "kitchen island", "stove"),
     "toaster": ("kitchen counter", "kitchen island"),
     "table lamp": ("nightstand", "side table", "desk", "dresser", "chest of drawers"),
+    "mouse": ("desk",),
+    "remote control": ("coffee table", "tv stand", "sofa", "side table"),
+    "pan": ("stove", "kitchen counter", "kitchen island"),
 }
 FREE_STANDING = (Placement.FLOOR, Placement.AT_TABLE)  # may stand on rugs
 FREE_STANDING_WORDS = tuple(p.value for p in FREE_STANDING)
