@@ -25,6 +25,7 @@ from vlln.world.catalogue import (
     keepsakes,
     kitchenware,
     personal,
+    stationery,
     toiletries,
 )
 from vlln.world.catalogue.base import Category, ObjectModel, Placement, Style
@@ -33,7 +34,7 @@ from vlln.world.generator.house import generate_house
 from vlln.world.materials import COLORS, MATERIALS, color_rgb, material_index
 from vlln.world.mesh import Mesh
 
-MODULES = (personal, toiletries, kitchenware, groceries, household, gadgets, keepsakes)
+MODULES = (personal, toiletries, kitchenware, groceries, household, gadgets, keepsakes, stationery)
 CATEGORIES: list[Category] = [c for module in MODULES for c in module.CATEGORIES]
 BY_NAME = {c.name: c for c in CATEGORIES}
 REFERENCE_NAMES = (
@@ -41,7 +42,7 @@ REFERENCE_NAMES = (
     "body loofah", "cosmetics", "hair dryer", "pan", "knife", "seasoning", "tray", "pitcher",
     "bread", "can", "jar", "wine", "detergent", "sponge", "brush", "tissue box", "tissue",
     "telephone", "camera", "tablet", "remote control", "mouse", "radio", "toy", "trophy",
-    "candlestick", "mask",
+    "candlestick", "mask", "notebook", "magazine", "album", "adhesive tape",
 )  # fmt: skip
 SCALES = (0.85, 1.15)
 CEILING_HEIGHT = 2.7

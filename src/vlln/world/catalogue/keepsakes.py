@@ -76,7 +76,13 @@ def build_toy(style: Style, rng: np.random.Generator) -> ObjectModel:
         for wheel_x in (-w / 2 - 0.01 * s, w / 2):
             for z in (-d * 0.3, d * 0.3):
                 b.cylinder(
-                    (wheel_x, 0.022 * s, z), 0.022 * s, 0.01 * s, DARK, PLASTIC, segments=8, axis="x"
+                    (wheel_x, 0.022 * s, z),
+                    0.022 * s,
+                    0.01 * s,
+                    DARK,
+                    PLASTIC,
+                    segments=8,
+                    axis="x",
                 )
         return ObjectModel(b.build())
     edge = 0.05 * s

@@ -73,6 +73,7 @@ def default_catalogue() -> Catalogue:
         misc,
         personal,
         seating,
+        stationery,
         storage,
         tables,
         tableware,
@@ -97,5 +98,6 @@ def default_catalogue() -> Catalogue:
         household,
         gadgets,
         keepsakes,
+        stationery,
     )
     return Catalogue([c for module in modules for c in module.CATEGORIES])
