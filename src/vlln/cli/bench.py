@@ -65,6 +65,13 @@ def _bench_data(args: argparse.Namespace) -> int:
     return 0
 
 
+def _bench_world(args: argparse.Namespace) -> int:
+    from vlln.bench.world import run_world_benchmark
+
+    run_world_benchmark(houses=args.houses, first_seed=args.first_seed, as_json=args.json)
+    return 0
+
+
 def add_bench_commands(commands: Commands) -> None:
     bench = commands.add_parser("bench", help="speed and memory benchmarks").add_subparsers(
         dest="bench_command", required=True
@@ -114,4 +121,9 @@ def add_bench_commands(commands: Commands) -> None:
     )
     bench_data.add_argument("--json", action="store_true", help="print one JSON object per line")
     bench_data.set_defaults(handler=_bench_data)
+    bench_world = bench.add_parser("world", help="objects, triangles and build time per house")
+    bench_world.add_argument("--houses", type=int, default=20, help="houses (default 20)")
+    bench_world.add_argument("--first-seed", type=int, default=0, help="first seed (default 0)")
+    bench_world.add_argument("--json", action="store_true", help="print one JSON object per line")
+    bench_world.set_defaults(handler=_bench_world)
     add_bench_web(bench)
