@@ -115,12 +115,11 @@ def build_knife(style: Style, rng: np.random.Generator) -> ObjectModel:
     facing_polygon(b, top, np.array((0.0, 1.0, 1.0)), color, mat)
     handles = SILVER if style.color in ("black", "dark brown") else BLACK
     n = int(rng.integers(3, 6))
-    for k in range(n):
+    for k in range(n):  # handles stick out of the slanted top, alternately front and back
         x = (k - (n - 1) / 2) * w * 0.8 / max(n - 1, 1)
-        f = 0.35 + 0.5 * (k % 2)
-        start = np.array((x, h * 0.45 + (h * 0.55) * f, d / 2 - d * f))
-        end = start + np.array((0.0, 0.07 * s, 0.045 * s))
-        beam(b, tuple(start), tuple(end), 0.018 * s, 0.026 * s, handles, PLASTIC)
+        back = 0.35 + 0.5 * (k % 2)  # how far along the top from its front edge
+        y, z = h * 0.45 + h * 0.55 * back, d / 2 - d * back
+        beam(b, (x, y, z), (x, y + 0.07 * s, z + 0.045 * s), 0.018 * s, 0.026 * s, handles, PLASTIC)
     return ObjectModel(b.build())
 
 

@@ -90,12 +90,11 @@ def _shoe(b: MeshBuilder, x: float, z: float, shape: str, s: float, color: Rgb, 
         PLAIN,
         faces="+y",
     )
-    if shape == "sneakers":
-        for k in range(3):
-            f = 0.25 + 0.2 * k
-            y = toe[1] + (instep[1] - toe[1]) * (1 - f) + 0.021 * s
-            zk = toe[2] + (instep[2] - toe[2]) * (1 - f)
-            b.box((x, y, zk), (width * 0.55, 0.004 * s, 0.008 * s), color_rgb("white"), PLAIN)
+    if shape == "sneakers":  # laces across the top of the sloping vamp
+        for along in (0.35, 0.55, 0.75):
+            y = toe[1] + (instep[1] - toe[1]) * along + 0.021 * s
+            z_lace = toe[2] + (instep[2] - toe[2]) * along
+            b.box((x, y, z_lace), (width * 0.55, 0.004 * s, 0.008 * s), color_rgb("white"), PLAIN)
 
 
 def build_shoe(style: Style, rng: np.random.Generator) -> ObjectModel:
