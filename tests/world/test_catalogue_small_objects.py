@@ -194,3 +194,9 @@ def test_generated_houses_put_small_objects_where_they_belong() -> None:
             else:
                 assert inst.box.min[1] <= 0.01, inst.caption
     assert placed == set(BY_NAME), f"never placed: {sorted(set(BY_NAME) - placed)}"
+
+
+def test_the_fingerprint_follows_what_the_categories_say() -> None:
+    catalogue = default_catalogue()
+    assert Catalogue(list(catalogue)).fingerprint() == catalogue.fingerprint()
+    assert _boosted_catalogue().fingerprint() != catalogue.fingerprint()

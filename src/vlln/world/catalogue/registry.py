@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import hashlib
+import json
 from collections.abc import Iterator
 from functools import cache
 
@@ -54,6 +56,19 @@ class Catalogue:
     def for_room(self, room_type: str) -> list[Category]:
         """Categories that can appear in a room of this type, in name order."""
         return [c for c in self if room_type in c.rooms]
+
+    def fingerprint(self) -> str:
+        """A short hash of every category's words, placement and rooms.
+
+        Seeded houses change with the catalogue, so files built from them (cached episode
+        splits) record it and are rebuilt when it differs.
+        """
+        described = [
+            [c.name, c.shapes, c.colors, c.materials, c.placement.value, c.rooms, c.wall_height]
+            for c in self
+        ]
+        text = json.dumps(described, sort_keys=True)
+        return hashlib.sha256(text.encode("utf-8")).hexdigest()[:16]
 
 
 @cache
