@@ -67,12 +67,16 @@ def test_a_checkpoint_trained_on_dialog_asks_and_the_answers_are_recorded(
     questions = [output.question for output in outputs if isinstance(output, TalkOutput)]
     # The model opens with questions; each asked one is its own <talk> output, in order.
     assert isinstance(outputs[0], TalkOutput), calls[0].text
-    assert 1 <= len(record.dialog) <= record.budget
     assert [turn.question for turn in record.dialog] == questions[: len(record.dialog)]
     assert record.actions[: len(record.dialog)] == ["TALK"] * len(record.dialog)
-    # The rule oracle answered every question within the budget...
-    for turn in record.dialog:
-        assert turn.answered and turn.answer and turn.backend == "rules"
-    # ...and each exchange went into the prompt of the model's next call.
-    for before, after in pairwise(calls[: len(record.dialog) + 1]):
+    # The rule oracle answered every question within the budget; a model that talks on has
+    # its further questions recorded and refused.
+    answered = [turn for turn in record.dialog if turn.answered]
+    assert 1 <= len(answered) <= record.budget
+    assert record.dialog[: len(answered)] == answered
+    assert all(turn.question_type == "refused" for turn in record.dialog[len(answered) :])
+    for turn in answered:
+        assert turn.answer and turn.backend == "rules"
+    # Each answered exchange went into the prompt of the model's next call.
+    for before, after in pairwise(calls[: len(answered) + 1]):
         assert after.prompt_tokens > before.prompt_tokens
