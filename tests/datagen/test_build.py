@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import os
 import signal
 import subprocess
@@ -13,11 +14,12 @@ import pytest
 
 from tests.datagen.conftest import SMALL, dataset_files
 from vlln.cli import main
-from vlln.datagen.build import BuildConfig, build_dataset, summarize
+from vlln.datagen.build import BuildConfig, build_dataset, check_settings, summarize
 from vlln.datagen.reader import HouseDataset, house_folders
 from vlln.errors import ConfigError
 from vlln.eval.sharding import Shard
 from vlln.tasks.episode import read_episodes
+from vlln.world.catalogue import default_catalogue
 
 
 def test_every_stage_is_written(small_dataset: Path) -> None:
@@ -108,6 +110,17 @@ def test_two_shards_equal_one_build(small_dataset: Path, tmp_path: Path) -> None
 def test_other_settings_in_the_same_folder_are_refused(small_dataset: Path) -> None:
     with pytest.raises(ConfigError, match="per_house"):
         build_dataset(small_dataset, BuildConfig(houses=2, per_house=3), progress=False)
+
+
+def test_a_folder_built_from_another_catalogue_is_refused(tmp_path: Path) -> None:
+    config = BuildConfig(houses=1)
+    check_settings(tmp_path, config)
+    recorded = json.loads((tmp_path / "build.json").read_text())
+    assert recorded["catalogue"] == default_catalogue().fingerprint()
+    recorded["catalogue"] = "an older catalogue"
+    (tmp_path / "build.json").write_text(json.dumps(recorded))
+    with pytest.raises(ConfigError, match="catalogue"):
+        check_settings(tmp_path, config)
 
 
 def test_bad_settings_are_refused() -> None:

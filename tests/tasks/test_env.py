@@ -6,8 +6,10 @@ import numpy as np
 import pytest
 
 from vlln.errors import ConfigError
+from vlln.oracle.knowledge import HouseIndex
 from vlln.oracle.rule_oracle import RuleOracle
 from vlln.sim.agent import Action
+from vlln.sim.simulator import Simulator
 from vlln.sim.viewpoints import view_points
 from vlln.tasks.env import NavigationEnv
 from vlln.tasks.episode import Episode, Goal, Instruction, ViewPoint
@@ -50,11 +52,20 @@ def episode_for(
     )
 
 
+def _seen_from_its_room(sim: Simulator, inst: ObjectInstance) -> bool:
+    """Whether the object has view points and all are in its own room: the goal region of
+    an object by a wall also takes in floor behind the wall, where it cannot be seen."""
+    points = view_points(sim.grid, inst.box)
+    rooms = HouseIndex.build(sim.house).rooms_at(np.array(points).reshape(-1, 2))
+    return bool(points) and bool((rooms == inst.room_id).all())
+
+
 def ambiguous_target(scenes: SceneCache) -> tuple[ObjectInstance, ObjectInstance]:
-    """A target and a same-category distractor more than 3 m apart, both with view points."""
+    """A target and a same-category distractor more than 3 m apart, each with view points
+    in its own room only."""
     sim = scenes.get(procedural_scene_id(SEED))
     for category in ("chair", "picture", "plant", "pillow", "cabinet"):
-        found = [i for i in sim.house.instances_of(category) if view_points(sim.grid, i.box)]
+        found = [i for i in sim.house.instances_of(category) if _seen_from_its_room(sim, i)]
         for other in found[1:]:
             if found[0].box.distance_to(other.box) > 3.0:
                 return found[0], other

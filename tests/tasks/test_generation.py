@@ -35,6 +35,7 @@ from vlln.tasks.instructions import (
 from vlln.tasks.scenes import SceneCache, procedural_scene_id, procedural_seed
 from vlln.tasks.spec import TaskType
 from vlln.tasks.splits import house_seeds
+from vlln.world.catalogue import default_catalogue
 from vlln.world.generator import HouseParameters, generate_house
 
 SMALL = HouseParameters(min_rooms=3, max_rooms=4, min_area=35.0, max_area=55.0)
@@ -327,3 +328,21 @@ def test_load_or_build_builds_once(
     assert load_or_build_split("test", "ign", 1, tmp_path, 0, SPLIT_CONFIG, scenes=scenes) != []
     with pytest.raises(AssertionError, match="built again"):
         load_or_build_split("test", "ign", 2, tmp_path, 0, SPLIT_CONFIG, scenes=scenes)
+
+
+def test_a_split_built_from_another_catalogue_is_built_again(
+    tmp_path: Path, scenes: SmallHouses, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    load_or_build_split("test", "ign", 1, tmp_path, 0, SPLIT_CONFIG, scenes=scenes, progress=False)
+    stats = stats_path(tmp_path, "test")
+    recorded = json.loads(stats.read_text())
+    assert recorded["build"]["catalogue"] == default_catalogue().fingerprint()
+    recorded["build"]["catalogue"] = "an older catalogue"
+    stats.write_text(json.dumps(recorded))
+
+    def refuse(*args: Any, **kwargs: Any) -> Path:
+        raise AssertionError("the cached split was built again")
+
+    monkeypatch.setattr(generation, "build_split", refuse)
+    with pytest.raises(AssertionError, match="built again"):
+        load_or_build_split("test", "ign", 1, tmp_path, 0, SPLIT_CONFIG, scenes=scenes)

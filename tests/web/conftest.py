@@ -19,7 +19,7 @@ from vlln.tasks.spec import TaskConfig, TaskType
 from vlln.web.config import WebConfig
 from vlln.web.server import build_server
 
-HOUSE_SEED = 39  # four rooms, 76 objects
+HOUSE_SEED = 39  # four rooms, 104 objects
 SCENE_ID = procedural_scene_id(HOUSE_SEED)
 START_TIMEOUT = 20.0
 

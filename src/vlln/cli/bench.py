@@ -77,7 +77,7 @@ def _bench_data(args: argparse.Namespace) -> int:
 def _bench_world(args: argparse.Namespace) -> int:
     from vlln.bench.world import run_world_benchmark
 
-    run_world_benchmark(houses=args.houses, as_json=args.json)
+    run_world_benchmark(houses=args.houses, first_seed=args.first_seed, as_json=args.json)
     return 0
 
 
@@ -85,10 +85,6 @@ def add_bench_commands(commands: Commands) -> None:
     bench = commands.add_parser("bench", help="speed and memory benchmarks").add_subparsers(
         dest="bench_command", required=True
     )
-    world = bench.add_parser("world", help="catalogue size, objects and CPU time per house")
-    world.add_argument("--houses", type=int, default=20, help="houses 0..N-1 (default 20)")
-    world.add_argument("--json", action="store_true", help="print one JSON object per line")
-    world.set_defaults(handler=_bench_world)
     sim = bench.add_parser("sim", help="renderer, motion and geodesic figures")
     sim.add_argument("--seed", type=int, default=0, help="house seed (default 0)")
     sim.add_argument("--frames", type=int, default=300, help="frames per timing (default 300)")
@@ -142,4 +138,11 @@ def add_bench_commands(commands: Commands) -> None:
     )
     bench_data.add_argument("--json", action="store_true", help="print one JSON object per line")
     bench_data.set_defaults(handler=_bench_data)
+    bench_world = bench.add_parser(
+        "world", help="catalogue size; objects, triangles and build time per house"
+    )
+    bench_world.add_argument("--houses", type=int, default=20, help="houses (default 20)")
+    bench_world.add_argument("--first-seed", type=int, default=0, help="first seed (default 0)")
+    bench_world.add_argument("--json", action="store_true", help="print one JSON object per line")
+    bench_world.set_defaults(handler=_bench_world)
     add_bench_web(bench)

@@ -44,6 +44,7 @@ from vlln.tasks.generation import EpisodeGenConfig, build_split, episode_path
 from vlln.tasks.scenes import SceneCache, procedural_scene_id
 from vlln.tasks.spec import TaskType
 from vlln.tasks.splits import house_seeds
+from vlln.world.catalogue import default_catalogue
 from vlln.world.scene_summary import export_scene_summary
 
 
@@ -72,6 +73,7 @@ class BuildConfig:
             "oracle": "rules",
             "vlln_version": __version__,
             "trajectory_format": FORMAT_VERSION,
+            "catalogue": default_catalogue().fingerprint(),
         }
 
 

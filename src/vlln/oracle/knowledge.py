@@ -29,6 +29,10 @@ from vlln.world.model import House, ObjectInstance, Relation, Room
 LANDMARK_MIN_SIZE = 0.5  # m, largest side of the box
 LANDMARK_MAX_HEIGHT = 2.0  # m, bottom of the box above the room's floor
 _NOT_LANDMARK_WORDS = ("light", "ceiling", "wall", "floor", "column")
+# Category names that are also auxiliary verbs: followed by a subject or "be"/"not" ("can it
+# be ...?", "can you see it?") the word is the verb, not the object.
+_AUXILIARY_NAMES = frozenset({"can"})
+_AUXILIARY_USE = r"(?!\s+(?:i|you|we|they|it|he|she|one|be|not)\b)"
 
 # How rooms are spoken; a type without an entry is spoken as it is written.
 _SPOKEN_ROOM = {"other": "open area", "stairs": "staircase"}
@@ -156,7 +160,10 @@ def _category_pattern(categories: set[str]) -> re.Pattern[str]:
     """Finds the categories and their aliases ("sofa" for a couch); map a match with
     :func:`~vlln.world.catalogue.aliases.canonical_category`."""
     words = categories | set(aliases_of(categories))
-    names = "|".join(re.escape(c) for c in sorted(words, key=len, reverse=True))
+    names = "|".join(
+        re.escape(c) + (_AUXILIARY_USE if c in _AUXILIARY_NAMES else "")
+        for c in sorted(words, key=len, reverse=True)
+    )
     return re.compile(rf"\b({names})s?\b" if names else r"(?!)")
 
 

@@ -53,6 +53,7 @@ from vlln.tasks.instructions import AmbiguousTargetError, InstructionWriter, par
 from vlln.tasks.scenes import SceneCache, house_scene_id, procedural_scene_id
 from vlln.tasks.spec import TaskType
 from vlln.tasks.splits import house_seeds
+from vlln.world.catalogue import default_catalogue
 from vlln.world.frame import yaw_to_quaternion
 from vlln.world.model import ObjectInstance
 
@@ -460,6 +461,7 @@ def _build_settings(
         "rng_seed": rng_seed,
         "config": asdict(config),
         "vlln_version": __version__,
+        "catalogue": default_catalogue().fingerprint(),
     }
     if floors != 1:  # one-storey settings stay as they were
         settings["floors"] = floors

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import hashlib
+import json
 from collections.abc import Iterator
 from functools import cache
 
@@ -62,6 +64,19 @@ class Catalogue:
         """Categories that can appear in a room of this type, in name order."""
         return [c for c in self if room_type in c.rooms]
 
+    def fingerprint(self) -> str:
+        """A short hash of every category's words, placement and rooms.
+
+        Seeded houses change with the catalogue, so files built from them (cached episode
+        splits) record it and are rebuilt when it differs.
+        """
+        described = [
+            [c.name, c.shapes, c.colors, c.materials, c.placement.value, c.rooms, c.wall_height]
+            for c in self
+        ]
+        text = json.dumps(described, sort_keys=True)
+        return hashlib.sha256(text.encode("utf-8")).hexdigest()[:16]
+
 
 @cache
 def default_catalogue() -> Catalogue:
@@ -70,18 +85,26 @@ def default_catalogue() -> Catalogue:
         appliances,
         bathroom,
         bedroom,
+        cleaning,
         decor,
         electronics,
         fixtures,
+        gadgets,
+        groceries,
         household,
+        keepsakes,
         kitchen,
+        kitchenware,
         leisure,
         misc,
+        personal,
         seating,
+        stationery,
         storage,
         tables,
         tableware,
         textiles,
+        toiletries,
     )
 
     modules = (
@@ -100,5 +123,13 @@ def default_catalogue() -> Catalogue:
         textiles,
         fixtures,
         leisure,
+        personal,
+        toiletries,
+        kitchenware,
+        groceries,
+        cleaning,
+        gadgets,
+        keepsakes,
+        stationery,
     )
     return Catalogue([c for module in modules for c in module.CATEGORIES])

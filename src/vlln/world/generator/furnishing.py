@@ -62,6 +62,9 @@ PREFERRED_SUPPORTS: dict[str, tuple[str, ...]] = {
     "kettle": ("counter", "kitchen island", "stove"),
     "toaster": ("counter", "kitchen island"),
     "table lamp": ("nightstand", "side table", "desk", "dresser", "drawer"),
+    "mouse": ("desk",),
+    "remote control": ("coffee table", "tv stand", "couch", "side table"),
+    "pan": ("stove", "counter", "kitchen island"),
 }
 FREE_STANDING = (Placement.FLOOR, Placement.AT_TABLE)  # may stand on rugs
 FREE_STANDING_WORDS = tuple(p.value for p in FREE_STANDING)

@@ -19,6 +19,7 @@ from scipy import ndimage
 
 from vlln.world.generator.doors import door_along, door_wall_coord
 from vlln.world.generator.rect import Rect
+from vlln.world.generator.structure import DOOR_HEIGHT
 from vlln.world.model import Box3, Door
 
 GRID_CELL = 0.1  # m, the occupancy grid used for the walkability check
@@ -114,7 +115,8 @@ class RoomSpace:
     def fits_above_floor(self, box: Box3, ignore: int | None = None, hangs: bool = False) -> bool:
         """An object set on a surface (``ignore`` its support) or hung on a wall or ceiling.
 
-        A hanging object low enough to meet the agent must also keep doors and floor clear.
+        A hanging object lower than the door lintels keeps out of the doorways, and one low
+        enough to meet the agent also keeps the floor clear.
         """
         if not (
             self.contains(footprint(box))
@@ -122,12 +124,12 @@ class RoomSpace:
             and not self.intersects_any(box, ignore)
         ):
             return False
-        if not hangs or box.min[1] >= AGENT_HEIGHT:
+        if not hangs or box.min[1] >= DOOR_HEIGHT:
             return True
         rect = footprint(box)
         if any(rects_overlap(rect, zone) for zone in self.door_zones):
             return False
-        return self.keeps_floor_walkable(rect)
+        return box.min[1] >= AGENT_HEIGHT or self.keeps_floor_walkable(rect)
 
     def intersects_any(self, box: Box3, ignore: int | None = None) -> bool:
         return any(boxes_intersect(box, other) for owner, other in self.boxes if owner != ignore)

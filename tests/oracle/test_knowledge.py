@@ -1,0 +1,15 @@
+"""The house index finds the objects a question names, and no object in its grammar."""
+
+from vlln.oracle.knowledge import HouseIndex
+from vlln.world.generator import generate_house
+
+
+def test_the_auxiliary_can_is_not_the_object_can() -> None:
+    house = generate_house(0)
+    assert any(inst.category == "can" for inst in house.instances)
+    pattern = HouseIndex.build(house).category_pattern
+    named = [m.group(1) for m in pattern.finditer("can it be found next to the can?")]
+    assert named == ["can"]
+    question = "can you see it by the cans"
+    assert [m.start() for m in pattern.finditer(question)] == [question.index("cans")]
+    assert not list(pattern.finditer("can i find it there? can we go?"))
