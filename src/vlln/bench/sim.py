@@ -23,9 +23,9 @@ import numpy as np
 from vlln.bench.figures import Figure, emit, median_seconds
 from vlln.sim.agent import Action, AgentState
 from vlln.sim.camera import CameraSpec
+from vlln.sim.draw_list import DrawList
 from vlln.sim.geodesic import GeodesicField
 from vlln.sim.gl_context import create_headless_context
-from vlln.sim.renderer import DrawList
 from vlln.sim.shaders import (
     FRAGMENT_SHADER,
     VERTEX_ATTRIBUTES,
@@ -134,7 +134,8 @@ def _render_fps(sim: Simulator, poses: list[AgentState]) -> float:
 
 def _raw_raster_fps(sim: Simulator, poses: list[AgentState]) -> float:
     """The renderer's per-frame GL work (uniforms, index list, one draw, three read-backs)
-    with every index list and uniform prepared before the clock starts."""
+    with every index list and uniform prepared before the clock starts: the triangles the
+    renderer drew for each pose after culling, in one pass."""
     assert sim.house.geometry is not None  # a Simulator refuses houses without geometry
     mesh: Mesh = sim.house.geometry.mesh
     spec: CameraSpec = sim.config.camera
@@ -167,7 +168,8 @@ def _raw_raster_fps(sim: Simulator, poses: list[AgentState]) -> float:
             frames = []
             for p in poses:
                 uniforms = pose_uniforms(spec, p.position, p.yaw, p.tilt).items()
-                indices = draw_list.indices(spec, p.position, p.yaw, p.tilt)
+                sim.renderer.render(p.position, p.yaw, p.tilt)  # what it culls for this pose
+                indices = sim.renderer.last_drawn_corners()
                 frames.append(
                     ([(program_uniform(program, n), v) for n, v in uniforms], indices.tobytes())
                 )
@@ -232,7 +234,6 @@ def _step_fps(sim: Simulator, walk: Walk, goals: list[tuple[float, float]]) -> f
 
 _RSS_PROBE = """
 import gc, json, sys
-from vlln.sim.renderer import DrawList
 from vlln.sim.simulator import Simulator
 from vlln.world.generator import generate_house
 sim = Simulator(generate_house(int(sys.argv[1])))
