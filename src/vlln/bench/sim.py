@@ -13,6 +13,7 @@ import math
 import statistics
 import subprocess
 import sys
+import tempfile
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -40,7 +41,8 @@ from vlln.sim.simulator import Simulator
 from vlln.sim.viewpoints import view_points
 from vlln.world.generator import generate_house
 from vlln.world.mesh import Mesh
-from vlln.world.scans import import_scene
+from vlln.world.model import House
+from vlln.world.scans import ImportReport, export_scene, import_scene, with_subdivided_mesh
 
 # Frames drawn before any clock starts: shader compilation, first allocations, caches.
 WARM_UP_FRAMES = 30
@@ -54,9 +56,11 @@ def run_sim_benchmark(
     repeats: int = 3,
     as_json: bool = False,
     scene: Path | None = None,
+    subdivide: int = 0,
 ) -> list[Figure]:
     """Measure and print every simulator figure for house ``seed``, or for the scanned scene
-    folder ``scene`` (then its import time and the simulator's build time instead of the
+    folder ``scene``, or for house ``seed`` exported as a scan with every triangle split into
+    ``4**subdivide`` (then the import time and the simulator's build time instead of the
     house build time, and no memory probe).
 
     The three frame rates replay the same walk ``repeats`` times, interleaved, and report the
@@ -69,18 +73,19 @@ def run_sim_benchmark(
         figures.append(figure)
         emit(figure, as_json)
 
-    if scene is None:
+    imported = scene is not None or subdivide > 0
+    if not imported:
         build_s = median_seconds(lambda: generate_house(seed), repeats=3)
         record("house_build_s", build_s, "s")
         house = generate_house(seed)
     else:
-        house, report = import_scene(scene)
+        house, report = _import(scene, seed, subdivide)
         record("scene_import_s", report.seconds, "s")
     record("house_triangles", house.geometry.mesh.n_triangles if house.geometry else 0, "count")
     rng = np.random.default_rng(seed)
     started = time.perf_counter()
     with Simulator(house) as sim:
-        if scene is not None:
+        if imported:
             record("simulator_build_s", time.perf_counter() - started, "s")
         walk = _walk(sim, rng, frames)
         goals = _goal_sets(sim, rng, count=3)
@@ -95,9 +100,19 @@ def run_sim_benchmark(
         field_s = median_seconds(lambda: GeodesicField(sim.grid, goals[0]), repeats=5)
         record("field_build_ms", field_s * 1e3, "ms")
         record("geodesic_query_us", _query_us(sim, GeodesicField(sim.grid, goals[1]), rng), "us")
-    if scene is None:
+    if not imported:
         record("sim_rss_mb", _rss_of_fresh_simulator(seed), "MiB")
     return figures
+
+
+def _import(scene: Path | None, seed: int, subdivide: int) -> tuple[House, ImportReport]:
+    """The scanned scene ``scene``, or house ``seed`` written as a subdivided Matterport3D
+    scan into a temporary folder and imported back."""
+    if scene is not None:
+        return import_scene(scene)
+    house = with_subdivided_mesh(generate_house(seed), subdivide)
+    with tempfile.TemporaryDirectory(prefix="vlln-scan-") as folder:
+        return import_scene(export_scene(house, Path(folder), "mp3d"))
 
 
 @dataclass(frozen=True)
@@ -140,6 +155,10 @@ def _raw_raster_fps(sim: Simulator, poses: list[AgentState]) -> float:
     mesh: Mesh = sim.house.geometry.mesh
     spec: CameraSpec = sim.config.camera
     draw_list = DrawList.from_vertices(interleave_vertices(mesh))
+    drawn = []
+    for p in poses:  # what the renderer draws for each pose, after culling
+        sim.renderer.render(p.position, p.yaw, p.tilt)
+        drawn.append(sim.renderer.last_drawn_corners().tobytes())
     ctx = create_headless_context()
     try:
         with ctx:
@@ -166,13 +185,9 @@ def _raw_raster_fps(sim: Simulator, poses: list[AgentState]) -> float:
             depth = np.empty((spec.height, spec.width), np.float32)
             ids = np.empty((spec.height, spec.width), np.int32)
             frames = []
-            for p in poses:
+            for p, indices in zip(poses, drawn, strict=True):
                 uniforms = pose_uniforms(spec, p.position, p.yaw, p.tilt).items()
-                sim.renderer.render(p.position, p.yaw, p.tilt)  # what it culls for this pose
-                indices = sim.renderer.last_drawn_corners()
-                frames.append(
-                    ([(program_uniform(program, n), v) for n, v in uniforms], indices.tobytes())
-                )
+                frames.append(([(program_uniform(program, n), v) for n, v in uniforms], indices))
 
             def draw(uniforms: list[tuple[moderngl.Uniform, bytes]], indices: bytes) -> None:
                 for uniform, value in uniforms:
