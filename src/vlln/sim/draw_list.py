@@ -103,13 +103,12 @@ class DrawList:
         """Indices into :attr:`vertices` to draw for this pose: visible chunks, nearest first."""
         return self.corners_of(self.visible_chunks(spec, position, yaw, tilt)[0])
 
-    def split_near(
+    def nearest(
         self, chunks: NDArray[np.int64], nearness: NDArray[np.float64], budget: int
-    ) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
-        """``chunks`` (in drawing order) parted into the nearest ones, up to ``budget``
-        triangles, and the rest; both parts keep the drawing order."""
+    ) -> NDArray[np.bool_]:
+        """Which of ``chunks`` are the nearest ones, up to ``budget`` triangles (at least one)."""
         by_nearness = np.argsort(nearness, kind="stable")
         triangles = np.cumsum(self.counts[chunks][by_nearness]) // 3
         near = np.zeros(len(chunks), np.bool_)
         near[by_nearness[: max(1, int(np.searchsorted(triangles, budget, side="right")))]] = True
-        return chunks[near], chunks[~near]
+        return near

@@ -198,17 +198,17 @@ class Renderer:
         self._drawn = 0
         if self._vertex_array is None or len(chunks) == 0:
             return framebuffer
-        if self.occlusion_culling and int(draw_list.counts[chunks].sum()) > 3 * OCCLUSION_MIN:
-            near, far = draw_list.split_near(chunks, nearness, NEAR_PASS_TRIANGLES)
-            drawn = self._draw_chunks(near, 0)
-            framebuffer.read_into(self._depth_scratch, components=1, attachment=1, dtype="f4")
-            depth = FarthestDepth(self._depth_scratch, self._spec.max_depth)
-            hidden = hidden_boxes(
-                depth, self._spec, position, yaw, tilt, draw_list.lows[far], draw_list.highs[far]
-            )
-            self._drawn = self._draw_chunks(far[~hidden], drawn)
-        else:
+        if not self.occlusion_culling or int(draw_list.counts[chunks].sum()) <= 3 * OCCLUSION_MIN:
             self._drawn = self._draw_chunks(chunks, 0)
+            return framebuffer
+        near = draw_list.nearest(chunks, nearness, NEAR_PASS_TRIANGLES)
+        drawn = self._draw_chunks(chunks[near], 0)
+        framebuffer.read_into(self._depth_scratch, components=1, attachment=1, dtype="f4")
+        depth = FarthestDepth(self._depth_scratch, self._spec.max_depth)
+        rest = chunks[~near]
+        lows, highs = draw_list.lows[rest], draw_list.highs[rest]
+        hidden = hidden_boxes(depth, self._spec, position, yaw, tilt, lows, highs)
+        self._drawn = self._draw_chunks(rest[~hidden], drawn)
         return framebuffer
 
     def _draw_chunks(self, chunks: NDArray[np.int64], offset: int) -> int:
