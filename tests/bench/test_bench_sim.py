@@ -9,6 +9,8 @@ from vlln.world.generator import generate_house
 
 REQUIRED = {
     "render_fps",
+    "render_cpu_ms",
+    "drawn_triangles",
     "step_fps",
     "raw_raster_fps",
     "geodesic_query_us",

@@ -3,13 +3,16 @@
 ``raw_raster_fps`` draws the same triangles with the same shaders and reads back the same
 three images in a bare moderngl loop with precomputed uniforms: the physical limit of this
 machine's rasteriser, against which ``render_fps`` and ``step_fps`` show the simulator's own
-overhead.
+overhead. ``render_cpu_ms`` (CPU time per rendered frame, the rasteriser's threads included)
+and ``drawn_triangles`` (triangles left after culling, per frame) change little with the
+machine's load, so they compare runs taken in busy and quiet minutes.
 """
 
 from __future__ import annotations
 
 import json
 import math
+import resource
 import statistics
 import subprocess
 import sys
@@ -89,13 +92,23 @@ def run_sim_benchmark(
             record("simulator_build_s", time.perf_counter() - started, "s")
         walk = _walk(sim, rng, frames)
         goals = _goal_sets(sim, rng, count=3)
-        passes: dict[str, list[float]] = {"render_fps": [], "raw_raster_fps": [], "step_fps": []}
+        drawn = _drawn_corners(sim, walk.poses)
+        passes: dict[str, list[float]] = {
+            "render_fps": [],
+            "render_cpu_ms": [],
+            "raw_raster_fps": [],
+            "step_fps": [],
+        }
         for _ in range(repeats):
-            passes["render_fps"].append(_render_fps(sim, walk.poses))
-            passes["raw_raster_fps"].append(_raw_raster_fps(sim, walk.poses))
+            fps, cpu_ms = _render_fps(sim, walk.poses)
+            passes["render_fps"].append(fps)
+            passes["render_cpu_ms"].append(cpu_ms)
+            passes["raw_raster_fps"].append(_raw_raster_fps(sim, walk.poses, drawn))
             passes["step_fps"].append(_step_fps(sim, walk, goals[2]))
         for metric in ("render_fps", "raw_raster_fps"):
             record(metric, statistics.median(passes[metric]), "frames/s")
+        record("render_cpu_ms", statistics.median(passes["render_cpu_ms"]), "ms/frame")
+        record("drawn_triangles", sum(len(c) for c in drawn) / 12 / len(drawn), "count/frame")
         record("step_fps", statistics.median(passes["step_fps"]), "steps/s")
         field_s = median_seconds(lambda: GeodesicField(sim.grid, goals[0]), repeats=5)
         record("field_build_ms", field_s * 1e3, "ms")
@@ -138,27 +151,41 @@ def _walk(sim: Simulator, rng: np.random.Generator, count: int) -> Walk:
     return Walk(start, actions, poses)
 
 
-def _render_fps(sim: Simulator, poses: list[AgentState]) -> float:
+def _render_fps(sim: Simulator, poses: list[AgentState]) -> tuple[float, float]:
+    """Frames per second, and CPU milliseconds per frame of the whole process (the
+    rasteriser's threads included): a figure that a busy machine does not inflate much."""
     for pose in poses[:WARM_UP_FRAMES]:  # llvmpipe compiles shader variants lazily
         sim.render(pose)
+    cpu_start = _cpu_seconds()
     start = time.perf_counter()
     for pose in poses:
         sim.render(pose)
-    return len(poses) / (time.perf_counter() - start)
+    seconds = time.perf_counter() - start
+    return len(poses) / seconds, (_cpu_seconds() - cpu_start) / len(poses) * 1e3
 
 
-def _raw_raster_fps(sim: Simulator, poses: list[AgentState]) -> float:
+def _cpu_seconds() -> float:
+    usage = resource.getrusage(resource.RUSAGE_SELF)
+    return usage.ru_utime + usage.ru_stime
+
+
+def _drawn_corners(sim: Simulator, poses: list[AgentState]) -> list[bytes]:
+    """The vertex indices the renderer draws for each pose, after culling."""
+    drawn = []
+    for p in poses:
+        sim.renderer.render(p.position, p.yaw, p.tilt)
+        drawn.append(sim.renderer.last_drawn_corners().tobytes())
+    return drawn
+
+
+def _raw_raster_fps(sim: Simulator, poses: list[AgentState], drawn: list[bytes]) -> float:
     """The renderer's per-frame GL work (uniforms, index list, one draw, three read-backs)
     with every index list and uniform prepared before the clock starts: the triangles the
-    renderer drew for each pose after culling, in one pass."""
+    renderer drew for each pose after culling (``drawn``), in one pass."""
     assert sim.house.geometry is not None  # a Simulator refuses houses without geometry
     mesh: Mesh = sim.house.geometry.mesh
     spec: CameraSpec = sim.config.camera
     draw_list = DrawList.from_vertices(interleave_vertices(mesh))
-    drawn = []
-    for p in poses:  # what the renderer draws for each pose, after culling
-        sim.renderer.render(p.position, p.yaw, p.tilt)
-        drawn.append(sim.renderer.last_drawn_corners().tobytes())
     ctx = create_headless_context()
     try:
         with ctx:
