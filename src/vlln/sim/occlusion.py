@@ -15,6 +15,7 @@ from numpy.typing import NDArray
 from vlln.sim.camera import CameraSpec, Position
 
 BLOCK = 8  # pixels per side of the blocks whose farthest depth the test works with
+_CORNER_BITS = np.array(list(np.ndindex(2, 2, 2)), np.float64)  # the 8 corners of a box
 DEPTH_MARGIN = 0.01  # m a box must lie beyond the drawn surfaces to count as hidden
 
 
@@ -35,10 +36,12 @@ class FarthestDepth:
         if (h, w) != (rows * BLOCK, cols * BLOCK):
             padded = np.zeros((rows * BLOCK, cols * BLOCK), np.float32)  # nothing drawn there
             padded[:h, :w] = depth
-        # Reduce the rows of a block first: numpy is fast along long axes, slow along short.
+        # numpy reduces fast along long axes and slowly along short ones: the rows of a block
+        # are reduced as whole image rows, its columns as strided slices.
         strips = padded.reshape(rows, BLOCK, cols * BLOCK)
-        farthest = strips.max(axis=1).reshape(rows, cols, BLOCK).max(axis=2)
-        nearest = strips.min(axis=1).reshape(rows, cols, BLOCK).min(axis=2)
+        row_max, row_min = strips.max(axis=1), strips.min(axis=1)
+        farthest = np.maximum.reduce([row_max[:, i::BLOCK] for i in range(BLOCK)])
+        nearest = np.minimum.reduce([row_min[:, i::BLOCK] for i in range(BLOCK)])
         level = np.where((nearest <= 0.0) | (farthest >= max_depth), np.inf, farthest)
         levels = [level.astype(np.float64)]
         while max(levels[-1].shape) > 1:
@@ -46,7 +49,8 @@ class FarthestDepth:
             r, c = below.shape
             even = np.full((r + r % 2, c + c % 2), np.inf)
             even[:r, :c] = below
-            levels.append(even.reshape(even.shape[0] // 2, 2, even.shape[1] // 2, 2).max((1, 3)))
+            top = np.maximum(even[0::2, 0::2], even[0::2, 1::2])
+            levels.append(np.maximum(top, np.maximum(even[1::2, 0::2], even[1::2, 1::2])))
         self._offsets = np.cumsum([0] + [lv.size for lv in levels])
         self._widths = np.array([lv.shape[1] for lv in levels])
         self._cells = np.concatenate([lv.ravel() for lv in levels])
@@ -68,9 +72,11 @@ class FarthestDepth:
         level = np.clip(np.ceil(np.log2(span)).astype(np.int64) - 1, 0, self._top)
         base, width = self._offsets[level], self._widths[level]
         r0, r1, c0, c1 = r0 >> level, r1 >> level, c0 >> level, c1 >> level
-        rows = (r0, np.minimum(r0 + 1, r1), r1)
+        row_starts = [base + r * width for r in (r0, np.minimum(r0 + 1, r1), r1)]
         cols = (c0, np.minimum(c0 + 1, c1), c1)
-        return np.max([self._cells[base + r * width + c] for r in rows for c in cols], axis=0)
+        cells = self._cells[np.stack([r + c for r in row_starts for c in cols])]
+        farthest: NDArray[np.float64] = cells.max(axis=0)
+        return farthest
 
 
 def hidden_boxes(
@@ -85,11 +91,9 @@ def hidden_boxes(
     """For each axis-aligned box ``lows[k]..highs[k]``, whether ``depth`` hides all of it."""
     if len(lows) == 0:
         return np.zeros(0, np.bool_)
-    corners = np.stack(
-        [np.where(np.array(bits, bool), highs, lows) for bits in np.ndindex(2, 2, 2)], axis=1
-    )  # (n, 8, 3)
+    corners = lows[:, None, :] + _CORNER_BITS * (highs - lows)[:, None, :]  # (n, 8, 3)
     view = spec.view_matrix(position, yaw, tilt)
-    camera = corners @ view[:3, :3].T + view[:3, 3]
+    camera = (corners.reshape(-1, 3) @ view[:3, :3].T + view[:3, 3]).reshape(-1, 8, 3)
     z = -camera[..., 2]
     nearest = z.min(axis=1)
     in_front = nearest > spec.near  # a box reaching behind the near plane is never hidden
