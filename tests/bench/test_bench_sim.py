@@ -5,9 +5,12 @@ import json
 import pytest
 
 from vlln.cli import main
+from vlln.world.generator import generate_house
 
 REQUIRED = {
     "render_fps",
+    "render_cpu_ms",
+    "drawn_triangles",
     "step_fps",
     "raw_raster_fps",
     "geodesic_query_us",
@@ -46,3 +49,20 @@ def test_parallel_environments_report_their_speed_up(capsys: pytest.CaptureFixtu
     assert values["envs_speedup_ceiling"] == pytest.approx(ceiling, rel=0.01)
     same = values["steps_per_s_2_envs"] / values["steps_per_s_1_env_same_threads"]
     assert values["envs_speedup_same_threads"] == pytest.approx(same, rel=0.01)
+
+
+def test_a_subdivided_scan_reports_import_and_frame_rates(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    args = ["bench", "sim", "--json", "--frames", "20", "--repeats", "1", "--seed", "3"]
+    assert main([*args, "--subdivide", "1"]) == 0
+    values = {
+        line["metric"]: line["value"]
+        for line in map(json.loads, capsys.readouterr().out.splitlines())
+    }
+    house = generate_house(3)
+    assert house.geometry is not None
+    assert values["house_triangles"] == 4 * house.geometry.mesh.n_triangles
+    for name in ("scene_import_s", "simulator_build_s", "render_fps", "raw_raster_fps"):
+        assert values[name] > 0
+    assert "house_build_s" not in values and "sim_rss_mb" not in values

@@ -13,7 +13,8 @@ from numpy.typing import NDArray
 from vlln.errors import ConfigError, RendererUnavailableError
 from vlln.sim import gl_context
 from vlln.sim.camera import CameraSpec
-from vlln.sim.renderer import DrawList, Frame, Renderer
+from vlln.sim.draw_list import DrawList
+from vlln.sim.renderer import Frame, Renderer
 from vlln.sim.shaders import (
     MATERIAL_LOOKS,
     VERTEX_DTYPE,
@@ -323,7 +324,7 @@ def test_renderers_sharing_a_process_each_draw_their_own_scene() -> None:
 def test_long_runs_of_one_id_are_cut_into_chunks_that_draw_the_same_image(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
-    from vlln.sim import renderer
+    from vlln.sim import draw_list
 
     build = MeshBuilder()
     for i, j in itertools.product(range(40), range(40)):  # 3,200 floor triangles
@@ -332,11 +333,11 @@ def test_long_runs_of_one_id_are_cut_into_chunks_that_draw_the_same_image(
         )
     mesh = build.build().with_instance_id(int(StructureId.FLOOR))
     cut = DrawList.from_vertices(interleave_vertices(mesh))
-    assert len(cut.starts) == math.ceil(3 * 3200 / renderer.MAX_CHUNK_CORNERS)
-    assert cut.counts.max() <= renderer.MAX_CHUNK_CORNERS
+    assert len(cut.starts) == math.ceil(3 * 3200 / draw_list.MAX_CHUNK_CORNERS)
+    assert cut.counts.max() <= draw_list.MAX_CHUNK_CORNERS
     with Renderer(mesh) as split:
         a = split.render((0.0, 0.0, 0.0), 0.3, tilt=-0.5)
-    monkeypatch.setattr(renderer, "MAX_CHUNK_CORNERS", 10**9)
+    monkeypatch.setattr(draw_list, "MAX_CHUNK_CORNERS", 10**9)
     with Renderer(mesh) as whole:
         b = whole.render((0.0, 0.0, 0.0), 0.3, tilt=-0.5)
     assert np.count_nonzero(a.instance_ids) > 1000

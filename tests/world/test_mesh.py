@@ -63,3 +63,29 @@ def test_concatenate_and_instance_ids() -> None:
     mesh = Mesh.concatenate([a.build().with_instance_id(3), b.build().with_instance_id(7)])
     assert mesh.n_triangles == 12 + b.build().n_triangles
     assert set(np.unique(mesh.instance_ids)) == {3, 7}
+
+
+def test_subdivided_keeps_the_surface_and_its_attributes() -> None:
+    builder = MeshBuilder()
+    builder.box((0.0, 0.5, 0.0), (1.0, 1.0, 2.0), (0.2, 0.4, 0.6), 3)
+    builder.sphere((2.0, 1.0, 0.0), 0.5, (0.9, 0.1, 0.1), 5)
+    mesh = builder.build().with_instance_id(4)
+    fine = mesh.subdivided(2)
+
+    def area(m: Mesh) -> float:
+        tri = m.positions.reshape(-1, 3, 3).astype(np.float64)
+        return float(
+            np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1).sum()
+        )
+
+    assert fine.n_triangles == 16 * mesh.n_triangles
+    assert area(fine) == pytest.approx(area(mesh), rel=1e-5)
+    assert winding_agrees(fine)
+    np.testing.assert_array_equal(fine.bounds()[0], mesh.bounds()[0])
+    # The 16 pieces of a triangle follow each other and keep its material and instance.
+    assert np.array_equal(fine.materials.reshape(-1, 48)[:, 0], mesh.materials[::3])
+    assert np.all(fine.materials.reshape(-1, 48) == fine.materials.reshape(-1, 48)[:, :1])
+    assert np.all(fine.instance_ids == 4)
+    pieces_mean = fine.colors.reshape(-1, 48, 3).mean(axis=1)
+    assert np.allclose(pieces_mean, mesh.colors.reshape(-1, 3, 3).mean(axis=1), atol=1e-6)
+    assert mesh.subdivided(0) is mesh

@@ -3,16 +3,20 @@
 ``raw_raster_fps`` draws the same triangles with the same shaders and reads back the same
 three images in a bare moderngl loop with precomputed uniforms: the physical limit of this
 machine's rasteriser, against which ``render_fps`` and ``step_fps`` show the simulator's own
-overhead.
+overhead. ``render_cpu_ms`` (CPU time per rendered frame, the rasteriser's threads included)
+and ``drawn_triangles`` (triangles left after culling, per frame) change little with the
+machine's load, so they compare runs taken in busy and quiet minutes.
 """
 
 from __future__ import annotations
 
 import json
 import math
+import resource
 import statistics
 import subprocess
 import sys
+import tempfile
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -23,9 +27,9 @@ import numpy as np
 from vlln.bench.figures import Figure, emit, median_seconds
 from vlln.sim.agent import Action, AgentState
 from vlln.sim.camera import CameraSpec
+from vlln.sim.draw_list import DrawList
 from vlln.sim.geodesic import GeodesicField
 from vlln.sim.gl_context import create_headless_context
-from vlln.sim.renderer import DrawList
 from vlln.sim.shaders import (
     FRAGMENT_SHADER,
     VERTEX_ATTRIBUTES,
@@ -40,7 +44,8 @@ from vlln.sim.simulator import Simulator
 from vlln.sim.viewpoints import view_points
 from vlln.world.generator import generate_house
 from vlln.world.mesh import Mesh
-from vlln.world.scans import import_scene
+from vlln.world.model import House
+from vlln.world.scans import ImportReport, export_scene, import_scene, with_subdivided_mesh
 
 # Frames drawn before any clock starts: shader compilation, first allocations, caches.
 WARM_UP_FRAMES = 30
@@ -54,9 +59,11 @@ def run_sim_benchmark(
     repeats: int = 3,
     as_json: bool = False,
     scene: Path | None = None,
+    subdivide: int = 0,
 ) -> list[Figure]:
     """Measure and print every simulator figure for house ``seed``, or for the scanned scene
-    folder ``scene`` (then its import time and the simulator's build time instead of the
+    folder ``scene``, or for house ``seed`` exported as a scan with every triangle split into
+    ``4**subdivide`` (then the import time and the simulator's build time instead of the
     house build time, and no memory probe).
 
     The three frame rates replay the same walk ``repeats`` times, interleaved, and report the
@@ -69,35 +76,56 @@ def run_sim_benchmark(
         figures.append(figure)
         emit(figure, as_json)
 
-    if scene is None:
+    imported = scene is not None or subdivide > 0
+    if not imported:
         build_s = median_seconds(lambda: generate_house(seed), repeats=3)
         record("house_build_s", build_s, "s")
         house = generate_house(seed)
     else:
-        house, report = import_scene(scene)
+        house, report = _import(scene, seed, subdivide)
         record("scene_import_s", report.seconds, "s")
     record("house_triangles", house.geometry.mesh.n_triangles if house.geometry else 0, "count")
     rng = np.random.default_rng(seed)
     started = time.perf_counter()
     with Simulator(house) as sim:
-        if scene is not None:
+        if imported:
             record("simulator_build_s", time.perf_counter() - started, "s")
         walk = _walk(sim, rng, frames)
         goals = _goal_sets(sim, rng, count=3)
-        passes: dict[str, list[float]] = {"render_fps": [], "raw_raster_fps": [], "step_fps": []}
+        drawn = _drawn_corners(sim, walk.poses)
+        passes: dict[str, list[float]] = {
+            "render_fps": [],
+            "render_cpu_ms": [],
+            "raw_raster_fps": [],
+            "step_fps": [],
+        }
         for _ in range(repeats):
-            passes["render_fps"].append(_render_fps(sim, walk.poses))
-            passes["raw_raster_fps"].append(_raw_raster_fps(sim, walk.poses))
+            fps, cpu_ms = _render_fps(sim, walk.poses)
+            passes["render_fps"].append(fps)
+            passes["render_cpu_ms"].append(cpu_ms)
+            passes["raw_raster_fps"].append(_raw_raster_fps(sim, walk.poses, drawn))
             passes["step_fps"].append(_step_fps(sim, walk, goals[2]))
         for metric in ("render_fps", "raw_raster_fps"):
             record(metric, statistics.median(passes[metric]), "frames/s")
+        record("render_cpu_ms", statistics.median(passes["render_cpu_ms"]), "ms/frame")
+        record("drawn_triangles", sum(len(c) for c in drawn) / 12 / len(drawn), "count/frame")
         record("step_fps", statistics.median(passes["step_fps"]), "steps/s")
         field_s = median_seconds(lambda: GeodesicField(sim.grid, goals[0]), repeats=5)
         record("field_build_ms", field_s * 1e3, "ms")
         record("geodesic_query_us", _query_us(sim, GeodesicField(sim.grid, goals[1]), rng), "us")
-    if scene is None:
+    if not imported:
         record("sim_rss_mb", _rss_of_fresh_simulator(seed), "MiB")
     return figures
+
+
+def _import(scene: Path | None, seed: int, subdivide: int) -> tuple[House, ImportReport]:
+    """The scanned scene ``scene``, or house ``seed`` written as a subdivided Matterport3D
+    scan into a temporary folder and imported back."""
+    if scene is not None:
+        return import_scene(scene)
+    house = with_subdivided_mesh(generate_house(seed), subdivide)
+    with tempfile.TemporaryDirectory(prefix="vlln-scan-") as folder:
+        return import_scene(export_scene(house, Path(folder), "mp3d"))
 
 
 @dataclass(frozen=True)
@@ -123,18 +151,37 @@ def _walk(sim: Simulator, rng: np.random.Generator, count: int) -> Walk:
     return Walk(start, actions, poses)
 
 
-def _render_fps(sim: Simulator, poses: list[AgentState]) -> float:
+def _render_fps(sim: Simulator, poses: list[AgentState]) -> tuple[float, float]:
+    """Frames per second, and CPU milliseconds per frame of the whole process (the
+    rasteriser's threads included): a figure that a busy machine does not inflate much."""
     for pose in poses[:WARM_UP_FRAMES]:  # llvmpipe compiles shader variants lazily
         sim.render(pose)
+    cpu_start = _cpu_seconds()
     start = time.perf_counter()
     for pose in poses:
         sim.render(pose)
-    return len(poses) / (time.perf_counter() - start)
+    seconds = time.perf_counter() - start
+    return len(poses) / seconds, (_cpu_seconds() - cpu_start) / len(poses) * 1e3
 
 
-def _raw_raster_fps(sim: Simulator, poses: list[AgentState]) -> float:
+def _cpu_seconds() -> float:
+    usage = resource.getrusage(resource.RUSAGE_SELF)
+    return usage.ru_utime + usage.ru_stime
+
+
+def _drawn_corners(sim: Simulator, poses: list[AgentState]) -> list[bytes]:
+    """The vertex indices the renderer draws for each pose, after culling."""
+    drawn = []
+    for p in poses:
+        sim.renderer.render(p.position, p.yaw, p.tilt)
+        drawn.append(sim.renderer.last_drawn_corners().tobytes())
+    return drawn
+
+
+def _raw_raster_fps(sim: Simulator, poses: list[AgentState], drawn: list[bytes]) -> float:
     """The renderer's per-frame GL work (uniforms, index list, one draw, three read-backs)
-    with every index list and uniform prepared before the clock starts."""
+    with every index list and uniform prepared before the clock starts: the triangles the
+    renderer drew for each pose after culling (``drawn``), in one pass."""
     assert sim.house.geometry is not None  # a Simulator refuses houses without geometry
     mesh: Mesh = sim.house.geometry.mesh
     spec: CameraSpec = sim.config.camera
@@ -165,12 +212,9 @@ def _raw_raster_fps(sim: Simulator, poses: list[AgentState]) -> float:
             depth = np.empty((spec.height, spec.width), np.float32)
             ids = np.empty((spec.height, spec.width), np.int32)
             frames = []
-            for p in poses:
+            for p, indices in zip(poses, drawn, strict=True):
                 uniforms = pose_uniforms(spec, p.position, p.yaw, p.tilt).items()
-                indices = draw_list.indices(spec, p.position, p.yaw, p.tilt)
-                frames.append(
-                    ([(program_uniform(program, n), v) for n, v in uniforms], indices.tobytes())
-                )
+                frames.append(([(program_uniform(program, n), v) for n, v in uniforms], indices))
 
             def draw(uniforms: list[tuple[moderngl.Uniform, bytes]], indices: bytes) -> None:
                 for uniform, value in uniforms:
@@ -232,7 +276,6 @@ def _step_fps(sim: Simulator, walk: Walk, goals: list[tuple[float, float]]) -> f
 
 _RSS_PROBE = """
 import gc, json, sys
-from vlln.sim.renderer import DrawList
 from vlln.sim.simulator import Simulator
 from vlln.world.generator import generate_house
 sim = Simulator(generate_house(int(sys.argv[1])))

@@ -25,6 +25,7 @@ def _bench_sim(args: argparse.Namespace) -> int:
         repeats=args.repeats,
         as_json=args.json,
         scene=None if args.scene is None else Path(args.scene),
+        subdivide=args.subdivide,
     )
     return 0
 
@@ -91,6 +92,14 @@ def add_bench_commands(commands: Commands) -> None:
     sim.add_argument("--repeats", type=int, default=3, help="passes per frame rate (default 3)")
     sim.add_argument("--json", action="store_true", help="print one JSON object per line")
     sim.add_argument("--scene", help="a scanned scene folder instead of a procedural house")
+    sim.add_argument(
+        "--subdivide",
+        type=int,
+        default=0,
+        metavar="N",
+        help="bench a scan: house --seed exported as Matterport3D with every triangle split "
+        "into 4, N times (as `vlln world export --subdivide N`), then imported",
+    )
 
     sim.add_argument(
         "--envs", type=int, help="steps/s of N environments in N processes against one (speed-up)"

@@ -20,9 +20,11 @@ def _world_show(args: argparse.Namespace) -> int:
 
 def _world_export(args: argparse.Namespace) -> int:
     from vlln.world.generator import generate_house, parameters_from_overrides
-    from vlln.world.scans import export_scene
+    from vlln.world.scans import export_scene, with_subdivided_mesh
 
     house = generate_house(args.seed, parameters_from_overrides([*args.param, *_floors(args)]))
+    if args.subdivide:
+        house = with_subdivided_mesh(house, args.subdivide)
     for style in args.style or ["mp3d", "hm3d"]:
         print(f"wrote {export_scene(house, Path(args.out) / style, style)}")
     return 0
@@ -80,6 +82,13 @@ def add_world_commands(commands: Commands) -> None:
     export.add_argument("--style", action="append", choices=["mp3d", "hm3d"], help="repeatable")
     export.add_argument("--param", action="append", default=[], metavar="NAME=VALUE")
     export.add_argument("--floors", type=int, help="storeys joined by stairs, 1 to 3")
+    export.add_argument(
+        "--subdivide",
+        type=int,
+        default=0,
+        metavar="N",
+        help="split every triangle into 4, N times: a scan-sized test scene (N=2: 16x)",
+    )
     export.set_defaults(handler=_world_export)
     imported = world.add_parser("import", help="read a Matterport3D or HM3D scene folder")
     imported.add_argument("scene", help="scene folder <dir>/<scene>/ (.glb + .house or semantic)")

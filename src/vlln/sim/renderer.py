@@ -3,7 +3,10 @@
 The whole house is uploaded once as a single vertex buffer. Each frame is one draw call into a
 framebuffer with three colour targets (RGBA8 colour, R32F depth in metres, R32I instance id)
 and a depth buffer; a per-frame index list (:class:`DrawList`) skips objects outside the view
-and orders the rest nearest first, which is what keeps a CPU rasteriser fast. The projection
+and orders the rest nearest first, which is what keeps a CPU rasteriser fast. In a large
+scene (a scan) the frame takes two draw calls: the nearest pieces first, then only those of
+the others that the depth image of the first call does not hide (:mod:`vlln.sim.occlusion`);
+the image is the same, with a fraction of the triangles. The projection
 matrix flips the image vertically, so the rows read back by OpenGL are already top-first and go
 into numpy without any reordering.
 
@@ -22,12 +25,13 @@ from numpy.typing import NDArray
 
 from vlln.errors import ConfigError, RendererUnavailableError
 from vlln.sim.camera import CameraSpec, Position
+from vlln.sim.draw_list import DrawList
 from vlln.sim.gl_context import create_headless_context, renderer_description
 from vlln.sim.id_pass import InstanceIdPass
+from vlln.sim.occlusion import FarthestDepth, hidden_boxes
 from vlln.sim.shaders import (
     FRAGMENT_SHADER,
     VERTEX_ATTRIBUTES,
-    VERTEX_DTYPE,
     VERTEX_FORMAT,
     VERTEX_SHADER,
     interleave_vertices,
@@ -57,77 +61,9 @@ class Frame:
         )
 
 
-MAX_CHUNK_CORNERS = 3 * 1024  # triangle corners per culling chunk at most
-
-
-@dataclass(frozen=True)
-class DrawList:
-    """The vertex buffer to upload, and which of its triangles to draw per frame, in what order.
-
-    Identical vertex records (corners shared by neighbouring triangles) are stored once and
-    drawn through an index list, so the vertex shader runs about half as often. The triangles
-    of each instance form a contiguous chunk. Per frame, chunks whose bounding sphere misses
-    the view frustum are skipped, as a CPU rasteriser would otherwise transform and clip all
-    their vertices, and the rest are drawn nearest first so that hidden pixels fail the early
-    depth test before shading. The structure (floor, walls, ceiling: huge triangles with no
-    single meaningful distance) is drawn last. The image does not depend on the order except
-    for exact depth ties.
-    """
-
-    vertices: bytes  # unique records in VERTEX_FORMAT, in order of first use
-    corners: NDArray[np.uint32]  # for each triangle corner, its record in ``vertices``
-    starts: NDArray[np.int64]  # first corner of each chunk
-    counts: NDArray[np.int64]  # corners in each chunk
-    centres: NDArray[np.float64]  # (n, 3) bounding-sphere centres
-    radii: NDArray[np.float64]
-    is_structure: NDArray[np.bool_]
-
-    @staticmethod
-    def from_vertices(vertex_data: bytes) -> DrawList:
-        """Index a triangle soup made by :func:`interleave_vertices`."""
-        records = np.frombuffer(vertex_data, VERTEX_DTYPE)
-        ids = records["instance"]
-        if len(ids) == 0:
-            none = np.zeros(0, np.int64)
-            return DrawList(
-                b"", none.astype(np.uint32), none, none, np.zeros((0, 3)), np.zeros(0),
-                np.zeros(0, np.bool_),
-            )  # fmt: skip
-        as_bytes = records.view(np.dtype((np.void, VERTEX_DTYPE.itemsize)))
-        _, first_use, unique_of_corner = np.unique(as_bytes, return_index=True, return_inverse=True)
-        by_first_use = np.argsort(first_use)
-        rank = np.empty_like(by_first_use)
-        rank[by_first_use] = np.arange(len(by_first_use))
-        vertices = records[first_use[by_first_use]].tobytes()
-        corners = rank[unique_of_corner.ravel()].astype(np.uint32)
-
-        positions = records["position"].astype(np.float64)
-        run_start = np.r_[True, ids[1:] != ids[:-1]]
-        # Long runs (a scan's walls and floors) are cut into pieces that can be culled apart.
-        run_index = np.cumsum(run_start) - 1
-        corner_in_run = np.arange(len(ids)) - np.flatnonzero(run_start)[run_index]
-        cut = run_start | ((corner_in_run % MAX_CHUNK_CORNERS) == 0)
-        starts = np.flatnonzero(cut).astype(np.int64)
-        counts = np.diff(np.r_[starts, len(ids)]).astype(np.int64)
-        low = np.minimum.reduceat(positions, starts)
-        high = np.maximum.reduceat(positions, starts)
-        centres = (low + high) / 2.0
-        offsets = np.linalg.norm(positions - np.repeat(centres, counts, axis=0), axis=1)
-        radii = np.maximum.reduceat(offsets, starts)
-        return DrawList(vertices, corners, starts, counts, centres, radii, ids[starts] < 0)
-
-    def indices(
-        self, spec: CameraSpec, position: Position, yaw: float, tilt: float
-    ) -> NDArray[np.uint32]:
-        """Indices into :attr:`vertices` to draw for this pose: visible chunks, nearest first."""
-        visible, depth = spec.sphere_visibility(self.centres, self.radii, position, yaw, tilt)
-        chosen = np.flatnonzero(visible)
-        distance_key = np.where(self.is_structure[chosen], np.inf, depth[chosen])
-        chosen = chosen[np.argsort(distance_key, kind="stable")]
-        lengths = self.counts[chosen]
-        # The corners start..start+length of every chosen chunk, without a Python loop.
-        run_offsets = np.repeat(self.starts[chosen] - (np.cumsum(lengths) - lengths), lengths)
-        return self.corners[run_offsets + np.arange(int(lengths.sum()))]
+# Occlusion culling pays for its extra pass when a view holds more triangles than this.
+OCCLUSION_MIN = 60_000
+NEAR_PASS_TRIANGLES = 20_000  # triangles of the nearest pieces drawn before the test
 
 
 class Renderer:
@@ -140,7 +76,10 @@ class Renderer:
 
     Back faces are culled by default, which saves rasterisation work on closed objects; pass
     ``cull_back_faces=False`` for meshes with single-sided geometry seen from behind.
+    Setting :attr:`occlusion_culling` to False draws every piece in the view in one pass.
     """
+
+    occlusion_culling = True
 
     def __init__(
         self, mesh: Mesh, spec: CameraSpec | None = None, *, cull_back_faces: bool = True
@@ -150,6 +89,8 @@ class Renderer:
         self._ctx = create_headless_context()
         self._framebuffer: moderngl.Framebuffer | None = None
         self._attachments: list[moderngl.Renderbuffer] = []
+        self._depth_scratch = np.empty(0, np.float32)
+        self._drawn = 0  # vertex indices the last frame drew
         self._buffers: list[moderngl.Buffer] = []
         self._vertex_array: moderngl.VertexArray | None = None
         self._id_pass: InstanceIdPass | None = None  # made on the first id-only render
@@ -201,6 +142,7 @@ class Renderer:
                 ]
                 *colors, depth = self._attachments
                 self._framebuffer = self._ctx.framebuffer(colors, depth)
+                self._depth_scratch = np.empty((spec.height, spec.width), np.float32)
             upload_static_uniforms(self._program, spec)
 
     def render(
@@ -246,9 +188,19 @@ class Renderer:
             indices = self._draw_list.indices(self._spec, position, yaw, tilt)
             if len(indices) > 0:
                 self._index_buffer.write(indices)
+            self._drawn = len(indices)
             view_projection = pose_uniforms(self._spec, position, yaw, tilt)["u_view_projection"]
             self._id_pass.draw(view_projection, len(indices), ids)
         return ids
+
+    def last_drawn_corners(self) -> NDArray[np.uint32]:
+        """The vertex indices the last frame drew, in order (all passes): what a bare loop
+        needs to draw the same triangles, and how a test sees what was culled."""
+        if self._vertex_array is None or self._drawn == 0:
+            return np.zeros(0, np.uint32)
+        with self._ctx:
+            data = self._index_buffer.read(size=4 * self._drawn)
+        return np.frombuffer(data, np.uint32).copy()
 
     def _draw(self, position: Position, yaw: float, tilt: float) -> moderngl.Framebuffer:
         """Draw the view into the framebuffer (inside the context) and return it."""
@@ -257,15 +209,36 @@ class Renderer:
             raise RendererUnavailableError(
                 "this Renderer has been closed; create a new Renderer to render again"
             )
-        indices = self._draw_list.indices(self._spec, position, yaw, tilt)
+        draw_list = self._draw_list
+        chunks, nearness = draw_list.visible_chunks(self._spec, position, yaw, tilt)
         for name, value in pose_uniforms(self._spec, position, yaw, tilt).items():
             program_uniform(self._program, name).write(value)
         framebuffer.use()
         framebuffer.clear(0.0, 0.0, 0.0, 0.0, depth=1.0)
-        if self._vertex_array is not None and len(indices) > 0:
-            self._index_buffer.write(indices)
-            self._vertex_array.render(moderngl.TRIANGLES, vertices=len(indices))
+        self._drawn = 0
+        if self._vertex_array is None or len(chunks) == 0:
+            return framebuffer
+        if not self.occlusion_culling or int(draw_list.counts[chunks].sum()) <= 3 * OCCLUSION_MIN:
+            self._drawn = self._draw_chunks(chunks, 0)
+            return framebuffer
+        near = draw_list.nearest(chunks, nearness, NEAR_PASS_TRIANGLES)
+        drawn = self._draw_chunks(chunks[near], 0)
+        framebuffer.read_into(self._depth_scratch, components=1, attachment=1, dtype="f4")
+        depth = FarthestDepth(self._depth_scratch, self._spec.max_depth)
+        rest = chunks[~near]
+        lows, highs = draw_list.lows[rest], draw_list.highs[rest]
+        hidden = hidden_boxes(depth, self._spec, position, yaw, tilt, lows, highs)
+        self._drawn = self._draw_chunks(rest[~hidden], drawn)
         return framebuffer
+
+    def _draw_chunks(self, chunks: NDArray[np.int64], offset: int) -> int:
+        """Draw ``chunks`` through the index buffer from element ``offset`` on; returns the
+        offset after them (later passes of a frame write after earlier ones)."""
+        indices = self._draw_list.corners_of(chunks)
+        if len(indices) > 0 and self._vertex_array is not None:
+            self._index_buffer.write(indices, offset=4 * offset)
+            self._vertex_array.render(moderngl.TRIANGLES, vertices=len(indices), first=offset)
+        return offset + len(indices)
 
     def close(self) -> None:
         """Free every GL resource; the renderer cannot be used afterwards."""

@@ -14,7 +14,7 @@ from dataclasses import replace
 from pathlib import Path
 
 from vlln.errors import ConfigError, DataFormatError
-from vlln.world.model import House
+from vlln.world.model import House, HouseGeometry
 from vlln.world.scans.build import ImportReport, map_category
 from vlln.world.scans.hm3d import export_hm3d, import_hm3d
 from vlln.world.scans.mp3d import export_mp3d, import_mp3d
@@ -22,7 +22,15 @@ from vlln.world.scene_summary import OBJECT_DICT_FILE, export_scene_summary, imp
 
 STYLES = ("mp3d", "hm3d")
 
-__all__ = ["STYLES", "ImportReport", "export_scene", "import_scene", "load_scene", "map_category"]
+__all__ = [
+    "STYLES",
+    "ImportReport",
+    "export_scene",
+    "import_scene",
+    "load_scene",
+    "map_category",
+    "with_subdivided_mesh",
+]
 
 
 def scene_style(scene_dir: Path) -> str:
@@ -62,6 +70,17 @@ def export_scene(house: House, out_dir: str | Path, style: str) -> Path:
     scene_dir = exporter(house, Path(out_dir))
     export_scene_summary(house, Path(out_dir))
     return scene_dir
+
+
+def with_subdivided_mesh(house: House, times: int) -> House:
+    """``house`` with every triangle split into ``4**times`` (:meth:`Mesh.subdivided`): the
+    same rooms, objects and look at a real scan's triangle count, to measure import and
+    rendering speed on (``vlln world export --subdivide 2``)."""
+    if not 0 <= times <= 4:
+        raise ConfigError(f"--subdivide {times} is out of range; use 0 to 4 (each step: 4x)")
+    if house.geometry is None:
+        raise DataFormatError(f"house {house.name!r} has no geometry to subdivide")
+    return replace(house, geometry=HouseGeometry(house.geometry.mesh.subdivided(times)))
 
 
 def _with_summary(house: House, summary: House) -> House:
