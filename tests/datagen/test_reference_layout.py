@@ -186,8 +186,8 @@ def test_dialog_indices_map_to_the_frames_questions_were_asked(walked: list[Any]
 
 def test_images_are_the_frames_of_both_cameras(walked: list[Any]) -> None:
     """Each JPEG is its camera's view of its frame: within JPEG noise of a fresh render, and
-    nearer to it than to the other camera's view of the same frame unless the two views are
-    the same (facing a plain wall close up they differ by no more than the JPEG noise)."""
+    nearer to it than to the other camera's view of the same frame unless the two views differ
+    by less than the JPEG noise (facing a plain wall close up they look alike)."""
     for episode, trajectory, sim in walked:
         for frame, step in enumerate(trajectory.steps):
             position, yaw = step.state.position, step.state.yaw
@@ -201,6 +201,6 @@ def test_images_are_the_frames_of_both_cameras(walked: list[Any]) -> None:
                     stored = np.asarray(image.convert("RGB"), np.float64)
                 error = np.abs(stored - renders[pitch]).mean()
                 assert error < 6.0, (episode.index, frame, pitch)
-                # Facing a plain wall the two cameras may see the very same pixels.
-                same_view = np.array_equal(renders[pitch], renders[other])
-                assert same_view or error < np.abs(stored - renders[other]).mean()
+                # Facing a plain wall the two cameras may see (nearly) the same pixels.
+                apart = np.abs(renders[pitch].astype(np.float64) - renders[other]).mean()
+                assert apart < 6.0 or error < np.abs(stored - renders[other]).mean()

@@ -66,6 +66,9 @@ PREFERRED_SUPPORTS: dict[str, tuple[str, ...]] = {
     "remote control": ("coffee table", "tv stand", "couch", "side table"),
     "pan": ("stove", "counter", "kitchen island"),
 }
+# Supports that hold only what prefers them: a stove's grate takes pans and kettles, not a
+# bottle standing between its bars.
+RESERVED_SUPPORTS = ("stove",)
 FREE_STANDING = (Placement.FLOOR, Placement.AT_TABLE)  # may stand on rugs
 FREE_STANDING_WORDS = tuple(p.value for p in FREE_STANDING)
 POSE_TRIES = 16
@@ -256,12 +259,14 @@ class _RoomFurnisher:
                 yield from poses.above(self.space.interior, req.bounds, side, box, y)
 
     def _on_surface(self, req: PlacementRequest) -> tuple[Pose, str, _WorldSurface] | None:
+        preferred = PREFERRED_SUPPORTS.get(req.category.name, ())
         usable = [
             s
             for s in self.surfaces
-            if SURFACE_HEIGHTS[0] <= s.height <= SURFACE_HEIGHTS[1] and s.rect.area > 0.0
+            if SURFACE_HEIGHTS[0] <= s.height <= SURFACE_HEIGHTS[1]
+            and s.rect.area > 0.0
+            and (s.owner_category not in RESERVED_SUPPORTS or s.owner_category in preferred)
         ]
-        preferred = PREFERRED_SUPPORTS.get(req.category.name, ())
         if any(s.owner_category in preferred for s in usable):
             usable = [s for s in usable if s.owner_category in preferred]
         if not usable:
