@@ -37,19 +37,21 @@ def split_cache(tmp_path_factory: pytest.TempPathFactory) -> Path:
     return cache
 
 
-def _kill_a_chunk_once_records_are_written(results: Path, stop: threading.Event) -> list[int]:
-    """Start a thread that SIGKILLs one worker busy with a chunk after the first record."""
+def _kill_a_worker_playing_a_chunk(stop: threading.Event) -> list[int]:
+    """Start a thread that SIGKILLs the first worker it finds busy with a chunk.
+
+    It does not wait for a result to be written first: on a busy machine the few short chunks
+    could all finish before the hunt caught one of them."""
     killed: list[int] = []
 
     def hunt() -> None:
         while not stop.is_set():
-            if results.exists() and results.read_text(encoding="utf-8").count("\n") >= 1:
-                for process in psutil.process_iter(["cmdline"]):
-                    cmdline = process.info["cmdline"] or [""]
-                    if cmdline[0].startswith(TASK_TITLE):
-                        process.kill()
-                        killed.append(process.pid)
-                        return
+            for process in psutil.process_iter(["cmdline"]):
+                cmdline = process.info["cmdline"] or [""]
+                if cmdline[0].startswith(TASK_TITLE):
+                    process.kill()
+                    killed.append(process.pid)
+                    return
             time.sleep(0.01)
 
     threading.Thread(target=hunt, daemon=True).start()
@@ -74,7 +76,7 @@ def test_a_killed_worker_is_retried_and_the_folder_equals_a_local_run(
     config = EvalConfig(**settings)
     local = run_evaluation(config, tmp_path / "local", cache_dir=split_cache, progress=False)
     stop = threading.Event()
-    killed = _kill_a_chunk_once_records_are_written(tmp_path / "ray" / "episodes.jsonl", stop)
+    killed = _kill_a_worker_playing_a_chunk(stop)
     try:
         outcome = run_ray_evaluation(
             config,
