@@ -1,31 +1,4 @@
-"""Export and import of the released scene-summary format.
-
-A scene summary is a directory ``<out>/<scene>/`` with two JSON files that the reference
-oracle and instruction tools read:
-
-* ``object_dict.json``: ``{instance_id: {category, position, min_points, max_points, scope,
-  room, region_id, unique_description, nearby_objects, caption}}`` with instances in id order.
-  ``room`` is the region *label* of the instance's room (``"cooking region"``), because the
-  reference code looks rooms up by ``scope + "/" + room`` and speaks ``room`` through the label
-  table; ``region_id`` (an extra key, ignored by the reference) names the exact region so a
-  house with two bedrooms round-trips. Without it (released data) the room is the region of
-  that label containing, or else nearest to, the instance's floor-plan centre.
-  ``unique_description`` holds ``"fine grained category"`` and the :class:`Attributes`;
-  ``nearby_objects`` maps the other instance's id to the relation word (a list of words when
-  a pair has several). ``position`` is the box centre; it is written for the reference tools
-  and only checked on import, where the box is ``min_points``/``max_points``.
-* ``region_dict.json``: ``{scope: [{label, id, poly, enlarge_poly}]}`` with rooms in id
-  order, one scope per floor (``<house>_<level>`` with several floors). Polygons are
-  ``[x, -z]`` (this module is the only place that frame appears) and ``enlarge_poly`` is
-  ``poly`` grown outward by :data:`ENLARGE_MARGIN`, which the reference falls back to for
-  points in doorways and on walls.
-
-Files are byte-identical for equal houses: fixed key order, numbers rounded to
-:data:`DECIMALS` decimals (so a round trip is exact only to 0.1 mm), two-space indent with each
-point on one line, UTF-8, a trailing newline, and written atomically. The format has no doors,
-floor heights, yaw, support ids or geometry; an imported :class:`House` has none of them (floors
-at 0, yaw 0).
-"""
+"""Reading a scene summary in every variant the reference reads (reference-formats §2)."""
 
 from __future__ import annotations
 
@@ -39,7 +12,6 @@ from typing import Any
 import numpy as np
 
 from vlln.errors import DataFormatError
-from vlln.files import write_text_atomic
 from vlln.world.catalogue.aliases import canonical_category
 from vlln.world.model import (
     Attributes,
@@ -51,65 +23,14 @@ from vlln.world.model import (
     Relation,
     Room,
 )
-
-OBJECT_DICT_FILE = "object_dict.json"
-REGION_DICT_FILE = "region_dict.json"
-DECIMALS = 4  # 0.1 mm
-ENLARGE_MARGIN = 0.3  # m; about a wall's thickness plus a doorway's depth
-UNKNOWN_ROOM_ID = -1  # room_id of an instance whose room the file does not say
-
-# Our room types and the region labels of the released data (misspellings are the data's).
-ROOM_TYPE_TO_LABEL: dict[str, str] = {
-    "living room": "living region",
-    "bedroom": "resting region",
-    "kitchen": "cooking region",
-    "dining room": "dinning region",
-    "bathroom": "bathing region",
-    "toilet": "toliet region",
-    "study": "study region",
-    "corridor": "corridor region",
-    "storage room": "storage region",
-    "gym": "sports region",
-    "stairs": "stair region",
-    "open area": "open area region",
-    "other": "other region",
-}
-LABEL_TO_ROOM_TYPE: dict[str, str] = {label: kind for kind, label in ROOM_TYPE_TO_LABEL.items()}
-
-# How the reference oracle says each region label aloud.
-SPOKEN_ROOM_NAMES: dict[str, str] = {
-    "living region": "living room",
-    "stair region": "stairs",
-    "bathing region": "bathroom",
-    "storage region": "storage room",
-    "study region": "study room",
-    "cooking region": "kitchen",
-    "sports region": "sports room",
-    "corridor region": "corridor",
-    "toliet region": "toilet",
-    "dinning region": "dining room",
-    "resting region": "resting room",
-    "open area region": "open area",
-    "other region": "area",
-}
-
-_DESCRIPTION_KEYS = ("color", "texture", "material", "shape", "placement", "size")
-_FINE_CATEGORY_KEY = "fine grained category"
-
-
-def export_scene_summary(house: House, out_dir: str | Path) -> Path:
-    """Write ``house`` to ``<out_dir>/<house.name>/`` and return that directory."""
-    name = house.name
-    if not name or name in (".", "..") or "/" in name or "\\" in name:
-        raise DataFormatError(
-            f"house name {name!r} cannot be a scene directory name; use a non-empty name "
-            "without path separators"
-        )
-    scene_dir = Path(out_dir) / name
-    scene_dir.mkdir(parents=True, exist_ok=True)
-    write_text_atomic(scene_dir / OBJECT_DICT_FILE, _to_json(_object_dict(house)))
-    write_text_atomic(scene_dir / REGION_DICT_FILE, _to_json(_region_dict(house)))
-    return scene_dir
+from vlln.world.scene_summary.format import (
+    DESCRIPTION_KEYS,
+    FINE_CATEGORY_KEY,
+    LABEL_TO_ROOM_TYPE,
+    OBJECT_DICT_FILE,
+    REGION_DICT_FILE,
+    UNKNOWN_ROOM_ID,
+)
 
 
 def import_scene_summary(scene_dir: str | Path) -> House:
@@ -135,116 +56,6 @@ def import_scene_summary(scene_dir: str | Path) -> House:
         relations=_relations_of(instances, nearby),
         instance_keys=keys,
     )
-
-
-def grown_polygon(polygon: tuple[Point2, ...], margin: float) -> list[Point2]:
-    """``polygon`` with every edge moved ``margin`` outward (mitred corners), either winding."""
-    p = np.asarray(polygon, dtype=np.float64)
-    edges = np.roll(p, -1, axis=0) - p
-    lengths = np.linalg.norm(edges, axis=1, keepdims=True)
-    direction = np.divide(edges, lengths, out=np.zeros_like(edges), where=lengths > 0)
-    twice_area = float(np.sum(p[:, 0] * np.roll(p[:, 1], -1) - np.roll(p[:, 0], -1) * p[:, 1]))
-    outward = 1.0 if twice_area >= 0 else -1.0
-    after = outward * np.stack([direction[:, 1], -direction[:, 0]], axis=1)
-    before = np.roll(after, 1, axis=0)
-    denominator = 1.0 + np.sum(before * after, axis=1, keepdims=True)
-    # A hairpin corner (denominator 0) has no finite mitre; it moves along one normal instead.
-    mitre = np.divide(before + after, denominator, out=after.copy(), where=denominator > 1e-9)
-    grown = p + margin * mitre
-    return [(float(x), float(z)) for x, z in grown]
-
-
-# --- export -----------------------------------------------------------------------------
-
-
-def _num(value: float) -> float:
-    if not math.isfinite(value):
-        raise DataFormatError(f"cannot write the non-finite number {value!r} to a scene summary")
-    return round(float(value), DECIMALS) + 0.0  # + 0.0 turns -0.0 into 0.0
-
-
-def _plan_points(polygon: tuple[Point2, ...] | list[Point2]) -> list[list[float]]:
-    return [[_num(x), _num(-z)] for x, z in polygon]
-
-
-def _room_label(room: Room) -> str:
-    if room.type not in ROOM_TYPE_TO_LABEL:
-        raise DataFormatError(
-            f"room {room.id} has type {room.type!r}, which the scene-summary format cannot "
-            f"express; valid types: {sorted(ROOM_TYPE_TO_LABEL)}"
-        )
-    return ROOM_TYPE_TO_LABEL[room.type]
-
-
-def _object_dict(house: House) -> dict[str, Any]:
-    labels = {room.id: _room_label(room) for room in house.rooms}
-    scopes = {room.id: _scope(house, room.level) for room in house.rooms}
-    nearby: dict[int, dict[str, list[str]]] = {}
-    for rel in sorted(house.relations, key=lambda r: (r.subject, r.object)):
-        nearby.setdefault(rel.subject, {}).setdefault(str(rel.object), []).append(rel.word)
-    out: dict[str, Any] = {}
-    for inst in sorted(house.instances, key=lambda i: i.id):
-        if inst.room_id != UNKNOWN_ROOM_ID and inst.room_id not in labels:
-            raise DataFormatError(
-                f"instance {inst.id} of house {house.name!r} is in room {inst.room_id}, which "
-                f"the house does not have; rooms: {sorted(labels)}"
-            )
-        lo = [_num(v) for v in inst.box.min]
-        hi = [_num(v) for v in inst.box.max]
-        attrs = inst.attributes
-        out[str(inst.id)] = {
-            "category": inst.category,
-            # From the rounded box, so that a re-export of the imported house is identical.
-            "position": [_num((a + b) / 2.0) for a, b in zip(lo, hi, strict=True)],
-            "min_points": lo,
-            "max_points": hi,
-            "scope": scopes.get(inst.room_id, _scope(house, 0)),
-            "room": labels.get(inst.room_id, ""),
-            "region_id": inst.room_id,
-            "unique_description": {
-                _FINE_CATEGORY_KEY: inst.fine_category,
-                **{key: getattr(attrs, key) for key in _DESCRIPTION_KEYS},
-            },
-            "nearby_objects": {
-                other: words[0] if len(words) == 1 else words
-                for other, words in nearby.get(inst.id, {}).items()
-            },
-            "caption": inst.caption,
-        }
-    return out
-
-
-def _scope(house: House, level: int) -> str:
-    """A floor's scope: the house's name, with ``_<level>`` when it has several floors."""
-    several = len({room.level for room in house.rooms}) > 1
-    return f"{house.name}_{level}" if several else house.name
-
-
-def _region_dict(house: House) -> dict[str, Any]:
-    """One scope per floor, floors in order, rooms in id order within each."""
-    out: dict[str, Any] = {_scope(house, k): [] for k in sorted({r.level for r in house.rooms})}
-    for room in sorted(house.rooms, key=lambda r: r.id):
-        grown = _plan_points(grown_polygon(room.polygon, ENLARGE_MARGIN))
-        region = {"label": _room_label(room), "id": room.id, "poly": _plan_points(room.polygon)}
-        out[_scope(house, room.level)].append({**region, "enlarge_poly": grown})
-    return out or {house.name: []}
-
-
-# A list of numbers that json.dumps spread over lines (raw newlines never occur in strings).
-_SPREAD_NUMBERS = re.compile(r"\[\n *(-?[0-9][-+.0-9eE]*(?:,\n *-?[0-9][-+.0-9eE]*)*)\n *\]")
-
-
-def _to_json(data: dict[str, Any]) -> str:
-    """Two-space indented JSON with each list of numbers (a point) on one line."""
-    text = json.dumps(data, indent=2, ensure_ascii=False, allow_nan=False)
-    return _SPREAD_NUMBERS.sub(_one_line, text) + "\n"
-
-
-def _one_line(match: re.Match[str]) -> str:
-    return "[" + ", ".join(number.strip() for number in match[1].split(",")) + "]"
-
-
-# --- import -----------------------------------------------------------------------------
 
 
 def _load_json(path: Path) -> Any:
@@ -401,13 +212,13 @@ def _parse_objects(
             description = {}  # the released data has some instances without a description
         dwhere = f"{where}: unique_description"
         attributes = Attributes(
-            **{k: _text(path, dwhere, description, k) for k in _DESCRIPTION_KEYS}
+            **{k: _text(path, dwhere, description, k) for k in DESCRIPTION_KEYS}
         )
         scope_rooms = [room for room in rooms if room.id in scopes[scope].values()]
         instances[instance_id] = ObjectInstance(
             id=instance_id,
             category=category,
-            fine_category=_text(path, dwhere, description, _FINE_CATEGORY_KEY),
+            fine_category=_text(path, dwhere, description, FINE_CATEGORY_KEY),
             attributes=attributes,
             caption=caption,
             box=box,
