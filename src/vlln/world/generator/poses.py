@@ -198,17 +198,8 @@ def in_front_of(bounds: LocalBounds, side: str, anchor: Box3, gap: float) -> Pos
 def across_from(interior: Rect, bounds: LocalBounds, side: str, anchor: Box3) -> list[Pose]:
     """Back to the wall opposite ``side``, facing ``anchor`` across the room."""
     opposite = {"z0": "z1", "z1": "z0", "x0": "x1", "x1": "x0"}[side]
-    turns = dict(WALL_SIDES)[opposite]
-    span = _slide_range(interior, opposite, bounds.turned(turns))
-    if span is None:
-        return []
-    fixed, lo, hi = span
-    x0, x1, z0, z1 = bounds.turned(turns)
-    if side in ("z0", "z1"):
-        along = (anchor.min[0] + anchor.max[0]) / 2.0 - (x0 + x1) / 2.0
-    else:
-        along = (anchor.min[2] + anchor.max[2]) / 2.0 - (z0 + z1) / 2.0
-    return [_pose(opposite, turns, fixed, float(np.clip(along, lo, hi)), 0.0)]
+    pose = _on_wall_centred_on(interior, bounds, opposite, anchor, 0.0)
+    return [] if pose is None else [pose]
 
 
 def above(
@@ -216,17 +207,26 @@ def above(
 ) -> list[tuple[str, Pose]]:
     """On the wall behind ``anchor`` (which stands against ``side``), centred over it at
     height ``y``: a range hood over the stove."""
-    turns = dict(WALL_SIDES)[side]
-    span = _slide_range(interior, side, bounds.turned(turns))
-    if span is None:
-        return []
-    fixed, lo, hi = span
+    pose = _on_wall_centred_on(interior, bounds, side, anchor, y)
+    return [] if pose is None else [(side, pose)]
+
+
+def _on_wall_centred_on(
+    interior: Rect, bounds: LocalBounds, wall: str, anchor: Box3, y: float
+) -> Pose | None:
+    """Back to ``wall`` at height ``y``, slid along it to ``anchor``'s centre as far as the
+    wall allows; None when the object does not fit along the wall."""
+    turns = dict(WALL_SIDES)[wall]
     x0, x1, z0, z1 = bounds.turned(turns)
-    if side in ("z0", "z1"):
+    span = _slide_range(interior, wall, (x0, x1, z0, z1))
+    if span is None:
+        return None
+    fixed, lo, hi = span
+    if wall in ("z0", "z1"):
         along = (anchor.min[0] + anchor.max[0]) / 2.0 - (x0 + x1) / 2.0
     else:
         along = (anchor.min[2] + anchor.max[2]) / 2.0 - (z0 + z1) / 2.0
-    return [(side, _pose(side, turns, fixed, float(np.clip(along, lo, hi)), y))]
+    return _pose(wall, turns, fixed, float(np.clip(along, lo, hi)), y)
 
 
 def wall_line(room: Rect, side: str) -> tuple[str, float]:
