@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import json
 import math
-import resource
 import statistics
 import subprocess
 import sys
@@ -156,17 +155,12 @@ def _render_fps(sim: Simulator, poses: list[AgentState]) -> tuple[float, float]:
     rasteriser's threads included): a figure that a busy machine does not inflate much."""
     for pose in poses[:WARM_UP_FRAMES]:  # llvmpipe compiles shader variants lazily
         sim.render(pose)
-    cpu_start = _cpu_seconds()
+    cpu_start = time.process_time()
     start = time.perf_counter()
     for pose in poses:
         sim.render(pose)
     seconds = time.perf_counter() - start
-    return len(poses) / seconds, (_cpu_seconds() - cpu_start) / len(poses) * 1e3
-
-
-def _cpu_seconds() -> float:
-    usage = resource.getrusage(resource.RUSAGE_SELF)
-    return usage.ru_utime + usage.ru_stime
+    return len(poses) / seconds, (time.process_time() - cpu_start) / len(poses) * 1e3
 
 
 def _drawn_corners(sim: Simulator, poses: list[AgentState]) -> list[bytes]:
