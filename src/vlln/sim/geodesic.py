@@ -25,9 +25,9 @@ from vlln.sim.navgrid import NavGrid, Point2
 
 # Round-up that covers floating-point summation error along a path (< 1e-13 relative for
 # paths of thousands of edges), so distances never fall below the straight line by rounding.
-_ROUND_UP = 1.0 + 1e-9
+ROUND_UP = 1.0 + 1e-9
 # A traced prefix is this much longer than asked (plus 1 m) before string pulling.
-_PREFIX_MARGIN = 1.2
+PREFIX_MARGIN = 1.2
 
 
 class GeodesicField:
@@ -63,7 +63,7 @@ class GeodesicField:
             min_only=True,
             return_predecessors=True,
         )
-        dist *= _ROUND_UP
+        dist *= ROUND_UP
         self.values: NDArray[np.float64] = dist.reshape(rows, cols)
         self.values.flags.writeable = False
         self._flat: list[float] = dist.tolist()
@@ -88,7 +88,7 @@ class GeodesicField:
             return d
         cx = self._ox + (col + 0.5) * s
         cz = self._oz + (row + 0.5) * s
-        return d + math.hypot(x - cx, z - cz) * _ROUND_UP
+        return d + math.hypot(x - cx, z - cz) * ROUND_UP
 
     def is_reachable(self, x: float, z: float, y: float | None = None) -> bool:
         return self.distance(x, z) < math.inf
@@ -113,7 +113,7 @@ class GeodesicField:
         chain = [node]
         predecessors = self._predecessors
         # String pulling shortens a cell chain by a few per cent: trace a safe margin more.
-        limit = math.inf if max_length is None else max_length * _PREFIX_MARGIN + 1.0
+        limit = math.inf if max_length is None else max_length * PREFIX_MARGIN + 1.0
         cols, size, travelled = self._cols, self._size, 0.0
         while predecessors[node] >= 0 and travelled < limit:
             previous, node = node, int(predecessors[node])

@@ -15,10 +15,9 @@ from numpy.typing import NDArray
 from scipy.sparse import csgraph
 
 from vlln.errors import NavigationError
-from vlln.sim.geodesic import pull_string
+from vlln.sim.geodesic import PREFIX_MARGIN, ROUND_UP, pull_string
 from vlln.sim.storeys import Point3, Storeys
 
-_ROUND_UP = 1.0 + 1e-9
 # A way that rises or falls this much (m) goes up or down stairs.
 _CLIMB = 0.3
 
@@ -47,7 +46,7 @@ class StoreyField:
             min_only=True,
             return_predecessors=True,
         )
-        dist *= _ROUND_UP
+        dist *= ROUND_UP
         self._flat: list[float] = dist.tolist()
         self._predecessors: NDArray[np.int32] = predecessors
         self.values: tuple[NDArray[np.float64], ...] = tuple(
@@ -71,7 +70,7 @@ class StoreyField:
         if d == math.inf:
             return d
         cx, cy, cz = storeys.node_point(node)
-        return d + math.sqrt((x - cx) ** 2 + (y - cy) ** 2 + (z - cz) ** 2) * _ROUND_UP
+        return d + math.sqrt((x - cx) ** 2 + (y - cy) ** 2 + (z - cz) ** 2) * ROUND_UP
 
     def is_reachable(self, x: float, z: float, y: float | None = None) -> bool:
         return self.distance(x, z, y) < math.inf
@@ -106,7 +105,7 @@ class StoreyField:
         if y is None:
             raise NavigationError("paths in a house with several storeys need the height y")
         floor = self.grid.floor_ys[self.grid.level_of(y)]
-        limit = None if max_length is None else max_length * 1.2 + 1.0
+        limit = None if max_length is None else max_length * PREFIX_MARGIN + 1.0
         points = [(x, z)]
         for px, py, pz in self.path_nodes(x, y, z, limit)[1:]:
             if py != floor and y == floor:
