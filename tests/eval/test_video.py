@@ -12,7 +12,7 @@ from tests.eval.runs import evaluate
 from vlln.cli import main
 from vlln.eval.report import write_report
 from vlln.eval.results import read_records
-from vlln.eval.video import VideoConfig, replay
+from vlln.eval.video import VideoConfig, map_images, replay
 from vlln.eval.videos import dialog_first
 from vlln.sim.simulator import Simulator
 from vlln.tasks.scenes import SceneCache
@@ -79,3 +79,14 @@ def test_report_video_plays_in_headless_chromium(dialog_run: Path, tmp_path: Pat
     assert duration == pytest.approx(expected, abs=0.3)
     assert duration > len(record.actions) / VideoConfig().fps
     assert (width, height) == (1120, 592)
+
+
+def test_the_map_panel_shows_the_whole_floor_plan(dialog_run: Path, scenes: SceneCache) -> None:
+    [record] = read_records(dialog_run / "episodes.jsonl")
+    house = scenes.get(record.scene_id).house
+    size = VideoConfig().map_size
+    plans, to_pixel = map_images(house, record, size)
+    corners = [to_pixel(x, z) for room in house.rooms for x, z in room.polygon]
+    assert all(0 <= u <= size and 0 <= v <= size for u, v in corners)
+    drawn = (plans[0] < 240).any(axis=2).mean()
+    assert drawn > 0.4, f"only {drawn:.0%} of the panel shows the plan"

@@ -34,9 +34,8 @@ from vlln.files import replace_folder, write_text_atomic
 from vlln.tasks.aggregate import BudgetSweep, MetricSummary, format_table
 from vlln.tasks.metrics import ORACLE_SUCCESS_RADIUS, SUCCESS_RADIUS
 from vlln.tasks.record import EpisodeRecord
-from vlln.tasks.scenes import procedural_seed
+from vlln.tasks.scenes import procedural_house
 from vlln.tasks.taxonomy import CLASS_ABBREVIATIONS, SUCCESS, classify
-from vlln.world.generator import generate_house
 from vlln.world.model import House
 
 REPORT_MD = "report.md"
@@ -342,8 +341,7 @@ def pick_samples(
 def _house(scene_id: str, cache: dict[str, House]) -> House | None:
     if scene_id not in cache:
         try:
-            seed = procedural_seed(scene_id)
+            cache[scene_id] = procedural_house(scene_id)
         except ConfigError:
             return None
-        cache[scene_id] = generate_house(seed)
     return cache[scene_id]

@@ -6,8 +6,9 @@ maps: every movement action (FORWARD, TURN) moves the camera to the next recorde
 failed actions keep the view. One action is one frame; a question holds its frame
 ``hold_s`` seconds and its caption (question and answer, grey when refused) stays for
 ``caption_s``. The map is drawn once with matplotlib; the trail and the agent are drawn on it
-per frame. Encoding is H.264 in MP4 (yuv420p, ``faststart`` for the web) with PyAV, an extra:
-``pip install 'vlln[video]'``.
+per frame. In a house with several storeys the map shows the storey the agent is on (from the
+record's ``heights``) and the trail's part on it. Encoding is H.264 in MP4 (yuv420p,
+``faststart`` for the web) with PyAV, an extra: ``pip install 'vlln[video]'``.
 """
 
 from __future__ import annotations
@@ -31,7 +32,7 @@ from vlln.errors import ConfigError
 from vlln.sim.agent import Action, AgentState
 from vlln.sim.simulator import Simulator
 from vlln.tasks.record import DialogTurn, EpisodeRecord
-from vlln.viz.topdown import draw_house
+from vlln.viz.topdown import draw_house, storey_at_height, storey_name, storeys_of
 from vlln.world.frame import heading_vector
 from vlln.world.model import House
 
@@ -71,7 +72,7 @@ def write_episode_video(
         import av
     except ImportError:
         raise ConfigError("episode videos need PyAV: pip install 'vlln[video]'") from None
-    base, to_pixel = _map_image(house, record, config.map_size)
+    bases, to_pixel = map_images(house, record, config.map_size)
     camera = sim.config.camera
     width = camera.width + config.map_size
     height = max(camera.height, config.map_size) + config.caption_height
@@ -84,7 +85,7 @@ def write_episode_video(
         stream: Any = container.add_stream("libx264", rate=config.fps)
         stream.width, stream.height, stream.pix_fmt = width, height, "yuv420p"
         stream.options = {"crf": "26", "preset": "veryfast"}
-        for image in _frames(record, sim, base, to_pixel, (width, height), config):
+        for image in _frames(record, sim, bases, to_pixel, (width, height), config):
             frame = av.VideoFrame.from_ndarray(image, format="rgb24")
             for packet in stream.encode(frame):
                 container.mux(packet)
@@ -104,10 +105,17 @@ def replay(record: EpisodeRecord, sim: Simulator) -> Iterator[_Step]:
         math.radians(v) for v in (motion.tilt_step_deg, motion.min_tilt_deg, motion.max_tilt_deg)
     )
     pose, tilt, questions = 0, 0.0, iter(record.dialog)
+    several = sim.storeys is not None
+    if several and len(record.heights) != len(record.positions):
+        raise ConfigError(
+            f"episode {record.episode_id} is in a house with several storeys but its record has "
+            "no heights; play it again with this version of vlln to record them"
+        )
 
     def state() -> AgentState:
         x, z, yaw = record.positions[pose]
-        return AgentState((x, sim.grid.floor_y, z), yaw, tilt)
+        y = record.heights[pose] if several else sim.grid.floor_y
+        return AgentState((x, y, z), yaw, tilt)
 
     yield _Step(state(), pose, "START", None)
     for action in record.actions:
@@ -126,24 +134,25 @@ def replay(record: EpisodeRecord, sim: Simulator) -> Iterator[_Step]:
 def _frames(
     record: EpisodeRecord,
     sim: Simulator,
-    base: Rgb,
+    bases: dict[int, Rgb],
     to_pixel: Any,
     size: tuple[int, int],
     config: VideoConfig,
 ) -> Iterator[Rgb]:
     font = ImageFont.load_default(size=18)
     small = ImageFont.load_default(size=15)
-    trail: list[tuple[float, float]] = []
+    trail: list[tuple[tuple[float, float], int]] = []  # map pixel and storey
     caption: tuple[DialogTurn, int] | None = None
     for index, step in enumerate(replay(record, sim)):
         x, z, yaw = record.positions[step.pose_index]
-        if not trail or trail[-1] != to_pixel(x, z):
-            trail.append(to_pixel(x, z))
+        storey = storey_at_height(sim.house, step.state.position[1]) if len(bases) > 1 else 0
+        if not trail or trail[-1] != (to_pixel(x, z), storey):
+            trail.append((to_pixel(x, z), storey))
         view = sim.render(step.state).rgb
         canvas = Image.new("RGB", size, "white")
         canvas.paste(Image.fromarray(view), (0, 0))
-        panel = Image.fromarray(base)
-        _draw_agent(ImageDraw.Draw(panel), trail, yaw, to_pixel(x, z))
+        panel = Image.fromarray(bases[storey])
+        _draw_agent(ImageDraw.Draw(panel), _trail_on(trail, storey), yaw, to_pixel(x, z))
         canvas.paste(panel, (view.shape[1], 0))
         draw = ImageDraw.Draw(canvas)
         status = f"{record.episode_id}  action {index}: {step.action}"
@@ -160,11 +169,30 @@ def _frames(
             yield np.asarray(canvas, dtype=np.uint8)
 
 
+def _trail_on(
+    trail: list[tuple[tuple[float, float], int]], storey: int
+) -> list[list[tuple[float, float]]]:
+    """The pieces of the trail on one storey (a climb leaves the storey at the stairs)."""
+    pieces: list[list[tuple[float, float]]] = []
+    previous = None
+    for point, level in trail:
+        if level == storey:
+            if previous != storey:
+                pieces.append([])
+            pieces[-1].append(point)
+        previous = level
+    return pieces
+
+
 def _draw_agent(
-    draw: ImageDraw.ImageDraw, trail: list[tuple[float, float]], yaw: float, at: tuple[float, float]
+    draw: ImageDraw.ImageDraw,
+    trail: list[list[tuple[float, float]]],
+    yaw: float,
+    at: tuple[float, float],
 ) -> None:
-    if len(trail) > 1:
-        draw.line(trail, fill=(30, 90, 220), width=3)
+    for piece in trail:
+        if len(piece) > 1:
+            draw.line(piece, fill=(30, 90, 220), width=3)
     dx, dz = heading_vector(yaw)
     tip = (at[0] + 16 * dx, at[1] + 16 * dz)  # map rows grow with z (-z is up)
     draw.line([at, tip], fill=(200, 0, 0), width=3)
@@ -188,26 +216,37 @@ def _draw_caption(
         draw.text((10, top + 6 + 25 * row), text, fill=colour, font=font)
 
 
-def _map_image(house: House, record: EpisodeRecord, size: int) -> tuple[Rgb, Any]:
-    """The floor plan as a ``size``² image and the function from (x, z) to its pixels."""
+def map_images(house: House, record: EpisodeRecord, size: int) -> tuple[dict[int, Rgb], Any]:
+    """The floor plan of every storey as a ``size``² image, and the function from (x, z) to
+    their pixels (one frame for all storeys)."""
     xs = [p[0] for room in house.rooms for p in room.polygon]
     zs = [p[1] for room in house.rooms for p in room.polygon]
     cx, cz = (min(xs) + max(xs)) / 2, (min(zs) + max(zs)) / 2
     half = max(max(xs) - min(xs), max(zs) - min(zs)) / 2 + 0.5
-    figure = plt.figure(figsize=(size / 100, size / 100), dpi=100)
-    try:
-        axes = figure.add_axes((0, 0, 1, 1))
-        draw_house(axes, house, label_objects=False, highlight=record.target_ids)
-        axes.set_xlim(cx - half, cx + half)
-        axes.set_ylim(-cz - half, -cz + half)
-        axes.set_aspect("equal")
-        axes.axis("off")
-        figure.canvas.draw()
-        image = np.asarray(figure.canvas.buffer_rgba())[..., :3].copy()  # type: ignore[attr-defined]
-    finally:
-        plt.close(figure)
+    storeys = storeys_of(house)
+    images = {}
+    for storey in storeys:
+        figure = plt.figure(figsize=(size / 100, size / 100), dpi=100)
+        try:
+            axes = figure.add_axes((0, 0, 1, 1))
+            several = len(storeys) > 1
+            draw_house(
+                axes, house, label_objects=False, highlight=record.target_ids,
+                storey=storey if several else None,
+            )  # fmt: skip
+            if several:
+                axes.text(0.02, 0.02, storey_name(storey), transform=axes.transAxes, fontsize=11)
+            axes.set_xlim(cx - half, cx + half)
+            axes.set_ylim(cz + half, cz - half)  # z grows downwards, as in to_pixel
+            axes.set_aspect("equal")
+            axes.axis("off")
+            figure.canvas.draw()
+            canvas: Any = figure.canvas
+            images[storey] = np.asarray(canvas.buffer_rgba())[..., :3].copy()
+        finally:
+            plt.close(figure)
 
     def to_pixel(x: float, z: float) -> tuple[float, float]:
         return ((x - cx + half) / (2 * half) * size, (z - cz + half) / (2 * half) * size)
 
-    return image, to_pixel
+    return images, to_pixel

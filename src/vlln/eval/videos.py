@@ -17,8 +17,7 @@ from vlln.eval.results import load_run_records
 from vlln.eval.video import VideoConfig, write_episode_video
 from vlln.sim.simulator import Simulator
 from vlln.tasks.record import EpisodeRecord
-from vlln.tasks.scenes import procedural_seed
-from vlln.world.generator import generate_house
+from vlln.tasks.scenes import procedural_house, procedural_seed
 
 _UNSAFE = re.compile(r"[^A-Za-z0-9_.-]+")
 
@@ -71,7 +70,7 @@ def write_videos(
     config = config or VideoConfig()
     written: list[tuple[Path, float]] = []
     for record in records:
-        house = generate_house(procedural_seed(record.scene_id))
+        house = procedural_house(record.scene_id)
         with Simulator(house) as sim:
             path = out / video_name(record, prefix)
             written.append((path, write_episode_video(record, house, sim, path, config)))

@@ -154,6 +154,7 @@ class NavigationEnv:
         self._path_length = 0.0
         self._trace: list[float] = []
         self._positions: list[list[float]] = [[start.position[0], start.position[2], start.yaw]]
+        self._heights: list[float] = [y0] if self.sim.storeys is not None else []
         self._actions: list[str] = []
         self._dialog: list[DialogTurn] = []
         self._seen_step: int | None = None
@@ -245,6 +246,8 @@ class NavigationEnv:
             self._distance = self.field.distance(after[0], after[2], after[1])
             self._trace.append(self._distance)
             self._positions.append([after[0], after[2], observation.state.yaw])
+            if self.sim.storeys is not None:
+                self._heights.append(after[1])
         self._note_target_seen()
         return observation.collided
 
@@ -385,6 +388,7 @@ class NavigationEnv:
             stop_instance_category=stop_category,
             target_seen_step=self._seen_step,
             positions=[[round(v, 4) for v in p] for p in self._positions],
+            heights=[round(y, 4) for y in self._heights],
             actions=list(self._actions),
             dialog=list(self._dialog),
             failed_actions=self._failed,

@@ -76,6 +76,9 @@ class EpisodeRecord:
     stop_instance_category: str | None
     target_seen_step: int | None  # first step the target was observed (see metrics)
     positions: list[list[float]] = field(default_factory=list)  # [x, z, yaw] per step
+    # Height y of every position, in houses with several storeys only (where (x, z) can be
+    # two places); absent from the JSON of a one-storey house's record.
+    heights: list[float] = field(default_factory=list)
     actions: list[str] = field(default_factory=list)
     dialog: list[DialogTurn] = field(default_factory=list)
     failed_actions: int = 0  # unparseable or invalid agent outputs
@@ -104,6 +107,8 @@ class EpisodeRecord:
         data = asdict(self)
         data["geodesic_trace"] = [_finite_or_none(d) for d in self.geodesic_trace]
         data["geodesic_start"] = _finite_or_none(self.geodesic_start)
+        if not self.heights:
+            del data["heights"]
         return data
 
     @staticmethod
@@ -113,7 +118,7 @@ class EpisodeRecord:
         check_object(
             EpisodeRecord,
             data,
-            signed=("positions",),
+            signed=("positions", "heights"),
             non_empty=_IDENTITY_FIELDS,
             nullable=("geodesic_start", "geodesic_trace"),
         )
@@ -125,6 +130,12 @@ class EpisodeRecord:
         for index, position in enumerate(data.get("positions", [])):
             if len(position) != 3:
                 raise DataFormatError(f"field 'positions[{index}]' must be [x, z, yaw]")
+        heights = data.get("heights", [])
+        if heights and len(heights) != len(data.get("positions", [])):
+            raise DataFormatError(
+                f"field 'heights' has {len(heights)} values for "
+                f"{len(data.get('positions', []))} positions; give one height per position"
+            )
         values = dict(data)
         values["dialog"] = [DialogTurn(**turn) for turn in values.get("dialog", [])]
         values["model_calls"] = [ModelCall(**call) for call in values.get("model_calls", [])]

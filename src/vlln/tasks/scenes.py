@@ -69,6 +69,14 @@ def procedural_seed(scene_id: str) -> int:
     return seed
 
 
+def procedural_house(scene_id: str) -> House:
+    """The procedural house a scene id names, with its storeys (``_2f`` is another house
+    than the one-storey house of the same seed)."""
+    return generate_house(
+        procedural_seed(scene_id), HouseParameters(floors=procedural_floors(scene_id))
+    )
+
+
 def canonical_seed(scene_id: str) -> int:
     """:func:`procedural_seed` of a scene id in its one spelling, :func:`procedural_scene_id`;
     ``vlln/house_76`` and ``vlln/house_076`` are refused, naming ``vlln/house_00076``."""
@@ -107,10 +115,7 @@ class SceneCache:
 
     def _house(self, scene_id: str) -> House:
         if is_procedural(scene_id) or self.scenes_dir is None:
-            floors = procedural_floors(scene_id)
-            if floors > 1:
-                return generate_house(procedural_seed(scene_id), HouseParameters(floors=floors))
-            return generate_house(procedural_seed(scene_id))
+            return procedural_house(scene_id)
         return load_scene(self.scenes_dir / scene_name(scene_id))
 
     def holds(self, scene_id: str) -> bool:

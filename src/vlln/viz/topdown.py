@@ -95,7 +95,7 @@ def draw_house(
             continue
         ax.plot(door.center[0], door.center[1], marker="s", color="#8b5a2b", markersize=5)
     chosen = set(highlight)
-    shown = [inst for inst in house.instances if storey is None or _stands_on(house, inst, storey)]
+    shown = [inst for inst in house.instances if storey is None or stands_on(house, inst, storey)]
     by_size = sorted(shown, key=lambda inst: -inst.box.size[0] * inst.box.size[2])
     for inst in by_size:
         (x0, _, z0), (x1, _, z1) = inst.box.min, inst.box.max
@@ -144,7 +144,19 @@ def declutter_map(fig: Figure) -> int:
     return declutter(fig, rooms, objects)
 
 
-def _stands_on(house: House, inst: ObjectInstance, storey: int) -> bool:
+def storeys_of(house: House) -> list[int]:
+    """The house's storeys, lowest first (``[0]`` for a house of one)."""
+    return sorted({room.level for room in house.rooms}) or [0]
+
+
+def storey_at_height(house: House, y: float) -> int:
+    """The storey whose floor is nearest the height (the lower one on a tie), as the
+    simulator assigns an agent halfway up a flight of stairs."""
+    floors = {room.level: room.floor_y for room in house.rooms}
+    return min(floors, key=lambda level: (abs(floors[level] - y), level), default=0)
+
+
+def stands_on(house: House, inst: ObjectInstance, storey: int) -> bool:
     """Whether an object is drawn on a storey's map: it is in one of its rooms, or it is a
     flight of stairs whose top reaches the storey."""
     levels = {room.id: room.level for room in house.rooms}
