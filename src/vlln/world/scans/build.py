@@ -5,7 +5,8 @@ Both scan formats come down to the same pieces: triangles with colours, annotate
 structure, told apart by their normal and height: up-facing ones on a region's floor are
 floor (what the navigable grid stands on), down-facing ones ceiling, the rest wall. Object
 categories are mapped to the catalogue's names (:func:`map_category`); the mapping is part of
-the :class:`ImportReport`.
+the :class:`ImportReport`. Flights of stairs are instances of category ``stairs`` when they can
+be climbed, else shell too (:mod:`vlln.world.scans.flights`).
 """
 
 from __future__ import annotations
@@ -29,10 +30,16 @@ from vlln.world.model import (
     StructureId,
 )
 from vlln.world.relations import build_relations
+from vlln.world.scans.flights import (
+    FLIGHT_CATEGORIES,
+    FLIGHT_CATEGORY,
+    flight_problem,
+    taller_than_a_step,
+)
 
 # Annotation categories that are the house's shell, not objects.
 STRUCTURE_CATEGORIES = frozenset(
-    {"floor", "wall", "ceiling", "door frame", "doorframe", "beam", "column", "stairs", "void"}
+    {"floor", "wall", "ceiling", "door frame", "doorframe", "beam", "column", "void"}
 )
 DOOR_FRAME_CATEGORIES = frozenset({"door frame", "doorframe"})
 # Common scan names for catalogue categories (the scans' vocabularies are larger than ours).
@@ -85,6 +92,7 @@ class ImportReport:
     structure_objects: int
     category_mapping: dict[str, str] = field(default_factory=dict)  # raw -> catalogue name
     unmapped: list[str] = field(default_factory=list)  # raw categories kept as they are
+    flights_left_out: dict[int, str] = field(default_factory=dict)  # id -> why not climbable
     seconds: float = 0.0
 
 
@@ -92,6 +100,8 @@ def map_category(raw: str) -> tuple[str, bool]:
     """The catalogue name for an annotation category, and whether the catalogue has it."""
     names = set(default_catalogue().names)
     word = raw.strip().lower().replace("_", " ").replace("#", " ")
+    if word in FLIGHT_CATEGORIES:
+        return FLIGHT_CATEGORY, True
     for candidate in (word, SYNONYMS.get(word, ""), word.rstrip("s")):
         candidate = canonical_category(candidate)
         if candidate in names:
@@ -141,13 +151,23 @@ def build_house(
         in_frame = owners_by_box(triangles, frames) >= 0
     else:
         in_frame = np.isin(owners, [o.id for o in frames])
-    structure = {o.id for o in objects if _is_structure(o)}
+    flights = [o.id for o in objects if _word(o.category) in FLIGHT_CATEGORIES]
+    if flights:
+        owners = np.where(np.isin(owners, flights) & taller_than_a_step(triangles), -1, owners)
+    floor_ys = sorted({room.floor_y for room in rooms})
+    left_out: dict[int, str] = {}
+    for flight in flights:
+        problem = flight_problem(triangles[owners == flight], floor_ys)
+        if problem is not None:
+            left_out[flight] = problem
+    structure = {o.id for o in objects if _is_structure(o)} | set(left_out)
     owners = np.where(np.isin(owners, list(structure)), -1, owners)
     ids = _structure_ids(triangles, rooms)
     ids[in_frame] = int(StructureId.DOOR_FRAME)
     ids = np.where(owners >= 0, owners, ids)
 
     report = ImportReport(name, len(triangles), len(rooms), 0, len(structure))
+    report.flights_left_out = left_out
     region_room = {room.id: room.id for room in rooms}
     instances: list[ObjectInstance] = []
     for obj in objects:

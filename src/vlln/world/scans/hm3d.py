@@ -11,6 +11,7 @@ outlines: a room is a region, its outline the convex hull of its ``floor`` objec
 from __future__ import annotations
 
 import csv
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -30,6 +31,8 @@ _STRUCTURE_NAMES = {
     int(StructureId.CEILING): "ceiling",
     int(StructureId.DOOR_FRAME): "door frame",
 }
+STOREY_GAP = 1.0  # m: room floors further apart than this are on different storeys
+_FLOOR_BAND = 0.15  # m: a room's floor triangles lie this close to its floor height
 
 
 def import_hm3d(scene_dir: Path) -> tuple[House, ImportReport]:
@@ -91,14 +94,24 @@ def _rooms(
         rooms.append(
             Room(id=obj.region, type="other", polygon=polygon, floor_y=float(points[:, 1].min()))
         )
-    levels = sorted({room.floor_y for room in rooms})
+    storeys = _storeys({room.floor_y for room in rooms})
     return sorted(
-        (
-            Room(r.id, r.type, r.polygon, r.floor_y, r.ceiling_height, levels.index(r.floor_y))
-            for r in rooms
-        ),
+        (replace(r, floor_y=storeys[r.floor_y][0], level=storeys[r.floor_y][1]) for r in rooms),
         key=lambda r: r.id,
     )
+
+
+def _storeys(floor_ys: set[float]) -> dict[float, tuple[float, int]]:
+    """Per room floor height: its storey's floor height (the storey's lowest) and level.
+    HM3D has no levels: a floor more than :data:`STOREY_GAP` above its storey's lowest starts
+    the next storey, so the small steps between a scan's room floors stay on one storey."""
+    out: dict[float, tuple[float, int]] = {}
+    level, base = -1, -np.inf
+    for y in sorted(floor_ys):
+        if y - base > STOREY_GAP:
+            level, base = level + 1, y
+        out[y] = (base, level)
+    return out
 
 
 def export_hm3d(house: House, out_dir: Path) -> Path:
@@ -112,10 +125,12 @@ def export_hm3d(house: House, out_dir: Path) -> Path:
     rows: list[tuple[int, str, int]] = [(i.id, i.category, i.room_id) for i in house.instances]
     following = max((i.id for i in house.instances), default=0)
     centres = triangles.mean(axis=1)[:, [0, 2]]
-    for room in house.rooms:  # one floor object per room
+    heights = triangles[:, :, 1].mean(axis=1)
+    for room in house.rooms:  # one floor object per room, on the room's own storey
         following += 1
         inside = MplPath(np.asarray(room.polygon)).contains_points(centres)
-        mine = (ids == int(StructureId.FLOOR)) & inside
+        level = np.abs(heights - room.floor_y) <= _FLOOR_BAND
+        mine = (ids == int(StructureId.FLOOR)) & inside & level
         owner[mine] = following
         rows.append((following, "floor", room.id))
     for structure, word in _STRUCTURE_NAMES.items():
