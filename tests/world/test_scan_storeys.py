@@ -15,8 +15,9 @@ from vlln.sim.simulator import Simulator
 from vlln.tasks.episode import Episode, write_episodes
 from vlln.tasks.generation import generate_house_episodes
 from vlln.world.generator import HouseParameters, generate_house
-from vlln.world.model import House
+from vlln.world.model import House, Room
 from vlln.world.scans import export_scene, import_scene
+from vlln.world.scans.build import on_storeys
 from vlln.world.scans.flights import flight_problem
 from vlln.world.scans.gltf import write_glb
 
@@ -181,3 +182,32 @@ def test_a_flight_must_join_a_floor_to_the_next(original: Simulator) -> None:
     treads = steps[np.ptp(steps[:, :, 1], axis=1) == 0.0]
     every_other = treads[np.round(treads[:, 0, 1] / 0.2).astype(int) % 2 == 0]  # 0.4 m apart
     assert "a step rises 0.40 m" in str(flight_problem(every_other, [0.4, 2.8]))
+
+
+def test_a_scans_uneven_room_floors_make_one_floor_per_storey() -> None:
+    square = ((0.0, 0.0), (4.0, 0.0), (4.0, 4.0), (0.0, 4.0))
+    floors = [0.02, -0.01, 0.0, 2.79, 2.83]
+    rooms = [Room(k, "other", square, floor_y=y) for k, y in enumerate(floors)]
+    placed = on_storeys(rooms)
+    assert [r.level for r in placed] == [0, 0, 0, 1, 1]
+    assert [r.floor_y for r in placed] == pytest.approx([0.0, 0.0, 0.0, 2.81, 2.81])
+
+
+def test_an_object_without_a_region_goes_to_the_room_of_its_storey(
+    original: Simulator, tmp_path: Path
+) -> None:
+    house = original.house
+    folder = export_scene(house, tmp_path, "mp3d")
+    for summary in ("object_dict.json", "region_dict.json"):
+        (folder / summary).unlink()
+    levels = {room.id: room.level for room in house.rooms}
+    moved = [next(i for i in house.instances if levels[i.room_id] == level) for level in (0, 1)]
+    path = folder / f"{house.name}.house"
+    lines = path.read_text(encoding="utf-8").splitlines()
+    for k, line in enumerate(lines):
+        fields = line.split()
+        if fields[0] == "O" and int(fields[1]) in {i.id for i in moved}:
+            lines[k] = " ".join([*fields[:2], "99", *fields[3:]])  # a region the file lacks
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    back, _ = import_scene(folder)
+    assert [back.instance(i.id).room_id for i in moved] == [i.room_id for i in moved]

@@ -11,7 +11,7 @@ be climbed, else shell too (:mod:`vlln.world.scans.flights`).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -65,6 +65,7 @@ SYNONYMS: dict[str, str] = {  # raw annotation words; the catalogue's aliases co
     "bath tub": "bathtub",
     "tub": "bathtub",
 }
+STOREY_GAP = 1.0  # m: a room floor this far above its storey's lowest starts the next storey
 _FLOOR_TOLERANCE = 0.15  # m: an up-facing triangle this close to a floor height is floor
 
 
@@ -109,6 +110,27 @@ def map_category(raw: str) -> tuple[str, bool]:
     return word, False
 
 
+def on_storeys(rooms: list[Room]) -> list[Room]:
+    """The rooms with the level and floor height of their storey. A scan's storeys are not
+    exact (HM3D has none, and each region's floor lies a little above or below the next): a
+    floor more than :data:`STOREY_GAP` above its storey's lowest starts the next storey, whose
+    floor height is its rooms' median, so that the simulator finds one floor per storey."""
+    storeys: list[list[float]] = []
+    for y in sorted(room.floor_y for room in rooms):
+        if not storeys or y - storeys[-1][0] > STOREY_GAP:
+            storeys.append([])
+        storeys[-1].append(y)
+    storey_of = {
+        y: (float(np.median(heights)), level)
+        for level, heights in enumerate(storeys)
+        for y in heights
+    }
+    return [
+        replace(room, floor_y=storey_of[room.floor_y][0], level=storey_of[room.floor_y][1])
+        for room in rooms
+    ]
+
+
 def owners_by_box(triangles: NDArray[np.float64], objects: list[ScanObject]) -> NDArray[np.int64]:
     """Per triangle, the id of the smallest object box holding all three corners (-1: none);
     a large floor or wall triangle reaching out of a box is never the object's."""
@@ -144,13 +166,16 @@ def build_house(
     rooms: list[Room],
     owners: NDArray[np.int64] | None = None,
 ) -> tuple[House, ImportReport]:
-    """The house: rooms as given, one instance per non-structure object, one mesh."""
+    """The house: the rooms on their storeys (:func:`on_storeys`), one instance per
+    non-structure object, one mesh."""
     frames = [o for o in objects if _word(o.category) in DOOR_FRAME_CATEGORIES]
     if owners is None:
         owners = owners_by_box(triangles, [o for o in objects if not _is_structure(o)])
         in_frame = owners_by_box(triangles, frames) >= 0
     else:
         in_frame = np.isin(owners, [o.id for o in frames])
+    ids = _structure_ids(triangles, rooms)  # each region's own floor height tells floor
+    rooms = on_storeys(rooms)
     flights = [o.id for o in objects if _word(o.category) in FLIGHT_CATEGORIES]
     if flights:
         owners = np.where(np.isin(owners, flights) & taller_than_a_step(triangles), -1, owners)
@@ -162,7 +187,6 @@ def build_house(
             left_out[flight] = problem
     structure = {o.id for o in objects if _is_structure(o)} | set(left_out)
     owners = np.where(np.isin(owners, list(structure)), -1, owners)
-    ids = _structure_ids(triangles, rooms)
     ids[in_frame] = int(StructureId.DOOR_FRAME)
     ids = np.where(owners >= 0, owners, ids)
 
@@ -234,7 +258,8 @@ def _room_containing(rooms: list[Room], box: Box3) -> int:
     from vlln.world.scene_summary import UNKNOWN_ROOM_ID
 
     x, _, z = box.center
-    for room in rooms:
+    below = [room for room in rooms if room.floor_y <= box.min[1] + 0.05] or rooms
+    for room in sorted(below, key=lambda room: -room.floor_y):  # the storey it stands on
         if _inside((x, z), room.polygon):
             return room.id
     return UNKNOWN_ROOM_ID

@@ -11,7 +11,6 @@ outlines: a room is a region, its outline the convex hull of its ``floor`` objec
 from __future__ import annotations
 
 import csv
-from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -31,7 +30,6 @@ _STRUCTURE_NAMES = {
     int(StructureId.CEILING): "ceiling",
     int(StructureId.DOOR_FRAME): "door frame",
 }
-STOREY_GAP = 1.0  # m: room floors further apart than this are on different storeys
 _FLOOR_BAND = 0.15  # m: a room's floor triangles lie this close to its floor height
 
 
@@ -94,24 +92,7 @@ def _rooms(
         rooms.append(
             Room(id=obj.region, type="other", polygon=polygon, floor_y=float(points[:, 1].min()))
         )
-    storeys = _storeys({room.floor_y for room in rooms})
-    return sorted(
-        (replace(r, floor_y=storeys[r.floor_y][0], level=storeys[r.floor_y][1]) for r in rooms),
-        key=lambda r: r.id,
-    )
-
-
-def _storeys(floor_ys: set[float]) -> dict[float, tuple[float, int]]:
-    """Per room floor height: its storey's floor height (the storey's lowest) and level.
-    HM3D has no levels: a floor more than :data:`STOREY_GAP` above its storey's lowest starts
-    the next storey, so the small steps between a scan's room floors stay on one storey."""
-    out: dict[float, tuple[float, int]] = {}
-    level, base = -1, -np.inf
-    for y in sorted(floor_ys):
-        if y - base > STOREY_GAP:
-            level, base = level + 1, y
-        out[y] = (base, level)
-    return out
+    return sorted(rooms, key=lambda r: r.id)
 
 
 def export_hm3d(house: House, out_dir: Path) -> Path:
