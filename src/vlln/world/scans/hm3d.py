@@ -4,8 +4,9 @@ each object painted in its own colour) and ``<scene>.semantic.txt``.
 ``semantic.txt`` starts with a title line, then one object per line:
 ``id,hexcolor,"category",region`` (``1,9E8A3B,"chair",3``). A drawn triangle belongs to the
 object whose colour the nearest semantic triangle has. HM3D regions have no labels or
-outlines: a room is a region, its outline the convex hull of its ``floor`` object, its type
-``other`` unless the scene's summary (``region_dict.json``) names it.
+outlines: a room is a region, its outline the convex hull of its ``floor`` object, its storey
+found from its floor's height, its type ``other`` unless the scene's summary
+(``region_dict.json``) names it.
 """
 
 from __future__ import annotations
