@@ -9,6 +9,7 @@ and the rooms (HM3D has no room labels of its own).
 
 from __future__ import annotations
 
+import logging
 import time
 from dataclasses import replace
 from pathlib import Path
@@ -21,6 +22,7 @@ from vlln.world.scans.mp3d import export_mp3d, import_mp3d
 from vlln.world.scene_summary import OBJECT_DICT_FILE, export_scene_summary, import_scene_summary
 
 STYLES = ("mp3d", "hm3d")
+logger = logging.getLogger(__name__)
 
 __all__ = [
     "STYLES",
@@ -52,6 +54,14 @@ def import_scene(scene_dir: str | Path) -> tuple[House, ImportReport]:
     started = time.perf_counter()
     importer = import_mp3d if scene_style(scene_dir) == "mp3d" else import_hm3d
     house, report = importer(scene_dir)
+    for flight, problem in report.flights_left_out.items():
+        logger.warning(
+            "%s: the stairs %d cannot be climbed (%s); they are kept as walls, so the storeys "
+            "they would join stay apart",
+            scene_dir.name,
+            flight,
+            problem,
+        )
     if (scene_dir / OBJECT_DICT_FILE).is_file():
         house = _with_summary(house, import_scene_summary(scene_dir))
     report.seconds = time.perf_counter() - started

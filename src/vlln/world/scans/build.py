@@ -5,12 +5,13 @@ Both scan formats come down to the same pieces: triangles with colours, annotate
 structure, told apart by their normal and height: up-facing ones on a region's floor are
 floor (what the navigable grid stands on), down-facing ones ceiling, the rest wall. Object
 categories are mapped to the catalogue's names (:func:`map_category`); the mapping is part of
-the :class:`ImportReport`.
+the :class:`ImportReport`. Flights of stairs are instances of category ``stairs`` when they can
+be climbed, else shell too (:mod:`vlln.world.scans.flights`).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -29,10 +30,16 @@ from vlln.world.model import (
     StructureId,
 )
 from vlln.world.relations import build_relations
+from vlln.world.scans.flights import (
+    FLIGHT_CATEGORIES,
+    FLIGHT_CATEGORY,
+    flight_problem,
+    taller_than_a_step,
+)
 
 # Annotation categories that are the house's shell, not objects.
 STRUCTURE_CATEGORIES = frozenset(
-    {"floor", "wall", "ceiling", "door frame", "doorframe", "beam", "column", "stairs", "void"}
+    {"floor", "wall", "ceiling", "door frame", "doorframe", "beam", "column", "void"}
 )
 DOOR_FRAME_CATEGORIES = frozenset({"door frame", "doorframe"})
 # Common scan names for catalogue categories (the scans' vocabularies are larger than ours).
@@ -58,6 +65,7 @@ SYNONYMS: dict[str, str] = {  # raw annotation words; the catalogue's aliases co
     "bath tub": "bathtub",
     "tub": "bathtub",
 }
+STOREY_GAP = 1.0  # m: a room floor this far above its storey's lowest starts the next storey
 _FLOOR_TOLERANCE = 0.15  # m: an up-facing triangle this close to a floor height is floor
 
 
@@ -85,6 +93,7 @@ class ImportReport:
     structure_objects: int
     category_mapping: dict[str, str] = field(default_factory=dict)  # raw -> catalogue name
     unmapped: list[str] = field(default_factory=list)  # raw categories kept as they are
+    flights_left_out: dict[int, str] = field(default_factory=dict)  # id -> why not climbable
     seconds: float = 0.0
 
 
@@ -92,11 +101,34 @@ def map_category(raw: str) -> tuple[str, bool]:
     """The catalogue name for an annotation category, and whether the catalogue has it."""
     names = set(default_catalogue().names)
     word = raw.strip().lower().replace("_", " ").replace("#", " ")
+    if word in FLIGHT_CATEGORIES:
+        return FLIGHT_CATEGORY, True
     for candidate in (word, SYNONYMS.get(word, ""), word.rstrip("s")):
         candidate = canonical_category(candidate)
         if candidate in names:
             return candidate, True
     return word, False
+
+
+def on_storeys(rooms: list[Room]) -> list[Room]:
+    """The rooms with the level and floor height of their storey. A scan's storeys are not
+    exact (HM3D has none, and each region's floor lies a little above or below the next): a
+    floor more than :data:`STOREY_GAP` above its storey's lowest starts the next storey, whose
+    floor height is its rooms' median, so that the simulator finds one floor per storey."""
+    storeys: list[list[float]] = []
+    for y in sorted(room.floor_y for room in rooms):
+        if not storeys or y - storeys[-1][0] > STOREY_GAP:
+            storeys.append([])
+        storeys[-1].append(y)
+    storey_of = {
+        y: (float(np.median(heights)), level)
+        for level, heights in enumerate(storeys)
+        for y in heights
+    }
+    return [
+        replace(room, floor_y=storey_of[room.floor_y][0], level=storey_of[room.floor_y][1])
+        for room in rooms
+    ]
 
 
 def owners_by_box(triangles: NDArray[np.float64], objects: list[ScanObject]) -> NDArray[np.int64]:
@@ -134,20 +166,32 @@ def build_house(
     rooms: list[Room],
     owners: NDArray[np.int64] | None = None,
 ) -> tuple[House, ImportReport]:
-    """The house: rooms as given, one instance per non-structure object, one mesh."""
+    """The house: the rooms on their storeys (:func:`on_storeys`), one instance per
+    non-structure object, one mesh."""
     frames = [o for o in objects if _word(o.category) in DOOR_FRAME_CATEGORIES]
     if owners is None:
         owners = owners_by_box(triangles, [o for o in objects if not _is_structure(o)])
         in_frame = owners_by_box(triangles, frames) >= 0
     else:
         in_frame = np.isin(owners, [o.id for o in frames])
-    structure = {o.id for o in objects if _is_structure(o)}
+    ids = _structure_ids(triangles, rooms)  # each region's own floor height tells floor
+    rooms = on_storeys(rooms)
+    flights = [o.id for o in objects if _word(o.category) in FLIGHT_CATEGORIES]
+    if flights:
+        owners = np.where(np.isin(owners, flights) & taller_than_a_step(triangles), -1, owners)
+    floor_ys = sorted({room.floor_y for room in rooms})
+    left_out: dict[int, str] = {}
+    for flight in flights:
+        problem = flight_problem(triangles[owners == flight], floor_ys)
+        if problem is not None:
+            left_out[flight] = problem
+    structure = {o.id for o in objects if _is_structure(o)} | set(left_out)
     owners = np.where(np.isin(owners, list(structure)), -1, owners)
-    ids = _structure_ids(triangles, rooms)
     ids[in_frame] = int(StructureId.DOOR_FRAME)
     ids = np.where(owners >= 0, owners, ids)
 
     report = ImportReport(name, len(triangles), len(rooms), 0, len(structure))
+    report.flights_left_out = left_out
     region_room = {room.id: room.id for room in rooms}
     instances: list[ObjectInstance] = []
     for obj in objects:
@@ -214,7 +258,8 @@ def _room_containing(rooms: list[Room], box: Box3) -> int:
     from vlln.world.scene_summary import UNKNOWN_ROOM_ID
 
     x, _, z = box.center
-    for room in rooms:
+    below = [room for room in rooms if room.floor_y <= box.min[1] + 0.05] or rooms
+    for room in sorted(below, key=lambda room: -room.floor_y):  # the storey it stands on
         if _inside((x, z), room.polygon):
             return room.id
     return UNKNOWN_ROOM_ID

@@ -4,8 +4,9 @@ each object painted in its own colour) and ``<scene>.semantic.txt``.
 ``semantic.txt`` starts with a title line, then one object per line:
 ``id,hexcolor,"category",region`` (``1,9E8A3B,"chair",3``). A drawn triangle belongs to the
 object whose colour the nearest semantic triangle has. HM3D regions have no labels or
-outlines: a room is a region, its outline the convex hull of its ``floor`` object, its type
-``other`` unless the scene's summary (``region_dict.json``) names it.
+outlines: a room is a region, its outline the convex hull of its ``floor`` object, its storey
+found from its floor's height, its type ``other`` unless the scene's summary
+(``region_dict.json``) names it.
 """
 
 from __future__ import annotations
@@ -30,6 +31,7 @@ _STRUCTURE_NAMES = {
     int(StructureId.CEILING): "ceiling",
     int(StructureId.DOOR_FRAME): "door frame",
 }
+_FLOOR_BAND = 0.15  # m: a room's floor triangles lie this close to its floor height
 
 
 def import_hm3d(scene_dir: Path) -> tuple[House, ImportReport]:
@@ -91,14 +93,7 @@ def _rooms(
         rooms.append(
             Room(id=obj.region, type="other", polygon=polygon, floor_y=float(points[:, 1].min()))
         )
-    levels = sorted({room.floor_y for room in rooms})
-    return sorted(
-        (
-            Room(r.id, r.type, r.polygon, r.floor_y, r.ceiling_height, levels.index(r.floor_y))
-            for r in rooms
-        ),
-        key=lambda r: r.id,
-    )
+    return sorted(rooms, key=lambda r: r.id)
 
 
 def export_hm3d(house: House, out_dir: Path) -> Path:
@@ -112,10 +107,12 @@ def export_hm3d(house: House, out_dir: Path) -> Path:
     rows: list[tuple[int, str, int]] = [(i.id, i.category, i.room_id) for i in house.instances]
     following = max((i.id for i in house.instances), default=0)
     centres = triangles.mean(axis=1)[:, [0, 2]]
-    for room in house.rooms:  # one floor object per room
+    heights = triangles[:, :, 1].mean(axis=1)
+    for room in house.rooms:  # one floor object per room, on the room's own storey
         following += 1
         inside = MplPath(np.asarray(room.polygon)).contains_points(centres)
-        mine = (ids == int(StructureId.FLOOR)) & inside
+        level = np.abs(heights - room.floor_y) <= _FLOOR_BAND
+        mine = (ids == int(StructureId.FLOOR)) & inside & level
         owner[mine] = following
         rows.append((following, "floor", room.id))
     for structure, word in _STRUCTURE_NAMES.items():

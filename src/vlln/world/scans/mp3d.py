@@ -96,7 +96,6 @@ def read_house_file(path: Path) -> tuple[list[Room], list[ScanObject]]:
                 f"{path}:{number}: a {fields[0]!r} record with too few or non-numeric fields"
             ) from None
     rooms = []
-    floors = sorted({zlo for _, _, zlo, _ in regions.values()})
     for region_id, (_level, label, zlo, zhi) in sorted(regions.items()):
         polygon = next(
             (tuple(polygons.get(s, [])) for s, r in surfaces.items() if r == region_id), ()
@@ -112,7 +111,6 @@ def read_house_file(path: Path) -> tuple[list[Room], list[ScanObject]]:
                 polygon=polygon,
                 floor_y=zlo,
                 ceiling_height=zhi - zlo,
-                level=floors.index(zlo),
             )
         )
     objects = []
