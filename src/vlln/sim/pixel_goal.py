@@ -5,6 +5,10 @@ camera pose (feet position, yaw, tilt; :meth:`CameraSpec.unproject`) give the wo
 shows; its floor-plan position is then snapped to the nearest navigable cell, because a pixel
 on a rug edge, a chair leg or a wall foot still means "go there". Pixels where nothing was
 drawn (depth 0) or that lie outside the image give no goal.
+
+In a house with several storeys the point is snapped onto the storey the agent is on (its
+floor, or the flight of stairs it shares with the next storey) and keeps that storey's walking
+height there, so a pixel on the stairs ahead means a point up (or down) the flight.
 """
 
 from __future__ import annotations
@@ -17,6 +21,7 @@ from numpy.typing import NDArray
 from vlln.sim.agent import AgentState
 from vlln.sim.camera import CameraSpec
 from vlln.sim.navgrid import NavGrid
+from vlln.sim.storeys import Point3, Storeys
 
 Point2 = tuple[float, float]
 
@@ -36,14 +41,17 @@ def pixel_world_point(
 
 def pixel_floor_goal(
     spec: CameraSpec,
-    grid: NavGrid,
+    grid: NavGrid | Storeys,
     depth: NDArray[np.floating],
     col: int,
     row: int,
     state: AgentState,
-) -> Point2 | None:
-    """The navigable floor point nearest to what pixel ``(col, row)`` shows (module doc)."""
+) -> Point2 | Point3 | None:
+    """The navigable floor point nearest to what pixel ``(col, row)`` shows (module doc):
+    ``(x, z)`` on a :class:`NavGrid`, ``(x, y, z)`` on the agent's storey of :class:`Storeys`."""
     point = pixel_world_point(spec, depth, col, row, state)
     if point is None:
         return None
+    if isinstance(grid, Storeys):
+        return grid.snap_point(float(point[0]), state.position[1], float(point[2]))
     return grid.snap_point(float(point[0]), float(point[2]))

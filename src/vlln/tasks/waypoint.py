@@ -5,6 +5,8 @@ A :class:`~vlln.tasks.spec.PixelGoal` becomes a navigable floor point
 follower's next action toward it in every observation until the agent is within the follower's
 radius (0.25 m, as in the reference), takes another action, or sets another goal. The agent
 decides how many of these steps to take (the model agent: at most 8 before asking again).
+In a house with several storeys the point is ``(x, y, z)`` on the agent's storey and the
+follower walks the storeys' graph, up or down a flight when the point is on it.
 """
 
 from __future__ import annotations
@@ -17,6 +19,7 @@ from vlln.sim.follower import GreedyFollower
 from vlln.sim.pixel_goal import pixel_floor_goal
 from vlln.sim.renderer import Frame
 from vlln.sim.simulator import Simulator
+from vlln.sim.viewpoints import GoalPoint
 
 WAYPOINT_RADIUS = 0.25
 
@@ -25,7 +28,7 @@ WAYPOINT_RADIUS = 0.25
 class Waypoint:
     """A floor point to walk to and the follower that leads there."""
 
-    point: tuple[float, float]
+    point: GoalPoint
     follower: GreedyFollower
 
     def next_action(self, state: AgentState) -> Action | None:
@@ -44,12 +47,12 @@ def waypoint_for_pixel(sim: Simulator, frame: Frame, col: int, row: int) -> Wayp
     spec = sim.config.camera
     if not (0 <= col < spec.width and 0 <= row < spec.height):
         return f"pixel ({col}, {row}) is outside the {spec.width}x{spec.height} image"
-    point = pixel_floor_goal(spec, sim.grid, frame.depth, col, row, state)
+    point = pixel_floor_goal(spec, sim.nav, frame.depth, col, row, state)
     if point is None:
         return f"pixel ({col}, {row}) shows nothing"
-    field = sim.geodesic_field([point])
-    x, _, z = state.position
-    if not field.is_reachable(x, z):
+    field = sim.distance_field([point])
+    x, y, z = state.position
+    if not field.is_reachable(x, z, y):
         return f"pixel ({col}, {row}) shows floor that cannot be reached"
-    follower = GreedyFollower(sim.grid, field, WAYPOINT_RADIUS, sim.config.motion)
+    follower = GreedyFollower(sim.nav, field, WAYPOINT_RADIUS, sim.config.motion)
     return Waypoint(point, follower)

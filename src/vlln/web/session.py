@@ -81,6 +81,9 @@ class View:
     dialog: list[tuple[str, str, bool]] = field(default_factory=list)
     trail: list[tuple[float, float]] = field(default_factory=list)
     pose: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    # The navigator's storey and that of every trail point; None in a house with one storey.
+    storey: int | None = None
+    trail_storeys: list[int | None] = field(default_factory=list)
     success: bool | None = None
     end_reason: str | None = None
     error: str | None = None
@@ -120,7 +123,7 @@ class EpisodeSession:
         self.house: House | None = None
         self.target: ObjectInstance | None = None
         self.frame_cache: tuple[tuple[str, int], str] | None = None  # JPEG of the last frame
-        self.map_cache: dict[str, Any] | None = None
+        self.map_cache: dict[int | None, dict[str, Any]] = {}  # the map of each storey
         self._commands: queue.Queue[tuple[object, Future[None]]] = queue.Queue(maxsize=4)
         self._oracle_joined = threading.Event()
         self._closing = False
@@ -278,8 +281,10 @@ class EpisodeSession:
         return observation, terminated or truncated
 
     def _publish(self, observation: Observation, steps: int) -> None:
-        state = self._require_env().sim.state
-        x, _, z = state.position
+        sim = self._require_env().sim
+        state = sim.state
+        x, y, z = state.position
+        storey = None if sim.storeys is None else sim.storeys.level_of(y)
         with self.lock:
             view = self.view
             view.rgb = observation["rgb"]
@@ -287,8 +292,10 @@ class EpisodeSession:
             view.steps = steps
             view.questions_left = int(observation["questions_left"])
             view.pose = (x, z, state.yaw)
+            view.storey = storey
             if not view.trail or view.trail[-1] != (x, z):
                 view.trail.append((x, z))
+                view.trail_storeys.append(storey)
         self.signal.bump()
 
     def _set_status(self, status: str) -> None:

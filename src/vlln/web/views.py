@@ -3,7 +3,9 @@
 The navigator's view is built from an allow-list: the instruction, the camera image, counts
 and the dialog, never the target, a position, the instance-id image or the map (a test reads
 the raw payloads to hold this). The oracle's view adds what the reference's annotators had:
-the target, the navigator's pose and trail, and the house map (:func:`oracle_map`).
+the target, the navigator's pose and trail, and the house map (:func:`oracle_map`). In a
+house with several storeys the oracle sees the storey the navigator is on: its map, and the
+part of the trail walked there.
 """
 
 from __future__ import annotations
@@ -21,7 +23,7 @@ from matplotlib.patches import Rectangle
 from PIL import Image
 
 from vlln.tasks.spec import TaskType
-from vlln.viz.topdown import draw_house
+from vlln.viz.topdown import draw_house, storey_name
 from vlln.web.session import EpisodeSession, Status
 
 MAP_PIXELS = 1000  # the longer side of the oracle's map image
@@ -89,7 +91,13 @@ def oracle_view(session: EpisodeSession) -> dict[str, Any]:
             frame = _frame_url(session, ("now", view.frame_number), view.rgb)
         payload["frame"] = frame
         payload["pose"] = list(view.pose)
-        payload["trail"] = [list(point) for point in view.trail]
+        payload["trail"] = [
+            list(point)
+            for point, storey in zip(view.trail, view.trail_storeys, strict=True)
+            if storey == view.storey
+        ]
+        if view.storey is not None:
+            payload["storey"] = view.storey
     payload["time_limit_s"] = session.config.answer_time_limit_s
     payload["question"] = (
         None
@@ -115,8 +123,12 @@ def oracle_view(session: EpisodeSession) -> dict[str, Any]:
 
 def oracle_map(session: EpisodeSession) -> dict[str, Any]:
     """The house from above with the target in red, as a PNG data URL, and the map's extent
-    ``[x_min, x_max, y_min, y_max]`` in (x, -z) metres, for drawing the trail over it."""
-    cached = session.map_cache
+    ``[x_min, x_max, y_min, y_max]`` in (x, -z) metres, for drawing the trail over it. In a
+    house with several storeys: the storey the navigator is on, named in ``storey`` (its
+    number) and ``storey_name``; the extent is the whole house's, the same for every storey."""
+    with session.lock:
+        storey = session.view.storey
+    cached = session.map_cache.get(storey)
     if cached is not None:
         return cached
     house, target = session.house, session.target
@@ -130,25 +142,46 @@ def oracle_map(session: EpisodeSession) -> dict[str, Any]:
     dpi = 180  # object labels at a readable size in pixels
     figure = Figure(figsize=((x1 - x0) * scale / dpi, (y1 - y0) * scale / dpi), dpi=dpi)
     axes = figure.add_axes((0.0, 0.0, 1.0, 1.0))
-    draw_house(axes, house, label_objects=True, highlight=[target.id] if target else [])
+    draw_house(
+        axes, house, label_objects=True, highlight=[target.id] if target else [], storey=storey
+    )
     if target is not None:
         (bx0, _, bz0), (bx1, _, bz1) = target.box.min, target.box.max
+        # On another storey than the target's, a dashed outline says where it is above or below.
+        level = next((room.level for room in house.rooms if room.id == target.room_id), storey)
+        elsewhere = storey is not None and level is not None and level != storey
         axes.add_patch(
             Rectangle(
-                (bx0 - 0.15, -bz1 - 0.15),
+                (bx0 - 0.15, bz0 - 0.15),
                 bx1 - bx0 + 0.3,
                 bz1 - bz0 + 0.3,
                 fill=False,
                 edgecolor="#d62728",
                 linewidth=3.0,
+                linestyle="--" if elsewhere else "-",
             )
         )
+        if elsewhere and level is not None:
+            axes.text(
+                (bx0 + bx1) / 2.0,
+                bz1 + 0.3,
+                f"{target.category}: on the {storey_name(level)}",
+                ha="center",
+                va="top",
+                fontsize=7,
+                color="#d62728",
+                fontweight="bold",
+                bbox={"facecolor": "white", "alpha": 0.8, "edgecolor": "none", "pad": 1.0},
+            )
     axes.set_aspect("auto")  # the figure already has the house's proportions: fill it
     axes.set_xlim(x0, x1)
-    axes.set_ylim(y0, y1)
+    axes.set_ylim(-y0, -y1)  # the map is drawn in pose coordinates: z down, -z up
     axes.set_axis_off()
     buffer = io.BytesIO()
     figure.savefig(buffer, format="png", dpi=dpi)
     image = "data:image/png;base64," + base64.b64encode(buffer.getvalue()).decode("ascii")
-    session.map_cache = {"image": image, "extent": [x0, x1, y0, y1]}
-    return session.map_cache
+    drawn: dict[str, Any] = {"image": image, "extent": [x0, x1, y0, y1]}
+    if storey is not None:
+        drawn |= {"storey": storey, "storey_name": storey_name(storey)}
+    session.map_cache[storey] = drawn
+    return drawn

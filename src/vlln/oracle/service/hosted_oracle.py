@@ -6,6 +6,10 @@ same answer as an agent inside :class:`vlln.tasks.env.NavigationEnv`. The dialog
 as in the environment: the first ``dialog_budget`` questions are answered, later ones get
 :data:`vlln.tasks.spec.REFUSAL_MESSAGE`.
 
+Houses with several storeys work like one: goals and poses carry their height ``y`` (a
+pose on the stairs stands at the tread's height), and route answers on or near a flight say
+"go upstairs" or "downstairs".
+
 Not thread-safe: the service calls it from one worker thread, which also keeps every OpenGL
 context on one thread.
 """
@@ -37,14 +41,14 @@ from vlln.oracle.service.sessions import ServiceError, Session, SessionStore
 from vlln.sim.agent import AgentState
 from vlln.sim.renderer import Frame
 from vlln.sim.simulator import Simulator
-from vlln.sim.viewpoints import view_points
+from vlln.sim.storeys import Storeys
+from vlln.sim.viewpoints import GoalPoint, storey_view_points, view_points
 from vlln.tasks.episode import Episode
 from vlln.tasks.scenes import SceneCache, canonical_seed, procedural_scene_id
 from vlln.tasks.spec import REFUSAL_MESSAGE
 from vlln.world.frame import wrap_angle
 from vlln.world.model import ObjectInstance
 
-Point2 = tuple[float, float]
 LOCAL = "local"  # the client of calls made in-process
 _WIRE_TYPES: dict[QuestionType, WireQuestionType] = {
     QuestionType.ATTRIBUTE: "attribute",
@@ -77,7 +81,7 @@ class HostedOracle:
             scene_id, episode_id, instruction = request.scene_id, None, None
             sim = self._simulator(scene_id, client)
             target = self._instance(sim, request.target_instance_id)
-            goals = view_points(sim.grid, target.box)
+            goals = _view_points(sim, target)
         else:
             raise ServiceError(
                 422, "no target", "give scene_id and target_instance_id, or episode_id"
@@ -227,7 +231,7 @@ class HostedOracle:
 
     def _episode_target(
         self, sim: Simulator, episode: Episode
-    ) -> tuple[ObjectInstance, list[Point2]]:
+    ) -> tuple[ObjectInstance, list[GoalPoint]]:
         """The target and goal view points exactly as the navigation environment uses them."""
         raw = episode.instruction.instance_id[0] if episode.instruction.instance_id else ""
         try:
@@ -239,14 +243,18 @@ class HostedOracle:
                 f"episode {episode.episode_id!r} names target instance {raw!r}, which is not a "
                 "whole-number instance id of a vlln house",
             ) from None
-        goals = [(vp.position[0], vp.position[2]) for g in episode.goals for vp in g.view_points]
+        goals: list[GoalPoint] = [vp.position for g in episode.goals for vp in g.view_points]
+        if sim.storeys is None:
+            goals = [(point[0], point[-1]) for point in goals]
         return self._instance(sim, instance_id), goals
 
     def _state(self, sim: Simulator, pose: Pose) -> AgentState:
         """The pose as an agent state, if it stands on the navigable floor within limits."""
         x, y, z = pose.position
+        if sim.storeys is not None:
+            height = self._storey_height(sim.storeys, sim.house.name, x, y, z)
+            return AgentState((x, height, z), wrap_angle(pose.yaw), self._tilt(sim, pose))
         grid = sim.grid
-        motion = sim.config.motion
         on_floor = abs(y - grid.floor_y) <= self.config.floor_tolerance
         if not (on_floor and grid.is_navigable(x, z)):
             sx, sz = grid.snap_point(x, z)
@@ -264,6 +272,36 @@ class HostedOracle:
                     "nearest_navigable_point": nearest,
                 },
             )
+        return AgentState((x, grid.floor_y, z), wrap_angle(pose.yaw), self._tilt(sim, pose))
+
+    def _storey_height(self, storeys: Storeys, house: str, x: float, y: float, z: float) -> float:
+        """The walking height under a pose in a house with several storeys (on the storey
+        whose floor is nearest its y), if it stands there within the floor tolerance."""
+        level = storeys.level_of(y)
+        height = storeys.height_at(level, x, z)
+        if abs(y - height) <= self.config.floor_tolerance and storeys.grids[level].is_navigable(
+            x, z
+        ):
+            return height
+        nearest = [round(v, 4) for v in storeys.snap_point(x, y, z)]
+        raise ServiceError(
+            422,
+            "pose off the navigable area",
+            {
+                "message": (
+                    f"position ({x:.3f}, {y:.3f}, {z:.3f}) is not on the navigable floor or "
+                    f"stairs of storey {level} of {house} (walking height there {height:.3f} m, "
+                    f"tolerance {self.config.floor_tolerance} m); the nearest navigable point "
+                    f"is ({nearest[0]:.3f}, {nearest[1]:.3f}, {nearest[2]:.3f})"
+                ),
+                "nearest_navigable_point": nearest,
+            },
+        )
+
+    @staticmethod
+    def _tilt(sim: Simulator, pose: Pose) -> float:
+        """The pose's tilt, if the camera can take it."""
+        motion = sim.config.motion
         low, high = motion.min_tilt_deg, motion.max_tilt_deg
         tilt_deg = math.degrees(pose.tilt)
         if not low - 1e-6 <= tilt_deg <= high + 1e-6:
@@ -273,7 +311,15 @@ class HostedOracle:
                 f"tilt {pose.tilt:.4f} rad ({tilt_deg:.1f} deg) is outside the camera's range "
                 f"{low:g}..{high:g} deg",
             )
-        return AgentState((x, grid.floor_y, z), wrap_angle(pose.yaw), pose.tilt)
+        return pose.tilt
+
+
+def _view_points(sim: Simulator, target: ObjectInstance) -> list[GoalPoint]:
+    """Where the target counts as reached: ``(x, z)`` on one storey, ``(x, y, z)`` on its
+    storey of a house with several (as episodes on such houses list them)."""
+    if sim.storeys is not None:
+        return list(storey_view_points(sim.storeys, target.box))
+    return list(view_points(sim.grid, target.box))
 
 
 def _view(sim: Simulator, state: AgentState, question: str) -> Frame:

@@ -33,8 +33,9 @@ class _Response(BaseModel):
 
 class Pose(_Request):
     """Where the asker stands and looks, in the Habitat frame of :mod:`vlln.world.frame`:
-    ``position`` (x, y, z) with y the floor height, ``yaw`` (0 looks along -z, positive =
-    turned left) and ``tilt`` (camera pitch, positive looking up), both in radians."""
+    ``position`` (x, y, z) with y the height of the floor (or stair tread) under it, ``yaw``
+    (0 looks along -z, positive = turned left) and ``tilt`` (camera pitch, positive looking
+    up), both in radians."""
 
     position: list[Coordinate] = Field(min_length=3, max_length=3)
     yaw: float = Field(ge=-4.0 * math.pi, le=4.0 * math.pi)

@@ -23,6 +23,7 @@ from vlln.errors import ConfigError, VllnError
 from vlln.oracle.rule_oracle import RuleOracle
 from vlln.oracle.service.schemas import DialogTurnView
 from vlln.sim.simulator import Simulator
+from vlln.sim.viewpoints import GoalPoint
 from vlln.world.model import ObjectInstance
 
 
@@ -49,7 +50,7 @@ class Session:
     scene_id: str
     episode_id: str | None
     target: ObjectInstance
-    goals: tuple[tuple[float, float], ...]
+    goals: tuple[GoalPoint, ...]  # (x, z), or (x, y, z) in a house with several storeys
     instruction: str | None
     dialog_budget: int
     oracle: RuleOracle | None = None  # started on ``simulator``; None once that is dropped

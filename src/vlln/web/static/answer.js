@@ -9,6 +9,8 @@ const page = {
   answer: document.getElementById("answer"),
   send: document.getElementById("send"),
   extent: null,
+  mapStorey: undefined, // the storey the map shows (undefined in a house with one storey)
+  mapLoading: false,
   state: null,
   shownFrame: null,
   deadline: 0,
@@ -109,6 +111,9 @@ function show(state) {
     box.textContent = vlln.resultText(state.result);
     box.className = "result " + (state.result.success ? "good" : "bad");
   }
+  if (state.storey !== undefined && state.storey !== page.mapStorey && !page.mapLoading) {
+    loadMap(); // the navigator took the stairs: show the storey they are on now
+  }
   drawOverlay();
 }
 
@@ -131,20 +136,27 @@ async function send() {
 }
 
 async function loadMap() {
-  for (;;) {
-    try {
-      const map = await vlln.withCode("GET", "/api/oracle/map");
-      page.extent = map.extent;
-      page.map.addEventListener("load", drawOverlay);
-      page.map.src = map.image;
-      return;
-    } catch (error) {
-      if (error.status === 404) return;
-      await new Promise((resolve) => setTimeout(resolve, 1000));
+  page.mapLoading = true;
+  try {
+    for (;;) {
+      try {
+        const map = await vlln.withCode("GET", "/api/oracle/map");
+        page.extent = map.extent;
+        page.mapStorey = map.storey;
+        document.getElementById("storey").textContent = map.storey_name ? `: ${map.storey_name}` : "";
+        page.map.src = map.image;
+        return;
+      } catch (error) {
+        if (error.status === 404) return;
+        await new Promise((resolve) => setTimeout(resolve, 1000));
+      }
     }
+  } finally {
+    page.mapLoading = false;
   }
 }
 
+page.map.addEventListener("load", drawOverlay);
 page.send.addEventListener("click", send);
 page.answer.addEventListener("keydown", (event) => {
   if (event.key === "Enter" && !event.shiftKey) {
