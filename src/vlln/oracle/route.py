@@ -112,7 +112,7 @@ def answer_step(knowledge: EpisodeKnowledge, analysis: QuestionAnalysis, state: 
     if stairs is not None and action != Action.STOP:
         way = _STAIRS_WORD[stairs[1]]
         if action == Action.MOVE_FORWARD:
-            words = choose(knowledge.rng, (f"Go {way}.", f"Go forward and {way} the stairs."))
+            words = choose(knowledge.rng, (f"Go {way}.", f"Go forward and {way}."))
         else:
             words = f"{words[:-1]}, then go {way}."
     proposed = analysis.step_choice
