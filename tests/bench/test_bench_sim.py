@@ -1,11 +1,13 @@
 """`vlln bench sim --json` prints one well-formed figure per line for every promised metric."""
 
 import json
+from pathlib import Path
 
 import pytest
 
 from vlln.cli import main
-from vlln.world.generator import generate_house
+from vlln.world.generator import HouseParameters, generate_house
+from vlln.world.scans import export_scene
 
 REQUIRED = {
     "render_fps",
@@ -66,3 +68,18 @@ def test_a_subdivided_scan_reports_import_and_frame_rates(
     for name in ("scene_import_s", "simulator_build_s", "render_fps", "raw_raster_fps"):
         assert values[name] > 0
     assert "house_build_s" not in values and "sim_rss_mb" not in values
+
+
+def test_a_scanned_scene_with_several_storeys_is_measured(
+    capsys: pytest.CaptureFixture[str], tmp_path: Path
+) -> None:
+    two_storeys = HouseParameters(floors=2, min_rooms=4, max_rooms=4, min_area=60.0, max_area=70.0)
+    scene = export_scene(generate_house(1, two_storeys), tmp_path, "mp3d")
+    args = ["bench", "sim", "--json", "--frames", "20", "--repeats", "1", "--scene", str(scene)]
+    assert main(args) == 0
+    values = {
+        line["metric"]: line["value"]
+        for line in map(json.loads, capsys.readouterr().out.splitlines())
+    }
+    for name in ("render_fps", "step_fps", "field_build_ms", "geodesic_query_us"):
+        assert values[name] > 0

@@ -40,7 +40,8 @@ from vlln.sim.shaders import (
     upload_static_uniforms,
 )
 from vlln.sim.simulator import Simulator
-from vlln.sim.viewpoints import view_points
+from vlln.sim.storey_field import StoreyField
+from vlln.sim.viewpoints import GoalPoint, storey_view_points, view_points
 from vlln.world.generator import generate_house
 from vlln.world.mesh import Mesh
 from vlln.world.model import House
@@ -109,9 +110,9 @@ def run_sim_benchmark(
         record("render_cpu_ms", statistics.median(passes["render_cpu_ms"]), "ms/frame")
         record("drawn_triangles", sum(len(c) for c in drawn) / 12 / len(drawn), "count/frame")
         record("step_fps", statistics.median(passes["step_fps"]), "steps/s")
-        field_s = median_seconds(lambda: GeodesicField(sim.grid, goals[0]), repeats=5)
+        field_s = median_seconds(lambda: _fresh_field(sim, goals[0]), repeats=5)
         record("field_build_ms", field_s * 1e3, "ms")
-        record("geodesic_query_us", _query_us(sim, GeodesicField(sim.grid, goals[1]), rng), "us")
+        record("geodesic_query_us", _query_us(sim, _fresh_field(sim, goals[1]), rng), "us")
     if not imported:
         record("sim_rss_mb", _rss_of_fresh_simulator(seed), "MiB")
     return figures
@@ -139,8 +140,7 @@ class Walk:
 def _walk(sim: Simulator, rng: np.random.Generator, count: int) -> Walk:
     """A forward-biased random walk through the house: the views an agent would really see.
     Every figure that renders replays this walk, so they all draw the same frames."""
-    x, z = sim.grid.sample_navigable_point(rng, sim.grid.largest_component())
-    start = AgentState((x, sim.grid.floor_y, z), float(rng.uniform(-math.pi, math.pi)), 0.0)
+    start = AgentState(_random_point(sim, rng), float(rng.uniform(-math.pi, math.pi)), 0.0)
     sim.reset(start)
     actions = [WALK[int(i)] for i in rng.integers(len(WALK), size=count)]
     poses = []
@@ -231,13 +231,25 @@ def _raw_raster_fps(sim: Simulator, poses: list[AgentState], drawn: list[bytes])
         ctx.release()
 
 
-def _goal_sets(
-    sim: Simulator, rng: np.random.Generator, count: int
-) -> list[list[tuple[float, float]]]:
-    """View points of randomly chosen objects: the goal sets a task builds fields for."""
-    sets = []
+def _random_point(sim: Simulator, rng: np.random.Generator) -> tuple[float, float, float]:
+    """A navigable ``(x, y, z)`` of the main walkable structure, on any storey."""
+    if sim.storeys is not None:
+        return sim.storeys.sample_navigable_point(rng, sim.storeys.largest_component())
+    x, z = sim.grid.sample_navigable_point(rng, sim.grid.largest_component())
+    return x, sim.grid.floor_y, z
+
+
+def _goal_sets(sim: Simulator, rng: np.random.Generator, count: int) -> list[list[GoalPoint]]:
+    """View points of randomly chosen objects: the goal sets a task builds fields for
+    (``(x, y, z)`` in a house with several storeys)."""
+    sets: list[list[GoalPoint]] = []
     for index in rng.permutation(len(sim.house.instances)):
-        points = view_points(sim.grid, sim.house.instances[int(index)].box)
+        box = sim.house.instances[int(index)].box
+        points: list[GoalPoint] = (
+            list(storey_view_points(sim.storeys, box))
+            if sim.storeys is not None
+            else list(view_points(sim.grid, box))
+        )
         if points:
             sets.append(points)
         if len(sets) == count:
@@ -245,26 +257,37 @@ def _goal_sets(
     return sets
 
 
-def _query_us(sim: Simulator, field: GeodesicField, rng: np.random.Generator) -> float:
-    points = [sim.grid.sample_navigable_point(rng) for _ in range(2000)]
-    xs = [p[0] for p in points] * 50
-    zs = [p[1] for p in points] * 50
+def _fresh_field(sim: Simulator, goals: list[GoalPoint]) -> GeodesicField | StoreyField:
+    """A distance field built now (the simulator's own are cached)."""
+    if sim.storeys is not None:
+        return StoreyField(sim.storeys, goals)
+    return GeodesicField(sim.grid, [(goal[0], goal[-1]) for goal in goals])
+
+
+def _query_us(
+    sim: Simulator, field: GeodesicField | StoreyField, rng: np.random.Generator
+) -> float:
+    points = [_random_point(sim, rng) for _ in range(2000)] * 50
     distance = field.distance
     start = time.perf_counter()
-    for x, z in zip(xs, zs, strict=True):
-        distance(x, z)
-    return (time.perf_counter() - start) / len(xs) * 1e6
+    if sim.storeys is None:  # a one-storey query needs no height
+        for x, _, z in points:
+            distance(x, z)
+    else:
+        for x, y, z in points:
+            distance(x, z, y)
+    return (time.perf_counter() - start) / len(points) * 1e6
 
 
-def _step_fps(sim: Simulator, walk: Walk, goals: list[tuple[float, float]]) -> float:
+def _step_fps(sim: Simulator, walk: Walk, goals: list[GoalPoint]) -> float:
     """Action + collision + render + a geodesic query, as a task does every step."""
-    field = sim.geodesic_field(goals)
+    field = sim.distance_field(goals)
     sim.reset(walk.start)
     start = time.perf_counter()
     for action in walk.actions:
         observation = sim.step(action)
-        x, _, z = observation.state.position
-        field.distance(x, z)
+        x, y, z = observation.state.position
+        field.distance(x, z, y)
     return len(walk.actions) / (time.perf_counter() - start)
 
 
