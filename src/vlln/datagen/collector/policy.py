@@ -133,7 +133,7 @@ class CollectorPolicy:
             level = self.ground.level(y)
             self.maps.of(level, state).update(frame.depth, self.maps.pose(state), 0.0)
             self._note_flights(level)
-        if self.seen_at is None and self._sees(frame, self.target.id):
+        if self.seen_at is None and self._sees_target(frame):
             self.seen_at = self._frames
         self._frames += 1
         if self.scan_left > 0:
@@ -254,7 +254,7 @@ class CollectorPolicy:
         """At the far end of a flight: the first time on a storey, look round."""
         self._drop_goal()
         level = self.ground.level(state.position[1])
-        if level in self._levels_seen or _ARRIVAL_SCAN_TURNS == 0:
+        if level in self._levels_seen:
             return None
         self._levels_seen.add(level)
         self.scan_left = _ARRIVAL_SCAN_TURNS - 1
@@ -297,6 +297,8 @@ class CollectorPolicy:
         points = self.maps.frontier_points(
             level, cfg.min_frontier_cells, cfg.min_pocket_area, cfg.visited_radius
         )
+        if points.shape[0] == 0 and not self._flights:
+            return False
         here = ground.field([ground.snap(x, y, z)])
         world = points + np.array(self.origin)
         snapped = [ground.snap(float(px), floor, float(pz)) for px, pz in world]
@@ -382,9 +384,8 @@ class CollectorPolicy:
         return arrival
 
     # ----------------------------------------------------------------- helpers
-    def _sees(self, frame: Frame, instance_id: int) -> bool:
-        """Whether the frame shows enough of the instance within ``seen_range``."""
-        mine = frame.instance_ids == instance_id
+    def _sees_target(self, frame: Frame) -> bool:
+        mine = frame.instance_ids == self.target.id
         count = int(np.count_nonzero(mine))
         if count < self.config.seen_pixels:
             return False
