@@ -303,8 +303,10 @@ class CollectorPolicy:
         world = points + np.array(self.origin)
         snapped = [ground.snap(float(px), floor, float(pz)) for px, pz in world]
         reach = np.array([ground.distance(here, p) for p in snapped])
-        # A frontier whose walkable point is already underfoot cannot be cleared by walking.
+        # A frontier whose walkable point is already underfoot cannot be cleared by walking;
+        # one whose point is on the stairs (seen down a stairwell) is not on this storey.
         underfoot = reach < cfg.frontier_reached
+        underfoot |= np.array([p[1] != floor for p in snapped], bool).reshape(-1)
         for raw, goal, under in zip(world, snapped, underfoot, strict=True):
             if under:
                 self.maps.visit(level, (float(raw[0]), float(raw[1])), (goal[0], goal[2]))
