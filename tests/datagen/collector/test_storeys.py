@@ -1,4 +1,4 @@
-"""The collector's stairs: where a flight is taken, and collision-free walks up and down it."""
+"""The collector's stairs: where and when a flight is taken, and walks up and down it."""
 
 from __future__ import annotations
 
@@ -6,9 +6,12 @@ from collections.abc import Iterator
 
 import pytest
 
+from vlln.agents.frontier.mapping import MapConfig, Pose
 from vlln.datagen.collector.lattice import plan_walk
-from vlln.datagen.collector.stairs import house_flights
+from vlln.datagen.collector.stairs import Flight, FlightChoices, house_flights
+from vlln.datagen.collector.storey_maps import StoreyMaps
 from vlln.sim.agent import AgentState, step
+from vlln.sim.camera import CameraSpec
 from vlln.sim.simulator import Simulator
 from vlln.tasks.scenes import SceneCache, procedural_scene_id
 from vlln.tasks.splits import house_seeds
@@ -60,3 +63,27 @@ def test_a_planned_walk_takes_the_stairs_without_colliding(sim: Simulator, upwar
     assert y == goal[1]
     ordered = heights if upward else heights[::-1]
     assert ordered == sorted(ordered)  # the height follows the treads, one way
+
+
+def test_flights_are_offered_once_seen_toward_the_target_or_once_a_storey_is_done() -> None:
+    flight = Flight(7, 0, 1, foot=(2.0, 0.0, 0.0), head=(-2.0, 2.8, 0.0))
+    upstairs = FlightChoices([flight], 0, lambda p: 10.0 - p[1])  # the target is upstairs
+    maps = StoreyMaps(CameraSpec(), MapConfig(cell_size=0.05), origin=(0.0, 0.0))
+    below = AgentState((0.0, 0.0, 0.0), 0.0)
+    maps.of(0, below)  # its landing not yet seen
+    upstairs.note(0, maps)
+    assert upstairs.toward_target(0) is None
+    assert upstairs.options(0, exhausted=False) == []
+    assert upstairs.options(0, exhausted=True) == [flight]
+    maps.of(0, below).mark_free_disc(Pose(2.0, 0.0, 0.0), 0.3)  # now it is
+    upstairs.note(0, maps)
+    assert upstairs.toward_target(0) is flight
+    upstairs.took(flight, 0)
+    upstairs.took(flight, 0)
+    assert upstairs.toward_target(0) is None  # taken twice from this storey: enough
+    downstairs = FlightChoices([flight], 0, lambda p: p[1])
+    downstairs.note(0, maps)
+    assert downstairs.toward_target(0) is None  # it leads away from the target
+    assert downstairs.nearer_end(0) == (flight, flight.foot)
+    assert downstairs.first_visit(1) and not downstairs.first_visit(1)
+    assert not downstairs.first_visit(0)  # the start's storey

@@ -30,7 +30,7 @@ from vlln.agents.frontier.planner import turn_toward
 from vlln.datagen.collector.chooser import TargetAwareChooser
 from vlln.datagen.collector.ground import Ground
 from vlln.datagen.collector.lattice import LatticeFollower
-from vlln.datagen.collector.stairs import Flight, house_flights
+from vlln.datagen.collector.stairs import Flight, FlightChoices, house_flights
 from vlln.datagen.collector.storey_maps import StoreyMaps
 from vlln.datagen.collector.visibility import DOWN_TILT, best_central_pixels
 from vlln.errors import ConfigError
@@ -45,7 +45,6 @@ from vlln.world.model import ObjectInstance
 
 NOT_FOUND = "target_not_found"  # every frontier visited, target never seen
 _STAND_SPREAD = 0.3  # m; how far from a stand point the follower may stop
-_MAX_CLIMBS = 2  # times one flight is taken from one storey
 # Turns looking round on reaching a storey for the first time; with the turns that then face
 # a frontier (at most half a circle) they stay within the filter's run of 13 turns.
 _ARRIVAL_SCAN_TURNS = 7
@@ -120,11 +119,12 @@ class CollectorPolicy:
         self._previous: tuple[float, float] | None = None  # last choice, map coordinates
         self._tried_stands: set[Point3] = set()
         self._relocations = 0
-        storeys = ground.storeys
-        self._flights = house_flights(self.sim.house, storeys) if storeys is not None else []
-        self._levels_seen = {start_level}
-        self._flights_seen: set[tuple[int, int]] = set()  # (storey, flight) seen from there
-        self._climbs: dict[tuple[int, int], int] = {}  # (storey, flight): times taken
+        storeys, target_field = ground.storeys, follower.field
+        self.stairs = FlightChoices(
+            house_flights(self.sim.house, storeys) if storeys is not None else [],
+            start_level,
+            lambda point: ground.distance(target_field, point),
+        )
 
     def act(self, state: AgentState, frame: Frame) -> Action:
         """The action for the frame seen in ``state``."""
@@ -132,7 +132,7 @@ class CollectorPolicy:
         if self.ground.on_floor(y):
             level = self.ground.level(y)
             self.maps.of(level, state).update(frame.depth, self.maps.pose(state), 0.0)
-            self._note_flights(level)
+            self.stairs.note(level, self.maps)
         if self.seen_at is None and self._sees_target(frame):
             self.seen_at = self._frames
         self._frames += 1
@@ -254,9 +254,8 @@ class CollectorPolicy:
         """At the far end of a flight: the first time on a storey, look round."""
         self._drop_goal()
         level = self.ground.level(state.position[1])
-        if level in self._levels_seen:
+        if not self.stairs.first_visit(level):
             return None
-        self._levels_seen.add(level)
         self.scan_left = _ARRIVAL_SCAN_TURNS - 1
         return Action.TURN_LEFT
 
@@ -291,13 +290,15 @@ class CollectorPolicy:
         x, y, z = state.position
         ground = self.ground
         level = ground.level(y)
+        if not ground.on_floor(y):  # started on the stairs: off them, toward the target
+            return self._leave_stairs(level)
         floor = ground.floor_y(level)
         self.maps.of(level, state)
         cfg = self.config
         points = self.maps.frontier_points(
             level, cfg.min_frontier_cells, cfg.min_pocket_area, cfg.visited_radius
         )
-        if points.shape[0] == 0 and not self._flights:
+        if points.shape[0] == 0 and not self.stairs.flights:
             return False
         here = ground.field([ground.snap(x, y, z)])
         world = points + np.array(self.origin)
@@ -311,11 +312,11 @@ class CollectorPolicy:
             if under:
                 self.maps.visit(level, (float(raw[0]), float(raw[1])), (goal[0], goal[2]))
         reach[underfoot] = np.inf
-        toward = self._flight_toward_target(level)
+        toward = self.stairs.toward_target(level)
         if toward is not None:
             self.chooser.log_best(toward.end_on(level))
             return self._walk_to(self._take_flight(toward, level), level, flight=True)
-        flights = self._flight_options(level, exhausted=not np.isfinite(reach).any())
+        flights = self.stairs.options(level, exhausted=not np.isfinite(reach).any())
         if flights:
             ends = [f.end_on(level) for f in flights]
             offsets = [(p[0] - self.origin[0], p[2] - self.origin[1]) for p in ends]
@@ -346,39 +347,21 @@ class CollectorPolicy:
         return True
 
     # ----------------------------------------------------------------- stairs
-    def _note_flights(self, level: int) -> None:
-        """A flight counts as seen from a storey once the map shows the landing in front of
-        it there (a level camera does not see treads that go down from its feet)."""
-        for flight in self._flights:
-            x, _, z = flight.end_on(level)
-            if flight.joins(level) and self.maps.explored_at(level, x, z):
-                self._flights_seen.add((level, flight.instance_id))
-
-    def _flight_toward_target(self, level: int) -> Flight | None:
-        """A flight seen from storey ``level`` whose far end is nearer the target."""
-        field_, ground = self.follower.field, self.ground
-        for flight in self._flights:
-            if (level, flight.instance_id) in self._flights_seen and self._may_take(flight, level):
-                far = ground.distance(field_, flight.arrival(level))
-                if far < ground.distance(field_, flight.end_on(level)):
-                    return flight
-        return None
-
-    def _flight_options(self, level: int, exhausted: bool) -> list[Flight]:
-        """Flights offered to the chooser from storey ``level``: all of them, once the
-        storey has no frontier left (so a storey explored in vain is left)."""
-        if not exhausted:
-            return []
-        return [flight for flight in self._flights if self._may_take(flight, level)]
-
-    def _may_take(self, flight: Flight, level: int) -> bool:
-        taken = self._climbs.get((level, flight.instance_id), 0)
-        return flight.joins(level) and taken < _MAX_CLIMBS
+    def _leave_stairs(self, level: int) -> bool:
+        """Walk to the end of the flight underfoot that is nearer the target."""
+        nearer = self.stairs.nearer_end(level)
+        if nearer is None:
+            return False
+        flight, end = nearer
+        self._goal_flight = flight
+        self._goal = end
+        self._goal_frontier = None
+        self._previous = (end[0] - self.origin[0], end[2] - self.origin[1])
+        return self._walk_to(end, level, flight=True)
 
     def _take_flight(self, flight: Flight, level: int) -> Point3:
         """Make the flight's far end the goal; the next choice starts from there."""
-        key = (level, flight.instance_id)
-        self._climbs[key] = self._climbs.get(key, 0) + 1
+        self.stairs.took(flight, level)
         self._goal_flight = flight
         arrival = self._goal = flight.arrival(level)
         self._goal_frontier = None
