@@ -7,16 +7,21 @@ simulator's one-storey geodesic fields, so a one-storey walk is what it always w
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
+
+import numpy as np
 
 from vlln.sim.geodesic import GeodesicField
 from vlln.sim.navgrid import NavGrid
 from vlln.sim.simulator import Simulator
 from vlln.sim.storey_field import StoreyField
 from vlln.sim.storeys import Point3, Storeys
+from vlln.world.frame import yaw_of
 
 # The agent stands on a storey's floor when its height is this close to it (else on stairs).
 _ON_FLOOR = 0.02
+_AROUND = 1.5  # m; the floor around a landing that tells which way the storey opens
 
 
 class Ground:
@@ -67,3 +72,25 @@ class Ground:
     def distance(field: GeodesicField | StoreyField, point: Sequence[float]) -> float:
         x, y, z = point
         return field.distance(x, z, y)
+
+    def open_heading(self, position: Point3) -> float | None:
+        """The yaw toward the middle of the storey's floor (treads left out) within 1.5 m:
+        from a flight's landing, the way the storey opens up. None on one storey."""
+        if self.storeys is None:
+            return None
+        x, y, z = position
+        level = self.level(y)
+        grid = self.storeys.grids[level]
+        row, col = grid.world_to_cell(x, z)
+        k = math.ceil(_AROUND / grid.cell_size)
+        r0, c0 = max(row - k, 0), max(col - k, 0)
+        floor = self.storeys.heights[level][r0 : row + k + 1, c0 : col + k + 1] == self.floor_y(
+            level
+        )
+        rows, cols = np.nonzero(grid.navigable[r0 : row + k + 1, c0 : col + k + 1] & floor)
+        dx = grid.origin[0] + (c0 + cols + 0.5) * grid.cell_size - x
+        dz = grid.origin[1] + (r0 + rows + 0.5) * grid.cell_size - z
+        near = np.hypot(dx, dz) <= _AROUND
+        if not near.any():
+            return None
+        return yaw_of(float(dx[near].mean()), float(dz[near].mean()))

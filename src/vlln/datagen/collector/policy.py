@@ -105,6 +105,7 @@ class CollectorPolicy:
         start_level = ground.level(start.position[1])
         self.maps.of(start_level, start)
         self.scan_left = self.config.scan_turns
+        self._scan_turn = Action.TURN_LEFT
         self.seen_at: int | None = None  # the frame at which the target was first seen
         self.failure: str | None = None
         self._frames = 0
@@ -138,7 +139,7 @@ class CollectorPolicy:
         self._frames += 1
         if self.scan_left > 0:
             self.scan_left -= 1
-            return Action.TURN_LEFT
+            return self._scan_turn
         if self.seen_at is not None:
             return self._approach(state, frame)
         action = self._explore(state)
@@ -251,13 +252,17 @@ class CollectorPolicy:
         return None
 
     def _arrive(self, state: AgentState) -> Action | None:
-        """At the far end of a flight: the first time on a storey, look round."""
+        """At the far end of a flight: the first time on a storey, look round, turning first
+        toward the side where the storey opens (a landing often faces a wall)."""
         self._drop_goal()
         level = self.ground.level(state.position[1])
         if not self.stairs.first_visit(level):
             return None
+        heading = self.ground.open_heading(state.position)
+        right = heading is not None and wrap_angle(heading - state.yaw) < 0.0
+        self._scan_turn = Action.TURN_RIGHT if right else Action.TURN_LEFT
         self.scan_left = _ARRIVAL_SCAN_TURNS - 1
-        return Action.TURN_LEFT
+        return self._scan_turn
 
     # ----------------------------------------------------------------- frontiers
     def _goal_done(self) -> bool:
