@@ -16,7 +16,11 @@ def _data_build(args: argparse.Namespace) -> int:
     from vlln.eval.sharding import Shard
 
     config = BuildConfig(
-        houses=args.houses, split=args.split, seed=args.seed, per_house=args.per_house
+        houses=args.houses,
+        split=args.split,
+        seed=args.seed,
+        per_house=args.per_house,
+        floors=args.floors,
     )
     if Path(args.out).exists() and not Path(args.out).is_dir():
         raise ConfigError(f"--out {args.out} is a file, not a folder; give a dataset folder")
@@ -102,6 +106,9 @@ def add_data_commands(commands: Commands) -> None:
     )
     build.add_argument("--split", default="train", help="house split (default train)")
     build.add_argument("--seed", type=int, default=0, help="seed of every random choice")
+    build.add_argument(
+        "--floors", type=int, default=1, help="storeys joined by stairs, 1 to 3 (default 1)"
+    )
     build.add_argument("--shard", help="i/n: build every n-th house, starting at the i-th")
     build.add_argument("--quiet", action="store_true", help="no progress bars")
     add_ray_options(build, chunks=False)

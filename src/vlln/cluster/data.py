@@ -27,7 +27,7 @@ from vlln.datagen.build import (
 from vlln.datagen.layout import house_dir_name
 from vlln.files import write_bytes_atomic
 from vlln.tasks.episode import Episode
-from vlln.tasks.scenes import SceneCache, procedural_scene_id
+from vlln.tasks.scenes import SceneCache
 from vlln.tasks.splits import house_seeds
 
 _LAST = ("meta/journal.jsonl", "meta/info.json")  # written after every other file, in order
@@ -39,7 +39,7 @@ def build_house_files(config: BuildConfig, seed: int, episodes: list[Episode]) -
     with tempfile.TemporaryDirectory(prefix="vlln-house-") as temp:
         root = Path(temp)
         try:
-            build_house(root, cache.get(procedural_scene_id(seed)), episodes, config, False)
+            build_house(root, cache.get(config.scene_id(seed)), episodes, config, False)
         finally:
             cache.close()
         return {
@@ -67,12 +67,12 @@ def build_dataset_ray(
         by_house = prepare_episodes(root, config, seeds, cache, progress)
     finally:
         cache.close()
-    todo = [seed for seed in seeds if not _finished(root, seed)]
+    todo = [seed for seed in seeds if not _finished(root, config.scene_id(seed))]
     task = remote_function(build_house_files, max_retries)
     config_ref = ray.put(config)
     refs = []
     for seed in todo:
-        episodes = by_house.get(procedural_scene_id(seed), [])
+        episodes = by_house.get(config.scene_id(seed), [])
         refs.append(task.remote(config_ref, seed, choose_episodes(episodes, config, seed)))
     with tqdm(total=len(todo), desc="houses on Ray", unit="house", disable=not progress) as bar:
 
@@ -90,6 +90,6 @@ def _last_order(name: str) -> int:
     return _LAST.index(name.split("/", 2)[-1])
 
 
-def _finished(root: Path, seed: int) -> bool:
-    folder = root / "trajectories" / house_dir_name(procedural_scene_id(seed))
+def _finished(root: Path, scene_id: str) -> bool:
+    folder = root / "trajectories" / house_dir_name(scene_id)
     return (folder / "meta" / "info.json").exists()

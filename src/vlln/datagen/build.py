@@ -7,6 +7,10 @@
     <out>/episodes/<split>_*.json.gz      stage 2: IIGN, IGN, ObjectNav episodes and stats
     <out>/trajectories/<house>/           stages 3-5: collected, filtered, written trajectories
 
+``floors`` picks houses of 1, 2 or 3 storeys joined by stairs (the scene ids of houses with
+several storeys end in ``_2f``/``_3f``); a one-storey build records no ``floors`` setting, so
+its ``build.json`` is what it was before houses had storeys.
+
 Houses are the unit of sharding (``--shard i/n`` takes every n-th house) and of completion (a
 finished house has ``meta/info.json``); within a house the journal makes a killed build resume
 at the next untried episode. Each trajectory draws its randomness from (seed, episode id) only,
@@ -47,6 +51,8 @@ from vlln.tasks.splits import house_seeds
 from vlln.world.catalogue import default_catalogue
 from vlln.world.scene_summary import export_scene_summary
 
+FLOOR_CHOICES = (1, 2, 3)  # storeys a procedural house can have
+
 
 @dataclass(frozen=True)
 class BuildConfig:
@@ -56,6 +62,7 @@ class BuildConfig:
     split: str = "train"
     seed: int = 0
     per_house: int = 20  # trajectories attempted per house (0 = every IIGN episode)
+    floors: int = 1  # storeys of every house, joined by stairs
     episodes: EpisodeGenConfig = field(default_factory=EpisodeGenConfig)
     collector: CollectorConfig = field(default_factory=CollectorConfig)
     filter: FilterConfig = field(default_factory=FilterConfig)
@@ -66,10 +73,21 @@ class BuildConfig:
             low = 1 if name == "houses" else 0
             if isinstance(value, bool) or not isinstance(value, int) or value < low:
                 raise ConfigError(f"{name} must be a whole number >= {low}, got {value!r}")
+        if self.floors not in FLOOR_CHOICES:
+            raise ConfigError(
+                f"floors must be one of {', '.join(map(str, FLOOR_CHOICES))}, got {self.floors!r}"
+            )
+
+    def scene_id(self, seed: int) -> str:
+        """The scene id of the split's house ``seed`` with this build's storeys."""
+        return procedural_scene_id(seed, self.floors)
 
     def settings(self) -> dict[str, Any]:
+        fields = asdict(self)
+        if self.floors == 1:  # one-storey settings stay as they were
+            del fields["floors"]
         return {
-            **asdict(self),
+            **fields,
             "oracle": "rules",
             "vlln_version": __version__,
             "trajectory_format": FORMAT_VERSION,
@@ -88,7 +106,7 @@ def build_dataset(
     try:
         by_house = prepare_episodes(root, config, mine, cache, progress)
         for seed in tqdm(mine, desc="trajectories", unit="house", disable=not progress):
-            scene_id = procedural_scene_id(seed)
+            scene_id = config.scene_id(seed)
             chosen = choose_episodes(by_house.get(scene_id, []), config, seed)
             build_house(root, cache.get(scene_id), chosen, config, progress)
     finally:
@@ -102,7 +120,7 @@ def prepare_episodes(
     """Stages 1 and 2: scene summaries of ``seeds``, the split's episode files (built once;
     every shard builds the same bytes), and the IIGN episodes grouped by scene."""
     for seed in tqdm(seeds, desc="scene summaries", unit="house", disable=not progress):
-        export_scene_summary(cache.get(procedural_scene_id(seed)).house, root / "scene_summary")
+        export_scene_summary(cache.get(config.scene_id(seed)).house, root / "scene_summary")
     episodes_dir = root / "episodes"
     path = episode_path(episodes_dir, config.split, TaskType.IIGN)
     if not path.exists():
@@ -114,6 +132,7 @@ def prepare_episodes(
             config.episodes,
             scenes=cache,
             progress=progress,
+            floors=config.floors,
         )
     return _episodes_by_scene(read_episodes(path))
 

@@ -49,9 +49,10 @@ class Trajectory:
 
     @property
     def path_length(self) -> float:
-        """Metres walked (sum of the moves between consecutive states)."""
+        """Metres walked (sum of the moves between consecutive states, up and down stairs
+        included)."""
         total = 0.0
         for before, after in zip(self.steps, self.steps[1:], strict=False):
-            (x0, _, z0), (x1, _, z1) = before.state.position, after.state.position
-            total += ((x1 - x0) ** 2 + (z1 - z0) ** 2) ** 0.5
+            (x0, y0, z0), (x1, y1, z1) = before.state.position, after.state.position
+            total += ((x1 - x0) ** 2 + (y1 - y0) ** 2 + (z1 - z0) ** 2) ** 0.5
         return total

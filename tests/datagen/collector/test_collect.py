@@ -114,7 +114,7 @@ def test_disambiguation_answers_agree_with_the_target(
 
 def test_chooser_rules() -> None:
     class Field:
-        def distance(self, x: float, z: float) -> float:
+        def distance(self, x: float, z: float, y: float | None = None) -> float:
             return abs(x - 10.0)  # the target lies at x = 10
 
     chooser = TargetAwareChooser(Field(), (0.0, 0.0))  # type: ignore[arg-type]

@@ -15,6 +15,7 @@ from numpy.typing import NDArray
 
 from vlln.agents.frontier.frontiers import ChooserConfig
 from vlln.sim.geodesic import GeodesicField
+from vlln.sim.storey_field import StoreyField
 
 NEAREST = "nearest"
 CONTINUE = "continue"
@@ -31,12 +32,14 @@ class TargetAwareChooser:
     """The frontier rule of data collection, with a ground-truth branch.
 
     ``offset`` turns the map's coordinates (relative to the start) into world coordinates,
-    where ``field`` measures the walk to the target.
+    where ``field`` measures the walk to the target from ``height`` (the floor of the storey
+    whose points are offered; unused on one storey).
     """
 
-    def __init__(self, field: GeodesicField, offset: tuple[float, float]) -> None:
+    def __init__(self, field: GeodesicField | StoreyField, offset: tuple[float, float]) -> None:
         self.field = field
         self.offset = offset
+        self.height: float | None = None
         self.choices: list[Choice] = []
 
     def __call__(
@@ -67,7 +70,11 @@ class TargetAwareChooser:
         )
         return index
 
+    def log_best(self, point: tuple[float, float, float]) -> None:
+        """Log a choice made outside the rule but for the same reason: nearest the target
+        (``point`` in world coordinates, ``(x, y, z)``)."""
+        self.choices.append(Choice(BEST, (point[0], point[2])))
+
     def _to_target(self, point: NDArray[np.float64]) -> float:
-        return self.field.distance(
-            float(point[0]) + self.offset[0], float(point[1]) + self.offset[1]
-        )
+        x, z = float(point[0]) + self.offset[0], float(point[1]) + self.offset[1]
+        return self.field.distance(x, z, self.height)

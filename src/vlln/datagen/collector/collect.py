@@ -9,6 +9,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from vlln.datagen.collector.dialog import DialogConfig, DialogTriggers
+from vlln.datagen.collector.ground import Ground
 from vlln.datagen.collector.lattice import LatticeFollower
 from vlln.datagen.collector.policy import CollectorPolicy, PolicyConfig
 from vlln.datagen.trajectory import Step, Trajectory
@@ -56,16 +57,18 @@ def collect_trajectory(
     config = config or CollectorConfig()
     house = sim.house
     target = house.instance_for_key(episode.instruction.instance_id[0])
-    points = tuple((vp.position[0], vp.position[2]) for vp in episode.goals[0].view_points)
-    field_ = sim.geodesic_field(points)
-    follower = LatticeFollower(
-        sim.grid, field_, config.goal_radius, sim.config.motion, max_expansions=30000
-    )
-    oracle.start(EpisodeContext(sim, target, points))
     state = AgentState(episode.start_position, quaternion_to_yaw(episode.start_rotation), 0.0)
+    ground = Ground(sim, state.position[1])
+    points = tuple(ground.point(vp.position) for vp in episode.goals[0].view_points)
+    field_ = ground.field(points)
+    follower = LatticeFollower(
+        ground.nav, field_, config.goal_radius, sim.config.motion, max_expansions=30000
+    )
+    told = points if sim.storeys is not None else tuple((x, z) for x, _, z in points)
+    oracle.start(EpisodeContext(sim, target, told))
     observation = sim.reset(state)
     policy = CollectorPolicy(
-        sim,
+        ground,
         target,
         points,
         follower,
@@ -81,14 +84,14 @@ def collect_trajectory(
         stated,
         episode_rng(seed, episode.episode_id, "dialog"),
         config.dialog,
+        sim.storeys,
     )
     trajectory = Trajectory(episode)
     frame = observation.frame
     triggers.at_start(state, frame)
     distance = math.inf
     for index in range(config.max_steps):
-        x, _, z = state.position
-        distance = field_.distance(x, z)
+        distance = ground.distance(field_, state.position)
         action = policy.act(state, frame)
         triggers.at_frame(
             index, state, frame, distance, policy.chooser.choices, policy.seen_at is not None

@@ -8,7 +8,8 @@
   frame of the choice, with the state and view of that frame.
 * Disambiguation, whenever an instance of the target's category that fits the known
   attributes is centred in the view (the oracle's own rule) within ``ask_range``; once per
-  instance.
+  instance. In a house with several storeys, only about instances on the agent's storey
+  (one seen down a stairwell is not "this one").
 """
 
 from __future__ import annotations
@@ -31,6 +32,7 @@ from vlln.oracle.disambiguation import centre_counts, is_centred, most_visible_o
 from vlln.oracle.protocol import Oracle, Question
 from vlln.sim.agent import AgentState
 from vlln.sim.renderer import Frame
+from vlln.sim.storeys import Storeys
 from vlln.world.model import House, ObjectInstance
 
 ATTRIBUTE, ROUTE, DISAMBIGUATION = "attribute", "route", "disambiguation"
@@ -66,8 +68,10 @@ class DialogTriggers:
         stated: frozenset[str],
         rng: np.random.Generator,
         config: DialogConfig | None = None,
+        storeys: Storeys | None = None,
     ) -> None:
         self.oracle = oracle
+        self.storeys = storeys
         self.house = house
         self.target = target
         self.stated = stated
@@ -164,8 +168,12 @@ class DialogTriggers:
             return
         if not is_centred(counts, candidate.id, ids):
             return
-        x, _, z = state.position
+        x, y, z = state.position
         box = candidate.box
+        if self.storeys is not None and (
+            self.storeys.level_under(box.min[1]) != self.storeys.level_of(y)
+        ):
+            return
         gap = math.hypot(
             max(box.min[0] - x, 0.0, x - box.max[0]), max(box.min[2] - z, 0.0, z - box.max[2])
         )

@@ -5,6 +5,9 @@ gaining move that does not scrape the wall; the collected trajectory would then 
 its collision. Searching the lattice of states reachable by the agent's own actions (FORWARD
 0.25 m, turns of 30°) with A*, using only moves that do not collide and the geodesic distance
 as the heuristic, finds a walk that avoids the scrape whenever one exists.
+
+In a house with several storeys the lattice spans them: states carry their height, which
+follows the stairs, so a search can climb or descend a flight.
 """
 
 from __future__ import annotations
@@ -16,16 +19,20 @@ import math
 from vlln.sim.agent import Action, AgentState, MotionConfig, step
 from vlln.sim.geodesic import GeodesicField
 from vlln.sim.navgrid import NavGrid
+from vlln.sim.storey_field import StoreyField
+from vlln.sim.storeys import Storeys
 from vlln.world.frame import wrap_angle
 
 _KEY_CELL = 0.05  # m; states closer than this (same heading) count as one
 _WEIGHT = 1.5  # weighted A*: a little longer than optimal, far fewer expansions
 _RETRY_AFTER = 8  # steps taken by other means before a failed search is tried again
 
+_Key = tuple[int, int, int, int]  # a state's cell in x, y and z, and its heading
+
 
 def plan_walk(
-    grid: NavGrid,
-    field: GeodesicField,
+    grid: NavGrid | Storeys,
+    field: GeodesicField | StoreyField,
     motion: MotionConfig,
     start: AgentState,
     goal_radius: float,
@@ -38,19 +45,18 @@ def plan_walk(
     turns = max(1, round(360.0 / motion.turn_deg))
 
     def estimate(state: AgentState) -> float:
-        return field.distance(state.position[0], state.position[2]) / forward
+        x, y, z = state.position
+        return field.distance(x, z, y) / forward
 
-    def key(state: AgentState, heading: int) -> tuple[int, int, int]:
-        x, _, z = state.position
-        return round(x / _KEY_CELL), round(z / _KEY_CELL), heading
+    def key(state: AgentState, heading: int) -> _Key:
+        x, y, z = state.position
+        return round(x / _KEY_CELL), round(y / _KEY_CELL), round(z / _KEY_CELL), heading
 
     if estimate(start) == math.inf:
         return None
     order = itertools.count()
     frontier = [(_WEIGHT * estimate(start), next(order), 0, start, 0)]
-    parents: dict[tuple[int, int, int], tuple[tuple[int, int, int] | None, Action | None]] = {
-        key(start, 0): (None, None)
-    }
+    parents: dict[_Key, tuple[_Key | None, Action | None]] = {key(start, 0): (None, None)}
     costs = {key(start, 0): 0}
     expansions = 0
     while frontier and expansions < max_expansions:
@@ -84,12 +90,9 @@ def _turned(state: AgentState, angle: float) -> AgentState:
     return AgentState(state.position, wrap_angle(state.yaw + angle), state.tilt)
 
 
-def _actions(
-    parents: dict[tuple[int, int, int], tuple[tuple[int, int, int] | None, Action | None]],
-    end: tuple[int, int, int],
-) -> list[Action]:
+def _actions(parents: dict[_Key, tuple[_Key | None, Action | None]], end: _Key) -> list[Action]:
     actions: list[Action] = []
-    node: tuple[int, int, int] | None = end
+    node: _Key | None = end
     while node is not None:
         previous, action = parents[node]
         if action is not None:
@@ -111,8 +114,8 @@ class LatticeFollower:
 
     def __init__(
         self,
-        grid: NavGrid,
-        field: GeodesicField,
+        grid: NavGrid | Storeys,
+        field: GeodesicField | StoreyField,
         goal_radius: float,
         motion: MotionConfig,
         max_expansions: int = 6000,
@@ -126,7 +129,8 @@ class LatticeFollower:
         self._cooldown = 0  # steps left before searching again after a failed search
 
     def next_action(self, state: AgentState) -> Action | None:
-        if self.field.distance(state.position[0], state.position[2]) < self.goal_radius:
+        x, y, z = state.position
+        if self.field.distance(x, z, y) < self.goal_radius:
             return Action.STOP
         if not self._plan or step(state, self._plan[0], self.grid, self.motion).collided:
             if self._cooldown > 0:
