@@ -75,6 +75,8 @@ class Explorer:
         self._follower: PathFollower | None = None
         self._facing: float | None = None  # yaw to turn to at a frontier that is still one
         self._since_plan = 0
+        self.look_down = False  # look down at a frontier before giving it up (see step)
+        self._looked_down = False
         self.replans = 0  # searches run so far, for profiling
 
     # ----------------------------------------------------------------- events
@@ -112,12 +114,16 @@ class Explorer:
         At a frontier that is still one, the agent first turns toward the unexplored cells
         next to it (the camera sees no floor within 2 m, so walking up to a doorway sideways
         does not reveal what is behind it); only if that does not clear it is it given up.
+        With :attr:`look_down`, it looks down once before giving up: the frontier may be the
+        head of stairs going down, whose steps a level camera cannot see.
         """
         if self._facing is not None:
             turn = turn_toward(wrap_angle(self._facing - pose.yaw), self.turn)
             if turn is not None:
                 return turn
             self._facing = None
+            if self._look_first():
+                return Action.LOOK_DOWN
             self.give_up_goal()
         for _ in range(2):
             follower = self._follower
@@ -134,8 +140,17 @@ class Explorer:
             if turn is not None:
                 self._facing = facing
                 return turn
+            if self._look_first():
+                return Action.LOOK_DOWN
             self.give_up_goal()
         return None
+
+    def _look_first(self) -> bool:
+        """Whether to look down before giving up the current goal (once per goal)."""
+        if not self.look_down or self._looked_down:
+            return False
+        self._looked_down = True
+        return True
 
     def _unexplored_direction(self, pose: Pose, point: tuple[float, float]) -> float | None:
         return unexplored_heading(self.map, pose, point, self.turn)
@@ -155,6 +170,7 @@ class Explorer:
         explored = self.map.explored[box.r0 : box.r1, box.c0 : box.c1]
         obstacle = self.map.obstacle[box.r0 : box.r1, box.c0 : box.c1]
         free = distances.traversable & explored & ~obstacle
+        free &= ~self.map.stairs[box.r0 : box.r1, box.c0 : box.c1]  # stairs lead elsewhere
         self._exclude_blacklisted(free, box.r0, box.c0)
         pocket = math.ceil(cfg.min_pocket_area / self.map.cell_size**2)
         frontiers = find_frontiers(free, explored, cfg.min_frontier_cells, pocket)
@@ -240,9 +256,15 @@ class Explorer:
         return None
 
     # ----------------------------------------------------------------- internals
-    def _plan(self, pose: Pose) -> DistanceField:
+    def _plan(self, pose: Pose, over_stairs: bool = False) -> DistanceField:
         self.replans += 1
-        return self.planner.plan(self.map, pose)
+        return self.planner.plan(self.map, pose, over_stairs)
+
+    def stairs_distances(self, pose: Pose) -> DistanceField:
+        """Distances from the agent with paths over stairs allowed (to take them)."""
+        self.drop_path()
+        self._frontier = self._candidate = None
+        return self._plan(pose, over_stairs=True)
 
     def _set_path(
         self, distances: DistanceField, cell: tuple[int, int], tolerance: float
@@ -251,6 +273,7 @@ class Explorer:
         self._follower = PathFollower(distances.path_to(*cell), self.turn, tolerance=tolerance)
         self._frontier = self._candidate = None
         self._since_plan = 0
+        self._looked_down = False
         return self._follower
 
 

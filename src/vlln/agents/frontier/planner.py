@@ -4,7 +4,8 @@ One Dijkstra from the agent over the explored window gives the distance to every
 both ranks frontiers and yields the path to the chosen goal, so a replan costs one search.
 Obstacles are inflated by the agent's radius; unexplored cells count as free (the map is
 optimistic, and a wrong guess shows up as a new obstacle or a bump that triggers a replan).
-Cells near obstacles cost more, which keeps paths off walls and door frames.
+Cells near obstacles cost more, which keeps paths off walls and door frames. Stairs that
+climb or drop more than a step are left out of paths unless the agent means to take them.
 
 The graph is built from the eight neighbour slots of every cell, row by row, so it takes a few
 vectorised array operations and no sorting.
@@ -37,6 +38,7 @@ class PlannerConfig:
     near_wall_cost: float = 2.0  # cost multiplier of those cells
     escape: float = 0.4  # around the agent only obstacle cells themselves block
     margin: int = 10  # cells around the explored box that the search may use
+    stair_rise: float = 0.3  # stair cells further than this from the floor are kept out
 
     def __post_init__(self) -> None:
         if not 0.0 <= self.inflation < self.near_wall:
@@ -97,8 +99,11 @@ class Planner:
     def __init__(self, config: PlannerConfig | None = None) -> None:
         self.config = config or PlannerConfig()
 
-    def plan(self, obstacle_map: ObstacleMap, pose: Pose) -> DistanceField:
-        """Distances from the agent over the explored window (plus a margin)."""
+    def plan(
+        self, obstacle_map: ObstacleMap, pose: Pose, over_stairs: bool = False
+    ) -> DistanceField:
+        """Distances from the agent over the explored window (plus a margin); paths go up or
+        down stairs only ``over_stairs``."""
         cfg = self.config
         s = obstacle_map.cell_size
         row, col = obstacle_map.cell_of(pose.x, pose.z)
@@ -111,6 +116,8 @@ class Planner:
         )
         obstacle = obstacle_map.obstacle[box.r0 : box.r1, box.c0 : box.c1]
         blocked = ndimage.maximum_filter(obstacle, footprint=_disc(cfg.inflation / s))
+        if not over_stairs:
+            blocked |= _steep_stairs(obstacle_map, box, cfg.stair_rise)
         # The extra cost near walls is a soft preference: a square neighbourhood will do.
         near = ndimage.maximum_filter(obstacle, size=2 * math.floor(cfg.near_wall / s) + 1)
         local_r, local_c = row - box.r0, col - box.c0
@@ -136,6 +143,15 @@ class Planner:
         return DistanceField(
             obstacle_map, box, traversable, distances.reshape(rows, cols), predecessors
         )
+
+
+def _steep_stairs(obstacle_map: ObstacleMap, box: CellBox, rise: float) -> NDArray[np.bool_]:
+    """Stair cells of the window that lie more than ``rise`` above or below the floor."""
+    window = (slice(box.r0, box.r1), slice(box.c0, box.c1))
+    steep: NDArray[np.bool_] = obstacle_map.stairs[window] & (
+        (obstacle_map.stair_high[window] > rise) | (obstacle_map.stair_low[window] < -rise)
+    )
+    return steep
 
 
 def _grid_graph(traversable: NDArray[np.bool_], cost: NDArray[np.float64]) -> sparse.csr_matrix:

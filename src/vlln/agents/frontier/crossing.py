@@ -1,0 +1,225 @@
+"""When to take the stairs, and the walk over them.
+
+A flight is the way to unexplored space on another storey: the agent takes it once its own
+storey has no frontier left (toward a storey it has not seen first, then toward one whose
+frontiers did not run out), or at once when the oracle said the target is upstairs or
+downstairs and the map shows a flight that way. What the oracle said also rules out every
+storey on the wrong side of the one it was said on.
+
+A walk follows the path of :func:`stairs.stairs_path` and ends when the feet stand on
+another storey's floor; it fails (and that flight is not tried again) when the path ends, or
+the agent is stuck, before that. A flight down that shows only its head is first looked at:
+the agent walks to the head, faces the unexplored beyond it and looks down.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from vlln.agents.frontier.explorer import unexplored_heading
+from vlln.agents.frontier.mapping import Pose
+from vlln.agents.frontier.planner import PathFollower, turn_toward
+from vlln.agents.frontier.stairs import StairExit, stair_exits, stair_heads, stairs_path
+from vlln.agents.frontier.storeys import StoreyMemory
+from vlln.sim.agent import Action
+from vlln.world.frame import wrap_angle, yaw_of
+
+_HINT_MARGIN = 0.5  # m: a storey counts as above (below) a floor this much higher (lower)
+_MAX_WALK = 80  # steps a walk over stairs may take
+_ON_FLIGHT = 0.05  # m from a floor: a cell walked at this height is on the flight
+
+
+@dataclass
+class _Walk:
+    departure: int
+    direction: int
+    known: int  # storeys known when it began: an arrival beyond them is a new storey
+    follower: PathFollower
+    trail: list[tuple[float, float, float]] = field(default_factory=list)
+
+
+@dataclass
+class _Peek:
+    follower: PathFollower  # to the head of the flight
+    head: tuple[float, float]
+    facing: float | None = None
+    looked: bool = False
+
+
+class Crossing:
+    """Takes the stairs between the storeys of a :class:`StoreyMemory`."""
+
+    def __init__(self, memory: StoreyMemory, turn: float) -> None:
+        self.memory = memory
+        self.turn = turn
+        self.hint: tuple[float, int] | None = None  # (floor it was said on, +1 up / -1 down)
+        self.arrived_new = False  # the last walk ended on a storey not seen before
+        self.walk_ended = False  # a walk ended (the agent resets its plans); cleared by it
+        self._walk: _Walk | None = None
+        self._peek: _Peek | None = None
+        self._failed: set[tuple[int, int]] = set()
+        self._peeked: set[int] = set()
+
+    @property
+    def busy(self) -> bool:
+        return self._walk is not None or self._peek is not None
+
+    # ----------------------------------------------------------------- the oracle's word
+    def note_hint(self, direction: int) -> None:
+        """The oracle said the target is upstairs (+1) or downstairs (-1) of here."""
+        self.hint = (self.memory.here.floor, direction)
+
+    def fits_hint(self, storey: int) -> bool:
+        """Whether the target may be on that storey, by what the oracle said."""
+        if self.hint is None:
+            return True
+        said_on, direction = self.hint
+        return direction * (self.memory.storeys[storey].floor - said_on) > _HINT_MARGIN
+
+    # ----------------------------------------------------------------- starting a walk
+    def toward_hint(self, pose: Pose, height: float) -> Action | None:
+        """The first move of a walk the oracle's word calls for, when the map shows a flight."""
+        if self.hint is None or self.fits_hint(self.memory.current):
+            return None
+        return self._start(pose, height, [self.hint[1]])
+
+    def leave(self, pose: Pose, height: float) -> Action | None:
+        """The first move of a walk to a storey worth exploring, once this one is done."""
+        memory = self.memory
+        fresh, unfinished = [], []
+        for direction in (1, -1):
+            end = memory.links.get((memory.current, direction))
+            if not self._allowed(direction, end):
+                continue
+            if end is None:
+                fresh.append(direction)
+            elif not memory.storeys[end].exhausted:
+                unfinished.append(direction)
+        return self._start(pose, height, fresh + unfinished)
+
+    def _allowed(self, direction: int, end: int | None) -> bool:
+        """Whether the oracle's word leaves a flight worth taking: toward the hinted side while
+        short of it, and never back across it."""
+        if self.hint is None:
+            return True
+        if not self.fits_hint(self.memory.current):
+            return direction == self.hint[1]
+        return end is None or self.fits_hint(end)
+
+    def _start(self, pose: Pose, height: float, directions: list[int]) -> Action | None:
+        memory = self.memory
+        here = memory.here
+        flights = {f.direction: f for f in stair_exits(here.map)}
+        for direction in directions:
+            if (memory.current, direction) in self._failed:
+                continue
+            flight = flights.get(direction)
+            if flight is None:
+                if direction < 0 and memory.current not in self._peeked:
+                    action = self._start_peek(pose, height)
+                    if action is not None:
+                        return action
+                continue
+            path = self._path(pose, flight)
+            if path is None:
+                self._failed.add((memory.current, direction))
+                continue
+            follower = PathFollower(path, self.turn)
+            self.arrived_new = False
+            walk = _Walk(memory.current, direction, len(memory.storeys), follower)
+            self._walk = walk
+            return self.step(pose, height, stuck=False)
+        return None
+
+    def _start_peek(self, pose: Pose, height: float) -> Action | None:
+        """Go and look down the nearest head of a flight down, if the map shows one."""
+        here = self.memory.here
+        heads = stair_heads(here.map)
+        if heads.size == 0:
+            return None
+        distances = here.explorer.stairs_distances(pose)
+        n_cols = here.map.shape[1]
+        reach = [distances.distance(int(c // n_cols), int(c % n_cols)) for c in heads]
+        best = int(np.argmin(reach))
+        if not np.isfinite(reach[best]):
+            self._peeked.add(self.memory.current)
+            return None
+        row, col = int(heads[best] // n_cols), int(heads[best] % n_cols)
+        follower = PathFollower(distances.path_to(row, col), self.turn, tolerance=0.3)
+        self._peek = _Peek(follower, here.map.cell_centre(row, col))
+        return self.step(pose, height, stuck=False)
+
+    def _peek_step(self, pose: Pose, height: float, stuck: bool) -> Action | None:
+        peek = self._peek
+        assert peek is not None
+        current = self.memory.current
+        if stuck:
+            self._peek = None
+            self._peeked.add(current)
+            return None
+        if not peek.looked:
+            action = peek.follower.next_action(pose)
+            if action is not None:
+                return action
+            if peek.facing is None:
+                hx, hz = peek.head
+                toward = yaw_of(hx - pose.x, hz - pose.z) if (hx, hz) != (pose.x, pose.z) else 0.0
+                ahead = unexplored_heading(self.memory.here.map, pose, peek.head, self.turn)
+                peek.facing = toward if ahead is None else ahead
+            turn = turn_toward(wrap_angle(peek.facing - pose.yaw), self.turn)
+            if turn is not None:
+                return turn
+            peek.looked = True
+            return Action.LOOK_DOWN
+        self._peek = None
+        self._peeked.add(current)
+        action = self._start(pose, height, [-1])
+        if action is None:
+            self._failed.add((current, -1))
+        return action
+
+    def _path(self, pose: Pose, flight: StairExit) -> list[tuple[float, float]] | None:
+        here = self.memory.here
+        return stairs_path(here.map, here.explorer.stairs_distances(pose), flight)
+
+    # ----------------------------------------------------------------- walking
+    def step(self, pose: Pose, height: float, stuck: bool) -> Action | None:
+        """The next move of the walk (or of the look down a flight); None once it has ended
+        (see :attr:`walk_ended`, :attr:`arrived_new`)."""
+        if self._peek is not None:
+            return self._peek_step(pose, height, stuck)
+        walk = self._walk
+        if walk is None:
+            return None
+        memory = self.memory
+        walk.trail.append((pose.x, pose.z, height))
+        if memory.current != walk.departure and memory.on_floor(height):
+            self._arrive(walk)
+            return None
+        action = walk.follower.next_action(pose)
+        if action is None or stuck or len(walk.trail) > _MAX_WALK:
+            self._failed.add((walk.departure, walk.direction))
+            self._walk = None
+            self.walk_ended = True
+            return None
+        return action
+
+    def _arrive(self, walk: _Walk) -> None:
+        """Remember where the flight leads, and put the cells walked on the stairs into the
+        maps of both storeys (the scan may not see all of them)."""
+        memory = self.memory
+        memory.link(walk.departure, walk.direction, memory.current)
+        trail = np.asarray(walk.trail, np.float64)
+        ends = (memory.storeys[walk.departure], memory.here)
+        on_flight = np.ones(len(trail), bool)
+        for storey in ends:
+            on_flight &= np.abs(trail[:, 2] - storey.floor) > _ON_FLIGHT
+        for storey in ends:
+            rise = trail[on_flight, 2] - storey.floor
+            storey.map.mark_stairs(trail[on_flight, 0], trail[on_flight, 1], rise)
+            storey.explorer.drop_path()
+        self.arrived_new = memory.current >= walk.known
+        self._walk = None
+        self.walk_ended = True
