@@ -6,10 +6,11 @@ frontiers did not run out), or at once when the oracle said the target is upstai
 downstairs and the map shows a flight that way. What the oracle said also rules out every
 storey on the wrong side of the one it was said on.
 
-A walk follows the path of :func:`stairs.stairs_path` and ends when the feet stand on
-another storey's floor; it fails (and that flight is not tried again) when the path ends, or
-the agent is stuck, before that. A flight down that shows only its head is first looked at:
-the agent walks to the head, faces the unexplored beyond it and looks down.
+A walk follows the path of :func:`stairs.stairs_path`, going on straight along the flight
+while the feet are off any floor, and ends when they stand on another storey's floor. It
+fails (and that flight is not tried again) when the agent gets stuck or the path ends on the
+floor it left. A flight down that shows only its head is first looked at: the agent walks to
+the head, faces the unexplored beyond it and looks down.
 """
 
 from __future__ import annotations
@@ -21,7 +22,13 @@ import numpy as np
 from vlln.agents.frontier.explorer import unexplored_heading
 from vlln.agents.frontier.mapping import Pose
 from vlln.agents.frontier.planner import PathFollower, turn_toward
-from vlln.agents.frontier.stairs import StairExit, stair_exits, stair_heads, stairs_path
+from vlln.agents.frontier.stairs import (
+    StairExit,
+    stair_exits,
+    stair_heads,
+    stairs_path,
+    straight_on,
+)
 from vlln.agents.frontier.storeys import StoreyMemory
 from vlln.sim.agent import Action
 from vlln.world.frame import wrap_angle, yaw_of
@@ -36,6 +43,7 @@ class _Walk:
     departure: int
     direction: int
     known: int  # storeys known when it began: an arrival beyond them is a new storey
+    axis: tuple[float, float]  # the flight's, away from the departure storey
     follower: PathFollower
     trail: list[tuple[float, float, float]] = field(default_factory=list)
 
@@ -128,7 +136,7 @@ class Crossing:
                 continue
             follower = PathFollower(path, self.turn)
             self.arrived_new = False
-            walk = _Walk(memory.current, direction, len(memory.storeys), follower)
+            walk = _Walk(memory.current, direction, len(memory.storeys), flight.axis, follower)
             self._walk = walk
             return self.step(pose, height, stuck=False)
         return None
@@ -199,6 +207,11 @@ class Crossing:
             self._arrive(walk)
             return None
         action = walk.follower.next_action(pose)
+        if action is None and not memory.on_floor(height):
+            # Still on the steps (the map saw only part of the flight): keep going.
+            ahead = straight_on((pose.x, pose.z), walk.axis, memory.here.map.cell_size)
+            walk.follower = PathFollower(ahead, self.turn)
+            action = walk.follower.next_action(pose)
         if action is None or stuck or len(walk.trail) > _MAX_WALK:
             self._failed.add((walk.departure, walk.direction))
             self._walk = None

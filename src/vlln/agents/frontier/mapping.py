@@ -60,6 +60,7 @@ class MapConfig:
     pixel_stride: int = 4  # back-project every n-th pixel in both directions
     floor_height: float = 0.08  # points lower than this are floor
     below_floor: float = 0.3  # ... unless this far below it: they are on a storey below
+    stair_step: float = 0.3  # stair cells further than this from the floor are off it (steep)
     obstacle_band: tuple[float, float] = (0.15, 1.5)  # points in this band are obstacles
     free_range: float = 5.0  # free space is traced this far along each column at most
     obstacle_range: float = 7.0  # obstacle points farther than this are ignored
@@ -179,16 +180,35 @@ class ObstacleMap:
 
     def mark_stairs(
         self, x: NDArray[np.floating], z: NDArray[np.floating], y: NDArray[np.floating]
-    ) -> None:
-        """Stair points at heights ``y`` above the floor: their cells are explored stairs."""
+    ) -> NDArray[np.intp]:
+        """Stair points at heights ``y`` above the floor: their cells are explored stairs.
+        Returns the cells that became steep (see :meth:`steep`)."""
         all_cells = self._flat_or_minus_one(np.asarray(x), np.asarray(z))
         inside = all_cells >= 0
-        flat, heights = all_cells[inside], np.asarray(y, np.float32)[inside]
+        flat, heights = np.unique(all_cells[inside]), np.asarray(y, np.float32)[inside]
+        was_steep = self.steep(flat)
         self.stairs.flat[flat] = True
         self.explored.flat[flat] = True
-        np.maximum.at(self.stair_high.reshape(-1), flat, heights)
-        np.minimum.at(self.stair_low.reshape(-1), flat, heights)
+        np.maximum.at(self.stair_high.reshape(-1), all_cells[inside], heights)
+        np.minimum.at(self.stair_low.reshape(-1), all_cells[inside], heights)
         self._grow_box(flat)
+        return flat[self.steep(flat) & ~was_steep]
+
+    def steep(self, cells: NDArray[np.intp]) -> NDArray[np.bool_]:
+        """Which of the cells (flat indices) are stairs too far above or below the floor to
+        step onto from it."""
+        step = self.config.stair_step
+        high, low = self.stair_high.reshape(-1)[cells], self.stair_low.reshape(-1)[cells]
+        steep: NDArray[np.bool_] = self.stairs.reshape(-1)[cells] & ((high > step) | (low < -step))
+        return steep
+
+    def steep_window(self, box: CellBox) -> NDArray[np.bool_]:
+        """:meth:`steep` for every cell of a window."""
+        window = (slice(box.r0, box.r1), slice(box.c0, box.c1))
+        step = self.config.stair_step
+        high, low = self.stair_high[window], self.stair_low[window]
+        steep: NDArray[np.bool_] = self.stairs[window] & ((high > step) | (low < -step))
+        return steep
 
     def update(
         self,
@@ -198,7 +218,8 @@ class ObstacleMap:
         feet: float = 0.0,
         walkable: NDArray[np.bool_] | None = None,
     ) -> NDArray[np.intp]:
-        """Add one depth frame; returns the flat indices of cells that became obstacles.
+        """Add one depth frame; returns the flat indices of cells that became obstacles (or
+        steep stairs, which paths avoid as well).
 
         ``feet``: the agent's height above this storey's floor; ``walkable``: the
         back-projected pixels (:meth:`subsample`) that the detector calls stairs."""
@@ -211,7 +232,7 @@ class ObstacleMap:
             stairs = valid & walkable & (squared < cfg.obstacle_range**2)
             is_obstacle &= ~walkable
             is_floor &= ~walkable
-            self.mark_stairs(x[stairs], z[stairs], y[stairs])
+            steep = self.mark_stairs(x[stairs], z[stairs], y[stairs])
         flat = self._flat_or_minus_one(x, z)
         obstacle_cells = flat[is_obstacle]
         obstacle_cells = obstacle_cells[obstacle_cells >= 0]
@@ -223,6 +244,8 @@ class ObstacleMap:
         self._grow_box(seen)
         if tilt == 0.0:
             self._trace_free(pose, squared, is_obstacle, is_floor, valid, d)
+        if walkable is not None and walkable.any():
+            new = np.union1d(new, steep)
         return new
 
     def update_stairs(

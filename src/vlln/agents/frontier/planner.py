@@ -38,7 +38,6 @@ class PlannerConfig:
     near_wall_cost: float = 2.0  # cost multiplier of those cells
     escape: float = 0.4  # around the agent only obstacle cells themselves block
     margin: int = 10  # cells around the explored box that the search may use
-    stair_rise: float = 0.3  # stair cells further than this from the floor are kept out
 
     def __post_init__(self) -> None:
         if not 0.0 <= self.inflation < self.near_wall:
@@ -117,7 +116,7 @@ class Planner:
         obstacle = obstacle_map.obstacle[box.r0 : box.r1, box.c0 : box.c1]
         blocked = ndimage.maximum_filter(obstacle, footprint=_disc(cfg.inflation / s))
         if not over_stairs:
-            blocked |= _steep_stairs(obstacle_map, box, cfg.stair_rise)
+            blocked |= obstacle_map.steep_window(box)
         # The extra cost near walls is a soft preference: a square neighbourhood will do.
         near = ndimage.maximum_filter(obstacle, size=2 * math.floor(cfg.near_wall / s) + 1)
         local_r, local_c = row - box.r0, col - box.c0
@@ -143,15 +142,6 @@ class Planner:
         return DistanceField(
             obstacle_map, box, traversable, distances.reshape(rows, cols), predecessors
         )
-
-
-def _steep_stairs(obstacle_map: ObstacleMap, box: CellBox, rise: float) -> NDArray[np.bool_]:
-    """Stair cells of the window that lie more than ``rise`` above or below the floor."""
-    window = (slice(box.r0, box.r1), slice(box.c0, box.c1))
-    steep: NDArray[np.bool_] = obstacle_map.stairs[window] & (
-        (obstacle_map.stair_high[window] > rise) | (obstacle_map.stair_low[window] < -rise)
-    )
-    return steep
 
 
 def _grid_graph(traversable: NDArray[np.bool_], cost: NDArray[np.float64]) -> sparse.csr_matrix:

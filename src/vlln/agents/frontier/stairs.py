@@ -152,11 +152,12 @@ def stairs_path(
     order = np.lexsort((reach, -np.round(flight.rise, 2)))
     best = int(next(i for i in order if usable[i]))
     path = distances.path_to(int(rows[best]), int(cols[best]))
-    end_x, end_z = path[-1]
-    ax, az = flight.axis
-    steps = np.arange(1, math.ceil(_EXTENSION / obstacle_map.cell_size) + 1)
-    extension = [
-        (end_x + ax * k * obstacle_map.cell_size, end_z + az * k * obstacle_map.cell_size)
-        for k in steps
-    ]
-    return path + extension
+    return path + straight_on(path[-1], flight.axis, obstacle_map.cell_size)
+
+
+def straight_on(
+    start: tuple[float, float], axis: tuple[float, float], spacing: float
+) -> list[tuple[float, float]]:
+    """Points every ``spacing`` metres along ``axis`` for the next ``_EXTENSION`` metres."""
+    along = np.arange(1, math.ceil(_EXTENSION / spacing) + 1) * spacing
+    return [(start[0] + axis[0] * a, start[1] + axis[1] * a) for a in along.tolist()]
