@@ -243,7 +243,9 @@ class ObstacleMap:
         self.explored.flat[seen] = True
         self._grow_box(seen)
         if tilt == 0.0:
-            self._trace_free(pose, squared, is_obstacle, is_floor, valid, d)
+            # A hole in the floor (the way down a flight) stops free space like an obstacle.
+            is_drop = valid & (y < -cfg.below_floor)
+            self._trace_free(pose, squared, is_obstacle | is_drop, is_floor, valid, d)
         if walkable is not None and walkable.any():
             new = np.union1d(new, steep)
         return new
@@ -304,8 +306,8 @@ class ObstacleMap:
         valid: NDArray[np.bool_],
         depth: NDArray[np.float32],
     ) -> None:
-        """Explore each level column from the camera to its first obstacle (or as far as it
-        sees floor, or ``free_range`` where nothing was hit).
+        """Explore each level column from the camera to its first obstacle or drop (or as far
+        as it sees floor, or ``free_range`` where nothing was hit).
 
         The cells along each column's ray are fixed offsets from the agent's cell for a given
         heading, so they are computed once per heading (the agent only ever faces a few)."""
