@@ -171,6 +171,7 @@ class FrontierAgent:
             if action == Action.MOVE_FORWARD and moved < 0.05:
                 self.map.mark_blocked_ahead(before, 0.3, 0.1)
                 self.explorer.drop_path()
+                self.crossing.bumped(pose)
         depth = observation["depth"]
         feet = self._height - self.memory.here.floor
         walkable = self._stairs.pixels(self.map, observation["instance_ids"], depth)

@@ -10,7 +10,7 @@ A walk follows the path of :func:`stairs.stairs_path`, going on straight along t
 while the feet are off any floor, and ends when they stand on another storey's floor. It
 fails (and that flight is not tried again) when the agent gets stuck or the path ends on the
 floor it left. A flight down that shows only its head is first looked at: the agent walks to
-the head, faces the unexplored beyond it and looks down.
+the head, faces down the flight (across the top tread) and looks down.
 """
 
 from __future__ import annotations
@@ -19,11 +19,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from vlln.agents.frontier.explorer import unexplored_heading
+from vlln.agents.frontier.explorer import look_heading
 from vlln.agents.frontier.mapping import Pose
 from vlln.agents.frontier.planner import PathFollower, turn_toward
 from vlln.agents.frontier.stairs import (
     StairExit,
+    head_facing,
     stair_exits,
     stair_heads,
     stairs_path,
@@ -31,10 +32,11 @@ from vlln.agents.frontier.stairs import (
 )
 from vlln.agents.frontier.storeys import StoreyMemory
 from vlln.sim.agent import Action
-from vlln.world.frame import wrap_angle, yaw_of
+from vlln.world.frame import wrap_angle
 
 _HINT_MARGIN = 0.5  # m: a storey counts as above (below) a floor this much higher (lower)
 _MAX_WALK = 80  # steps a walk over stairs may take
+_MAX_BUMPS = 5  # bumps on the way to the head of a flight before it is given up
 _ON_FLIGHT = 0.05  # m from a floor: a cell walked at this height is on the flight
 
 
@@ -54,6 +56,7 @@ class _Peek:
     head: tuple[float, float]
     facing: float | None = None
     looked: bool = False
+    bumps: int = 0  # forward moves that made no way: each one asks for a new path
 
 
 class Crossing:
@@ -69,6 +72,22 @@ class Crossing:
         self._peek: _Peek | None = None
         self._failed: set[tuple[int, int]] = set()
         self._peeked: set[int] = set()
+
+    def bumped(self, pose: Pose) -> None:
+        """A forward move made no way (the map now shows what was in the way): the way to the
+        head of a flight is planned again, at most ``_MAX_BUMPS`` times."""
+        peek = self._peek
+        if peek is None or peek.looked:
+            return
+        peek.bumps += 1
+        here = self.memory.here
+        distances = here.explorer.stairs_distances(pose)
+        row, col = here.map.cell_of(*peek.head)
+        if peek.bumps > _MAX_BUMPS or not np.isfinite(distances.distance(row, col)):
+            self._peek = None
+            self._peeked.add(self.memory.current)
+            return
+        peek.follower = PathFollower(distances.path_to(row, col), self.turn, tolerance=0.3)
 
     @property
     def busy(self) -> bool:
@@ -172,10 +191,11 @@ class Crossing:
             if action is not None:
                 return action
             if peek.facing is None:
-                hx, hz = peek.head
-                toward = yaw_of(hx - pose.x, hz - pose.z) if (hx, hz) != (pose.x, pose.z) else 0.0
-                ahead = unexplored_heading(self.memory.here.map, pose, peek.head, self.turn)
-                peek.facing = toward if ahead is None else ahead
+                peek.facing = head_facing(self.memory.here.map, pose, peek.head)
+                if peek.facing is None:
+                    peek.facing = look_heading(self.memory.here.map, pose, self.turn)
+                if peek.facing is None:
+                    peek.facing = pose.yaw
             turn = turn_toward(wrap_angle(peek.facing - pose.yaw), self.turn)
             if turn is not None:
                 return turn

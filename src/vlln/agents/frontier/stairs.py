@@ -25,9 +25,10 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy import ndimage
 
-from vlln.agents.frontier.mapping import ObstacleMap
+from vlln.agents.frontier.mapping import ObstacleMap, Pose
 from vlln.agents.frontier.perception import Detector
 from vlln.agents.frontier.planner import DistanceField
+from vlln.world.frame import yaw_of
 
 STAIRS_CATEGORY = "stairs"
 CLIMB_RISE = 1.0  # m: a flight that climbs or drops more than this leads to another storey
@@ -112,6 +113,24 @@ def stair_heads(obstacle_map: ObstacleMap) -> NDArray[np.intp]:
     rows, cols = np.nonzero(level)
     heads: NDArray[np.intp] = (rows + box.r0) * obstacle_map.shape[1] + cols + box.c0
     return heads
+
+
+def head_facing(obstacle_map: ObstacleMap, pose: Pose, head: tuple[float, float]) -> float | None:
+    """The heading down a flight from its head: across the top tread (the floor-level stair
+    cells within 1 m of ``head``, whose longer side runs across the flight), away from the
+    agent; None when too few of them are known."""
+    heads = stair_heads(obstacle_map)
+    x, z = _centres(obstacle_map, heads)
+    near = np.hypot(x - head[0], z - head[1]) <= 1.0
+    if np.count_nonzero(near) < 4:
+        return None
+    points = np.stack([x[near], z[near]], axis=1)
+    centre = points.mean(axis=0)
+    _, vectors = np.linalg.eigh(np.cov((points - centre).T))
+    ax, az = vectors[:, 0]  # the direction of least spread: along the flight
+    if ax * (centre[0] - pose.x) + az * (centre[1] - pose.z) < 0.0:
+        ax, az = -ax, -az
+    return yaw_of(float(ax), float(az))
 
 
 def _axis(
