@@ -14,7 +14,7 @@ from vlln.agents.frontier.dialog import parse_storey
 from vlln.agents.frontier.explorer import Explorer
 from vlln.agents.frontier.mapping import ObstacleMap, Pose
 from vlln.agents.frontier.planner import Planner
-from vlln.agents.frontier.stairs import stair_exits, stair_heads
+from vlln.agents.frontier.stairs import head_facing, stair_exits, stair_heads
 from vlln.agents.frontier.storeys import Storey, StoreyMemory
 from vlln.oracle.rule_oracle import RuleOracle
 from vlln.sim.camera import CameraSpec
@@ -24,6 +24,7 @@ from vlln.tasks.generation import generate_house_episodes
 from vlln.tasks.scenes import SceneCache
 from vlln.tasks.spec import TaskConfig, TaskType
 from vlln.tasks.taxonomy import classify
+from vlln.world.frame import yaw_of
 from vlln.world.generator import HouseParameters, generate_house
 
 SMALL_TWO_STOREYS = HouseParameters(
@@ -75,6 +76,9 @@ def test_a_lone_floor_level_tread_is_the_head_of_a_flight_down() -> None:
     assert stair_exits(obstacle_map) == []
     cells = np.unique(obstacle_map.flat_cells(x.ravel(), z.ravel()))
     assert np.array_equal(np.sort(stair_heads(obstacle_map)), cells)
+    # Seen from the west, the flight goes down eastward, across the tread's long side.
+    facing = head_facing(obstacle_map, Pose(0.0, 0.0, 0.0), (1.1, 0.0))
+    assert facing == pytest.approx(yaw_of(1.0, 0.0), abs=1e-6)
 
 
 def test_paths_keep_off_steep_stairs_unless_taking_them() -> None:
