@@ -369,8 +369,8 @@ class FrontierAgent:
                 self.known.update(self._answer_vocabulary.parse(answer))
         elif kind == "route":
             storey = dialog.parse_storey(answer)
-            if storey is not None:
-                self.crossing.note_hint(storey)
+            if storey is not None or dialog.parse_route(answer) is not None:
+                self.crossing.note_hint(storey or 0)
             if dialog.says_arrived(answer):
                 self._scan_left = self.config.scan_turns
                 return

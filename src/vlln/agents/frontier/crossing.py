@@ -4,7 +4,9 @@ A flight is the way to unexplored space on another storey: the agent takes it on
 storey has no frontier left (toward a storey it has not seen first, then toward one whose
 frontiers did not run out), or at once when the oracle said the target is upstairs or
 downstairs and the map shows a flight that way. What the oracle said also rules out every
-storey on the wrong side of the one it was said on.
+storey on the wrong side of the one it was said on; directions that name no storey mean the
+target is on the storey they were given on, which the agent then does not leave (or goes back
+to).
 
 A walk follows the path of :func:`stairs.stairs_path`, going on straight along the flight
 while the feet are off any floor, and ends when they stand on another storey's floor. It
@@ -65,7 +67,8 @@ class Crossing:
     def __init__(self, memory: StoreyMemory, turn: float) -> None:
         self.memory = memory
         self.turn = turn
-        self.hint: tuple[float, int] | None = None  # (floor it was said on, +1 up / -1 down)
+        # (floor it was said on, +1 up / -1 down / 0 there)
+        self.hint: tuple[float, int] | None = None
         self.arrived_new = False  # the last walk ended on a storey not seen before
         self.walk_ended = False  # a walk ended (the agent resets its plans); cleared by it
         self._walk: _Walk | None = None
@@ -95,7 +98,7 @@ class Crossing:
 
     # ----------------------------------------------------------------- the oracle's word
     def note_hint(self, direction: int) -> None:
-        """The oracle said the target is upstairs (+1) or downstairs (-1) of here."""
+        """The oracle said the target is upstairs (+1), downstairs (-1) or on this storey (0)."""
         self.hint = (self.memory.here.floor, direction)
 
     def fits_hint(self, storey: int) -> bool:
@@ -103,14 +106,26 @@ class Crossing:
         if self.hint is None:
             return True
         said_on, direction = self.hint
-        return direction * (self.memory.storeys[storey].floor - said_on) > _HINT_MARGIN
+        rise = self.memory.storeys[storey].floor - said_on
+        if direction == 0:
+            return abs(rise) < _HINT_MARGIN
+        return direction * rise > _HINT_MARGIN
+
+    def _wanted(self) -> int | None:
+        """The way (+1 up, -1 down) to the storeys the oracle's word points to; None when
+        the agent is on one of them or nothing was said."""
+        if self.hint is None or self.fits_hint(self.memory.current):
+            return None
+        said_on, direction = self.hint
+        if direction == 0:
+            return 1 if said_on > self.memory.here.floor else -1
+        return direction
 
     # ----------------------------------------------------------------- starting a walk
     def toward_hint(self, pose: Pose, height: float) -> Action | None:
         """The first move of a walk the oracle's word calls for, when the map shows a flight."""
-        if self.hint is None or self.fits_hint(self.memory.current):
-            return None
-        return self._start(pose, height, [self.hint[1]])
+        wanted = self._wanted()
+        return None if wanted is None else self._start(pose, height, [wanted])
 
     def leave(self, pose: Pose, height: float) -> Action | None:
         """The first move of a walk to a storey worth exploring, once this one is done."""
@@ -132,8 +147,8 @@ class Crossing:
         if self.hint is None:
             return True
         if not self.fits_hint(self.memory.current):
-            return direction == self.hint[1]
-        return end is None or self.fits_hint(end)
+            return direction == self._wanted()
+        return self.hint[1] != 0 and (end is None or self.fits_hint(end))
 
     def _start(self, pose: Pose, height: float, directions: list[int]) -> Action | None:
         memory = self.memory
