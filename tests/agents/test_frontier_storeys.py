@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from vlln.agents.frontier import FrontierAgent
+from vlln.agents.frontier.crossing import Crossing
 from vlln.agents.frontier.dialog import parse_storey
 from vlln.agents.frontier.explorer import Explorer
 from vlln.agents.frontier.mapping import ObstacleMap, Pose
@@ -55,6 +56,19 @@ def test_a_new_storey_is_known_once_the_feet_keep_a_new_height() -> None:
     assert memory.storey_of(2.75) == 1 and memory.storey_of(0.4) == 0
     assert memory.observe(1.25, 0.0, 1.2)  # back down past half way
     assert memory.current == 0 and not memory.on_floor(1.2)
+
+
+def test_the_oracles_word_rules_storeys_in_and_out() -> None:
+    memory = StoreyMemory(_storey)
+    for x, height in [(0.0, 0.0), (0.25, 2.8), (0.5, 2.8), (0.75, 2.8), (1.0, 0.0)]:
+        memory.observe(x, 0.0, height)
+    assert len(memory.storeys) == 2 and memory.current == 0
+    crossing = Crossing(memory, math.radians(30))
+    assert crossing.fits_hint(0) and crossing.fits_hint(1)  # nothing said yet
+    crossing.note_hint(1)  # "It is upstairs, take the stairs."
+    assert not crossing.fits_hint(0) and crossing.fits_hint(1)
+    crossing.note_hint(0)  # directions naming no storey, given on the ground floor
+    assert crossing.fits_hint(0) and not crossing.fits_hint(1)
 
 
 def test_flights_on_the_map_lead_up_or_down_along_their_axis() -> None:
