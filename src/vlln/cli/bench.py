@@ -59,6 +59,15 @@ def _bench_storeys(args: argparse.Namespace) -> int:
     return 0
 
 
+def _bench_frontier_storeys(args: argparse.Namespace) -> int:
+    from vlln.bench.frontier_storeys import run_frontier_storeys_benchmark
+
+    run_frontier_storeys_benchmark(
+        houses=args.houses, floors=args.floors, episodes=args.episodes, as_json=args.json
+    )
+    return 0
+
+
 def _bench_agent(args: argparse.Namespace) -> int:
     from vlln.bench.agent import run_agent_benchmark
     from vlln.bench.agent_model import run_model_benchmark
@@ -140,6 +149,14 @@ def add_bench_commands(commands: Commands) -> None:
     storeys.add_argument("--per-house", type=int, default=6, help="episodes per house (6)")
     storeys.add_argument("--json", action="store_true", help="print one JSON object per line")
     storeys.set_defaults(handler=_bench_storeys)
+    frontier = bench.add_parser(
+        "frontier-storeys", help="the frontier agent's IIGN success on houses of several storeys"
+    )
+    frontier.add_argument("--houses", type=int, default=2, help="test houses (default 2)")
+    frontier.add_argument("--floors", type=int, default=2, help="storeys, 2 or 3 (default 2)")
+    frontier.add_argument("--episodes", type=int, default=30, help="episodes (default 30)")
+    frontier.add_argument("--json", action="store_true", help="print one JSON object per line")
+    frontier.set_defaults(handler=_bench_frontier_storeys)
     bench_data = bench.add_parser("data", help="trajectories per hour of the data pipeline")
     bench_data.add_argument("--houses", type=int, default=2, help="training houses (default 2)")
     bench_data.add_argument(

@@ -16,7 +16,8 @@ Datasheet
   as a step.
 * **Observations** (a dict): ``rgb`` (H, W, 3) uint8; ``depth`` (H, W) float32 metres;
   ``gps`` float32 (x, z) in metres from the start in the start's frame (the start heading looks
-  along -z); ``compass`` yaw relative to the start heading (radians, left positive); ``tilt``
+  along -z); ``height`` the feet's height above the start's (metres; it changes only on
+  stairs); ``compass`` yaw relative to the start heading (radians, left positive); ``tilt``
   (radians, up positive); ``instruction``; ``oracle_answer`` (the answer to a TALK on the step
   right after it, else None); ``questions_left``; ``waypoint_action`` (after a pixel goal: the
   next action of a shortest-path follower, radius 0.25 m, toward its floor point; None when
@@ -326,6 +327,7 @@ class NavigationEnv:
             "rgb": self._frame.rgb,
             "depth": self._frame.depth,
             "gps": np.array([c * dx - s * dz, s * dx + c * dz], np.float32),
+            "height": state.position[1] - start.position[1],
             "compass": wrap_angle(state.yaw - start.yaw),
             "tilt": state.tilt,
             "instruction": self._require_episode().instruction.instruction_text,

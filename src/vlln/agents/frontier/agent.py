@@ -13,23 +13,31 @@ question budget (IIGN, or IGN when given one), from the oracle: a colour questio
 unless the instruction named the colour, "is this the one?" before stopping at a candidate,
 and "which way?" when exploration drags on or gets stuck. Every random choice comes from
 generators seeded by the agent's seed and the episode id.
+
+In a house with several storeys it keeps a map per storey (:mod:`.storeys`), sees the stairs
+through its detector, takes them once its storey is explored or when the oracle says the
+target is upstairs or downstairs (:mod:`.crossing`), and goes only to candidates on the
+storey it is on.
 """
 
 from __future__ import annotations
 
 import math
 import zlib
-from collections import deque
-from dataclasses import dataclass, field
 
 import numpy as np
 
 from vlln.agents.frontier import dialog
+from vlln.agents.frontier.config import FrontierConfig
+from vlln.agents.frontier.crossing import Crossing
 from vlln.agents.frontier.detector import Candidate, CandidateTracker
-from vlln.agents.frontier.explorer import Explorer, ExplorerConfig
-from vlln.agents.frontier.mapping import MapConfig, ObstacleMap, Pose
+from vlln.agents.frontier.explorer import Explorer
+from vlln.agents.frontier.mapping import ObstacleMap, Pose
 from vlln.agents.frontier.perception import check_detector, make_detector
 from vlln.agents.frontier.planner import turn_toward
+from vlln.agents.frontier.progress import Trail
+from vlln.agents.frontier.stairs import StairsSight
+from vlln.agents.frontier.storeys import Storey, StoreyMemory
 from vlln.errors import ConfigError
 from vlln.sim.agent import Action
 from vlln.tasks.env import EpisodeInfo, Observation
@@ -37,35 +45,6 @@ from vlln.tasks.spec import AgentOutput, Talk, TaskType
 from vlln.world.frame import wrap_angle, yaw_of
 
 _COUNTED = (Action.STOP, Action.MOVE_FORWARD, Action.TURN_LEFT, Action.TURN_RIGHT)
-
-
-@dataclass(frozen=True)
-class FrontierConfig:
-    """Settings of the frontier agent; distances in metres, counts in steps or pixels."""
-
-    map: MapConfig = field(default_factory=MapConfig)
-    explorer: ExplorerConfig = field(default_factory=ExplorerConfig)
-    scan_turns: int = 12  # the opening 360° scan
-    min_detection_pixels: int = 100  # pixels an instance must cover to become a candidate
-    arrive_distance: float = 0.5  # stop this close to the nearest seen point of the object
-    ask_distance: float = 2.5  # ask "is this the one?" within this of the object
-    min_central_pixels: int = 200  # object pixels in the image centre needed to ask
-    route_after: int = 60  # exploration steps without a candidate before asking the way
-    hint_steps: int = 60  # steps a route answer steers the frontier choice
-    reserve_questions: int = 1  # kept for "is this the one?"
-    stuck_steps: int = 30  # mostly forward moves over this many steps ...
-    stuck_distance: float = 0.6  # ... that got less far than this mean stuck
-    max_looks: int = 40  # camera tilts per episode (the task caps them too)
-    # Questions the agent plans with; it learns the real budget from the refusal, as the
-    # reference's agents do, so every budget plays alike until then (vlln.eval.sweep).
-    question_budget: int = 5
-
-    def __post_init__(self) -> None:
-        if self.scan_turns < 0 or self.stuck_steps < 2 or self.route_after < 1:
-            raise ConfigError(
-                "scan_turns must be >= 0, stuck_steps >= 2 and route_after >= 1; got "
-                f"{self.scan_turns}, {self.stuck_steps}, {self.route_after}"
-            )
 
 
 class FrontierAgent:
@@ -97,7 +76,9 @@ class FrontierAgent:
         detector = make_detector(self.detector, episode.detector, [self.seed, episode_key])
         self._turn = math.radians(episode.motion.turn_deg)
         self._tilt_step = math.radians(episode.motion.tilt_step_deg)
-        self.map = ObstacleMap(episode.camera, cfg.map)
+        self._stairs = StairsSight(detector)
+        self.memory = StoreyMemory(self._new_storey)
+        self.crossing = Crossing(self.memory, self._turn)
         self.tracker = CandidateTracker(
             episode.camera,
             detector,
@@ -105,7 +86,6 @@ class FrontierAgent:
             self.map,
             min_pixels=cfg.min_detection_pixels,
         )
-        self.explorer = Explorer(self.map, self._turn, self._rng, cfg.explorer)
         vocabulary = dialog.Vocabulary.from_attributes(
             d.attributes for d in detector.labels.values()
         )
@@ -130,9 +110,25 @@ class FrontierAgent:
         self._explore_steps = 0
         self._hint: tuple[float, int] | None = None  # (yaw, last step it applies)
         self._steps = 0
+        self._height = 0.0  # feet above the start's
         self._last: tuple[AgentOutput, Pose] | None = None
-        self._trail: deque[tuple[float, float, bool]] = deque(maxlen=cfg.stuck_steps)
+        self._trail = Trail(cfg.stuck_steps, cfg.stuck_distance)
         self._started = False
+
+    def _new_storey(self, floor: float) -> Storey:
+        obstacle_map = ObstacleMap(self.episode.camera, self.config.map)
+        explorer = Explorer(obstacle_map, self._turn, self._rng, self.config.explorer)
+        explorer.look_down = self._stairs.possible
+        return Storey(floor, obstacle_map, explorer)
+
+    @property
+    def map(self) -> ObstacleMap:
+        """The map of the storey the agent is on."""
+        return self.memory.here.map
+
+    @property
+    def explorer(self) -> Explorer:
+        return self.memory.here.explorer
 
     @property
     def episode(self) -> EpisodeInfo:
@@ -146,6 +142,7 @@ class FrontierAgent:
         gps = observation["gps"]
         pose = Pose(float(gps[0]), float(gps[1]), float(observation["compass"]))
         tilt = float(observation["tilt"])
+        self._height = float(observation.get("height", 0.0))
         if self._pending is not None:
             kind, about = self._pending
             self._pending = None
@@ -158,10 +155,13 @@ class FrontierAgent:
             self._looks += 1
         if isinstance(action, Action) and action in _COUNTED:
             self._steps += 1
-            self._trail.append((pose.x, pose.z, action == Action.MOVE_FORWARD))
+            self._trail.add(pose.x, pose.z, action == Action.MOVE_FORWARD)
         return action
 
     def _sense(self, observation: Observation, pose: Pose, tilt: float) -> None:
+        known = len(self.memory.storeys)
+        if self.memory.observe(pose.x, pose.z, self._height) and not self.crossing.busy:
+            self._arrived(pose, new=len(self.memory.storeys) > known)
         if not self._started:
             self.map.mark_free_disc(pose, 0.3)
             self._started = True
@@ -171,11 +171,28 @@ class FrontierAgent:
             if action == Action.MOVE_FORWARD and moved < 0.05:
                 self.map.mark_blocked_ahead(before, 0.3, 0.1)
                 self.explorer.drop_path()
+                self.crossing.bumped(pose)
         depth = observation["depth"]
+        feet = self._height - self.memory.here.floor
+        walkable = self._stairs.pixels(self.map, observation["instance_ids"], depth)
         if tilt == 0.0:
-            new = self.map.update(depth, pose, 0.0)
+            new = self.map.update(depth, pose, 0.0, feet, walkable)
             self.explorer.note_obstacles(new)
-        self.tracker.update(observation["instance_ids"], depth, pose, tilt)
+        elif walkable is not None:
+            self.map.update_stairs(depth, pose, tilt, feet, walkable)
+        self.tracker.update(observation["instance_ids"], depth, pose, tilt, self._height)
+
+    def _arrived(self, pose: Pose, new: bool) -> None:
+        """On another storey: plans and hints made on the last one no longer apply."""
+        for storey in self.memory.storeys:
+            storey.explorer.drop_path()
+        self._hint = None
+        self._trail.clear()
+        self._explore_steps = 0
+        if self.memory.on_floor(self._height):
+            self.map.mark_free_disc(pose, 0.3)
+        if new:
+            self._scan_left = self.config.scan_turns
 
     def _decide(self, info: EpisodeInfo, pose: Pose, tilt: float) -> AgentOutput:
         if self._can_ask() and not self._asked_attribute:
@@ -190,7 +207,15 @@ class FrontierAgent:
             self._scan_left -= 1
             self._trail.clear()
             return Action.TURN_LEFT
-        stuck = self._stuck()
+        stuck = self._trail.stuck()
+        if self.crossing.busy:
+            climb = self.crossing.step(pose, self._height, stuck)
+            if climb is not None:
+                return climb
+            if self.crossing.walk_ended:
+                self.crossing.walk_ended = False
+                self._arrived(pose, new=self.crossing.arrived_new)
+            stuck = False
         if stuck:
             self.explorer.give_up_goal()
         candidate = self._choose_candidate(pose)
@@ -208,7 +233,13 @@ class FrontierAgent:
             return self._ask("route", text)
         self._explore_steps += 1
         hint = self._hint[0] if self._hint and self._hint[1] >= self._steps else None
-        action = self.explorer.step(pose, hint)
+        move = self.crossing.toward_hint(pose, self._height)
+        if move is None:
+            move = self.explorer.step(pose, hint)
+        if move is not None:
+            return move
+        self.memory.here.exhausted = True
+        action = self.crossing.leave(pose, self._height)
         if action is not None:
             return action
         if not self._exhausted:
@@ -229,7 +260,8 @@ class FrontierAgent:
         pool = [
             c
             for c in detected.values()
-            if c.instance_id not in self.rejected
+            if self._on_this_storey(c)
+            and c.instance_id not in self.rejected
             and c.instance_id not in self.explorer.unreachable
             and (self._exhausted or dialog.matches_known(c.attributes, self.known))
         ]
@@ -241,6 +273,13 @@ class FrontierAgent:
             current = min(pool, key=lambda c: (c.distance_from(pose.x, pose.z), c.instance_id))
             self._target = current.instance_id
         return current
+
+    def _on_this_storey(self, candidate: Candidate) -> bool:
+        """Whether the candidate stands on the agent's storey, where the target may be."""
+        storey = self.memory.storey_of(candidate.lowest)
+        if storey != self.memory.current:
+            return False
+        return self.crossing.fits_hint(storey)
 
     def _pursue(self, candidate: Candidate, pose: Pose, tilt: float) -> AgentOutput | None:
         """Walk to the candidate, ask about it on the way if the dialog allows, then stop."""
@@ -274,7 +313,8 @@ class FrontierAgent:
         if turn is not None:
             return turn
         info = self.episode
-        elevation = math.atan2(cy - info.camera.height_m, math.hypot(cx - pose.x, cz - pose.z))
+        eye = self._height + info.camera.height_m
+        elevation = math.atan2(cy - eye, math.hypot(cx - pose.x, cz - pose.z))
         low = math.radians(info.motion.min_tilt_deg)
         high = math.radians(info.motion.max_tilt_deg)
         want = min(max(round(elevation / self._tilt_step) * self._tilt_step, low), high)
@@ -328,6 +368,9 @@ class FrontierAgent:
                 self.rejected.add(about)
                 self.known.update(self._answer_vocabulary.parse(answer))
         elif kind == "route":
+            storey = dialog.parse_storey(answer)
+            if storey is not None or dialog.parse_route(answer) is not None:
+                self.crossing.note_hint(storey or 0)
             if dialog.says_arrived(answer):
                 self._scan_left = self.config.scan_turns
                 return
@@ -339,16 +382,3 @@ class FrontierAgent:
     # ----------------------------------------------------------------- helpers
     def _level(self, tilt: float) -> Action:
         return Action.LOOK_UP if tilt < 0.0 else Action.LOOK_DOWN
-
-    def _stuck(self) -> bool:
-        """Mostly forward moves over the last steps, yet hardly any way made: walking into
-        something the map does not show, or back and forth between two plans."""
-        trail = self._trail
-        if len(trail) < self.config.stuck_steps:
-            return False
-        forwards = sum(1 for _, _, forward in trail if forward)
-        moved = math.hypot(trail[-1][0] - trail[0][0], trail[-1][1] - trail[0][1])
-        if 3 * forwards >= 2 * len(trail) and moved < self.config.stuck_distance:
-            trail.clear()
-            return True
-        return False

@@ -5,6 +5,8 @@ the instances it missed blanked out, and says what it takes each instance for (c
 attributes). Every detected instance reported as the target category that covers enough
 pixels becomes a candidate; its pixels are back-projected with the depth into map cells, so
 the agent knows where the object is (its footprint as seen so far) and can walk up to it.
+Heights are measured from the start's floor; the lowest point seen of an object tells which
+storey it stands on.
 """
 
 from __future__ import annotations
@@ -33,10 +35,11 @@ class Candidate:
     point_sum: NDArray[np.float64] = field(default_factory=lambda: np.zeros(3))
     point_count: int = 0
     best_pixels: int = 0  # most pixels (at full resolution) it covered in one frame
+    lowest: float = math.inf  # height of its lowest point seen
 
     @property
     def centroid(self) -> tuple[float, float, float]:
-        """Mean (x, y, z) of every back-projected pixel so far; y is height above the floor."""
+        """Mean (x, y, z) of every back-projected pixel so far; y is height above the start."""
         mean = self.point_sum / max(self.point_count, 1)
         return float(mean[0]), float(mean[1]), float(mean[2])
 
@@ -99,7 +102,9 @@ class CandidateTracker:
         depth: NDArray[np.float32],
         pose: Pose,
         tilt: float,
+        height: float = 0.0,
     ) -> None:
+        """Add one frame seen from ``pose`` with the feet ``height`` above the start's."""
         ids = self.detector.detect(
             np.asarray(instance_ids)[self._pixels], np.asarray(depth)[self._pixels], self._scale
         )
@@ -112,7 +117,7 @@ class CandidateTracker:
         hit = (d > 0.0) & (d < self.camera.max_depth * 0.999)
         seen_ids = ids[mask]
         central = self._central[mask]
-        pose_matrix = self.camera.camera_to_world((pose.x, 0.0, pose.z), pose.yaw, tilt)
+        pose_matrix = self.camera.camera_to_world((pose.x, height, pose.z), pose.yaw, tilt)
         points = (self._rays[mask] * d[:, None]) @ pose_matrix[:3, :3].T + pose_matrix[:3, 3]
         for instance_id in np.unique(seen_ids).tolist():
             mine = seen_ids == instance_id
@@ -131,6 +136,7 @@ class CandidateTracker:
             candidate.point_sum += own.sum(axis=0)
             candidate.point_count += own.shape[0]
             candidate.best_pixels = max(candidate.best_pixels, pixels)
+            candidate.lowest = min(candidate.lowest, float(own[:, 1].min()))
             cells = np.union1d(candidate.cells, self.map.flat_cells(own[:, 0], own[:, 2]))
             if cells.size != candidate.cells.size:
                 candidate.cells = cells

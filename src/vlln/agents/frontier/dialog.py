@@ -202,6 +202,18 @@ def parse_route(answer: str) -> float | None:
     return sign * math.radians(min(angle, 180.0))
 
 
+def parse_storey(answer: str) -> int | None:
+    """+1 when the answer sends the agent upstairs, -1 downstairs, None otherwise ("It is
+    upstairs, take the stairs.", "1. Go forward about 2 meters and go downstairs ...")."""
+    words = _WORD.findall(answer.lower())
+    for word in words:
+        if word == "upstairs":
+            return 1
+        if word == "downstairs":
+            return -1
+    return None
+
+
 def says_arrived(answer: str) -> bool:
     """Whether a route answer says the target is right here ("You are there.", "It is right
     next to you.")."""

@@ -27,7 +27,7 @@ from vlln.agents.frontier.planner import (
 )
 from vlln.errors import ConfigError
 from vlln.sim.agent import Action
-from vlln.world.frame import wrap_angle
+from vlln.world.frame import heading_vector, wrap_angle
 
 _FOUR = ndimage.generate_binary_structure(2, 1)
 
@@ -75,6 +75,9 @@ class Explorer:
         self._follower: PathFollower | None = None
         self._facing: float | None = None  # yaw to turn to at a frontier that is still one
         self._since_plan = 0
+        self.look_down = False  # look down at a frontier before giving it up (see step)
+        self._looked_down = False
+        self._look_heading: float | None = None
         self.replans = 0  # searches run so far, for profiling
 
     # ----------------------------------------------------------------- events
@@ -112,12 +115,20 @@ class Explorer:
         At a frontier that is still one, the agent first turns toward the unexplored cells
         next to it (the camera sees no floor within 2 m, so walking up to a doorway sideways
         does not reveal what is behind it); only if that does not clear it is it given up.
+        With :attr:`look_down`, it then faces the unexplored pocket there and looks down once
+        before giving up: the pocket may be the way down a flight of stairs, whose steps a level
+        camera cannot see.
         """
+        if self._look_heading is not None:
+            return self._look_first(pose)
         if self._facing is not None:
             turn = turn_toward(wrap_angle(self._facing - pose.yaw), self.turn)
             if turn is not None:
                 return turn
             self._facing = None
+            look = self._look_first(pose)
+            if look is not None:
+                return look
             self.give_up_goal()
         for _ in range(2):
             follower = self._follower
@@ -134,8 +145,29 @@ class Explorer:
             if turn is not None:
                 self._facing = facing
                 return turn
+            look = self._look_first(pose)
+            if look is not None:
+                return look
             self.give_up_goal()
         return None
+
+    def _look_first(self, pose: Pose) -> Action | None:
+        """Before the current goal is given up: a turn toward the unexplored pocket next to
+        it, then a look down (once per goal); None to give it up now."""
+        if self._look_heading is not None:
+            turn = turn_toward(wrap_angle(self._look_heading - pose.yaw), self.turn)
+            if turn is not None:
+                return turn
+            self._look_heading = None
+            return Action.LOOK_DOWN
+        goal = self._frontier
+        if not self.look_down or self._looked_down or goal is None:
+            return None
+        self._looked_down = True
+        self._look_heading = look_heading(self.map, pose, self.turn)
+        if self._look_heading is None:
+            return Action.LOOK_DOWN
+        return self._look_first(pose)
 
     def _unexplored_direction(self, pose: Pose, point: tuple[float, float]) -> float | None:
         return unexplored_heading(self.map, pose, point, self.turn)
@@ -155,6 +187,7 @@ class Explorer:
         explored = self.map.explored[box.r0 : box.r1, box.c0 : box.c1]
         obstacle = self.map.obstacle[box.r0 : box.r1, box.c0 : box.c1]
         free = distances.traversable & explored & ~obstacle
+        free &= ~self.map.stairs[box.r0 : box.r1, box.c0 : box.c1]  # stairs lead elsewhere
         self._exclude_blacklisted(free, box.r0, box.c0)
         pocket = math.ceil(cfg.min_pocket_area / self.map.cell_size**2)
         frontiers = find_frontiers(free, explored, cfg.min_frontier_cells, pocket)
@@ -240,9 +273,15 @@ class Explorer:
         return None
 
     # ----------------------------------------------------------------- internals
-    def _plan(self, pose: Pose) -> DistanceField:
+    def _plan(self, pose: Pose, over_stairs: bool = False) -> DistanceField:
         self.replans += 1
-        return self.planner.plan(self.map, pose)
+        return self.planner.plan(self.map, pose, over_stairs)
+
+    def stairs_distances(self, pose: Pose) -> DistanceField:
+        """Distances from the agent with paths over stairs allowed (to take them)."""
+        self.drop_path()
+        self._frontier = self._candidate = None
+        return self._plan(pose, over_stairs=True)
 
     def _set_path(
         self, distances: DistanceField, cell: tuple[int, int], tolerance: float
@@ -251,6 +290,8 @@ class Explorer:
         self._follower = PathFollower(distances.path_to(*cell), self.turn, tolerance=tolerance)
         self._frontier = self._candidate = None
         self._since_plan = 0
+        self._looked_down = False
+        self._look_heading = None
         return self._follower
 
 
@@ -278,3 +319,24 @@ def unexplored_heading(
     counts = np.bincount(turns % headings, minlength=headings)
     best = int(np.argmax(counts))
     return pose.yaw + best * turn
+
+
+def look_heading(obstacle_map: ObstacleMap, pose: Pose, turn: float) -> float | None:
+    """The whole-turn heading along which the agent's line of sight runs longest over
+    unexplored cells (from 0.3 to 2 m, up to the first obstacle); None when every one is
+    explored or blocked. Unexplored floor next to a wall is short; a hole in the floor is not."""
+    headings = round(2.0 * math.pi / turn)
+    steps = np.arange(0.3, 2.0, obstacle_map.cell_size)
+    best, best_count = None, 0
+    for k in sorted(range(headings), key=lambda k: min(k, headings - k)):
+        yaw = pose.yaw + k * turn
+        dx, dz = heading_vector(yaw)
+        count = 0
+        for distance in steps:
+            row, col = obstacle_map.cell_of(pose.x + dx * distance, pose.z + dz * distance)
+            if obstacle_map.obstacle[row, col]:
+                break
+            count += int(not obstacle_map.explored[row, col])
+        if count > best_count:
+            best, best_count = yaw, count
+    return best

@@ -10,13 +10,19 @@ operation that scales with area works on the explored bounding box only.
 Obstacles, once seen, stay (the world is static and the depth is exact), so a ray that grazes a
 corner cannot erase a wall. Low obstacles hidden below the camera's field of view near the
 agent are found by bumping into them (:meth:`ObstacleMap.mark_blocked_ahead`).
+
+In a house with several storeys each storey has its own map, and heights are measured from
+that storey's floor (the agent's feet may stand above it, on stairs). Points well below the
+floor belong to a storey below and are left out. Pixels the detector calls stairs are neither
+floor nor obstacle: their cells form the stairs layer, walkable, with the highest and lowest
+stair point seen in each cell, which tells where the flight leads (see ``stairs.py``).
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import NamedTuple
+from typing import NamedTuple, TypeVar
 
 import numpy as np
 from numpy.typing import NDArray
@@ -24,6 +30,8 @@ from numpy.typing import NDArray
 from vlln.errors import ConfigError
 from vlln.sim.camera import CameraSpec
 from vlln.world.frame import heading_vector
+
+_Pixel = TypeVar("_Pixel", bound=np.generic)
 
 
 class Pose(NamedTuple):
@@ -51,6 +59,8 @@ class MapConfig:
     extent: float = 60.0  # side of the square map, metres, centred on the start
     pixel_stride: int = 4  # back-project every n-th pixel in both directions
     floor_height: float = 0.08  # points lower than this are floor
+    below_floor: float = 0.3  # ... unless this far below it: they are on a storey below
+    stair_step: float = 0.3  # stair cells further than this from the floor are off it (steep)
     obstacle_band: tuple[float, float] = (0.15, 1.5)  # points in this band are obstacles
     free_range: float = 5.0  # free space is traced this far along each column at most
     obstacle_range: float = 7.0  # obstacle points farther than this are ignored
@@ -65,10 +75,10 @@ class MapConfig:
         if self.pixel_stride < 1:
             raise ConfigError(f"pixel_stride must be >= 1, got {self.pixel_stride}")
         low, high = self.obstacle_band
-        if not self.floor_height < low < high:
+        if not -self.below_floor < self.floor_height < low < high:
             raise ConfigError(
-                f"need floor_height < obstacle_band[0] < obstacle_band[1], got "
-                f"{self.floor_height}, {self.obstacle_band}"
+                f"need -below_floor < floor_height < obstacle_band[0] < obstacle_band[1], got "
+                f"{self.below_floor}, {self.floor_height}, {self.obstacle_band}"
             )
 
 
@@ -85,6 +95,9 @@ class ObstacleMap:
         self.origin = (-n * cfg.cell_size / 2.0, -n * cfg.cell_size / 2.0)
         self.obstacle = np.zeros(self.shape, bool)
         self.explored = np.zeros(self.shape, bool)
+        self.stairs = np.zeros(self.shape, bool)
+        self.stair_high = np.full(self.shape, -np.inf, np.float32)  # highest stair point
+        self.stair_low = np.full(self.shape, np.inf, np.float32)  # lowest stair point
         self._box = CellBox(n // 2, n // 2 + 1, n // 2, n // 2 + 1)
         stride = cfg.pixel_stride
         us = np.arange(stride // 2, camera.width, stride)
@@ -100,6 +113,16 @@ class ObstacleMap:
         self._column_dirs = np.stack([column_x / norm, -1.0 / norm], axis=1)  # (w, 2): x, z
         self._trace_steps = np.arange(0.0, cfg.free_range, cfg.cell_size * 0.7)
         self._offsets: dict[float, tuple[NDArray[np.intp], NDArray[np.intp]]] = {}
+
+    # ----------------------------------------------------------------- images
+    def subsample(self, image: NDArray[_Pixel]) -> NDArray[_Pixel]:
+        """The pixels of a full-size image that the map back-projects."""
+        return image[self._pixels]
+
+    @property
+    def pixel_area(self) -> int:
+        """Full-resolution pixels that one back-projected pixel stands for."""
+        return self.config.pixel_stride**2
 
     # ----------------------------------------------------------------- cells
     def cell_of(self, x: float, z: float) -> tuple[int, int]:
@@ -155,23 +178,61 @@ class ObstacleMap:
         self.explored.flat[flat] = True
         self._grow_box(flat)
 
-    def update(self, depth: NDArray[np.float32], pose: Pose, tilt: float) -> NDArray[np.intp]:
-        """Add one depth frame; returns the flat indices of cells that became obstacles."""
+    def mark_stairs(
+        self, x: NDArray[np.floating], z: NDArray[np.floating], y: NDArray[np.floating]
+    ) -> NDArray[np.intp]:
+        """Stair points at heights ``y`` above the floor: their cells are explored stairs.
+        Returns the cells that became steep (see :meth:`steep`)."""
+        all_cells = self._flat_or_minus_one(np.asarray(x), np.asarray(z))
+        inside = all_cells >= 0
+        flat, heights = np.unique(all_cells[inside]), np.asarray(y, np.float32)[inside]
+        was_steep = self.steep(flat)
+        self.stairs.flat[flat] = True
+        self.explored.flat[flat] = True
+        np.maximum.at(self.stair_high.reshape(-1), all_cells[inside], heights)
+        np.minimum.at(self.stair_low.reshape(-1), all_cells[inside], heights)
+        self._grow_box(flat)
+        return flat[self.steep(flat) & ~was_steep]
+
+    def steep(self, cells: NDArray[np.intp]) -> NDArray[np.bool_]:
+        """Which of the cells (flat indices) are stairs too far above or below the floor to
+        step onto from it."""
+        step = self.config.stair_step
+        high, low = self.stair_high.reshape(-1)[cells], self.stair_low.reshape(-1)[cells]
+        steep: NDArray[np.bool_] = self.stairs.reshape(-1)[cells] & ((high > step) | (low < -step))
+        return steep
+
+    def steep_window(self, box: CellBox) -> NDArray[np.bool_]:
+        """:meth:`steep` for every cell of a window."""
+        window = (slice(box.r0, box.r1), slice(box.c0, box.c1))
+        step = self.config.stair_step
+        high, low = self.stair_high[window], self.stair_low[window]
+        steep: NDArray[np.bool_] = self.stairs[window] & ((high > step) | (low < -step))
+        return steep
+
+    def update(
+        self,
+        depth: NDArray[np.float32],
+        pose: Pose,
+        tilt: float,
+        feet: float = 0.0,
+        walkable: NDArray[np.bool_] | None = None,
+    ) -> NDArray[np.intp]:
+        """Add one depth frame; returns the flat indices of cells that became obstacles (or
+        steep stairs, which paths avoid as well).
+
+        ``feet``: the agent's height above this storey's floor; ``walkable``: the
+        back-projected pixels (:meth:`subsample`) that the detector calls stairs."""
         cfg = self.config
-        d = np.asarray(depth, np.float32)[self._pixels]
-        valid = (d > 0.0) & (d < self.camera.max_depth * 0.999)
-        pose_matrix = self.camera.camera_to_world((pose.x, 0.0, pose.z), pose.yaw, tilt)
-        r = pose_matrix[:3, :3].astype(np.float32)
-        # Camera-frame point = ray * depth with ray = (rx, ry, -1); rotate and translate.
-        cx, cy = self._ray_x * d, self._ray_y * d
-        x = r[0, 0] * cx + r[0, 1] * cy - r[0, 2] * d + np.float32(pose.x)
-        y = r[1, 0] * cx + r[1, 1] * cy - r[1, 2] * d + np.float32(pose_matrix[1, 3])
-        z = r[2, 0] * cx + r[2, 1] * cy - r[2, 2] * d + np.float32(pose.z)
-        dx, dz = x - np.float32(pose.x), z - np.float32(pose.z)
-        squared = dx * dx + dz * dz  # horizontal distance, squared
+        d, valid, (x, y, z), squared = self._points(depth, pose, tilt, feet)
         low, high = cfg.obstacle_band
         is_obstacle = valid & (y > low) & (y < high) & (squared < cfg.obstacle_range**2)
-        is_floor = valid & (y < cfg.floor_height)
+        is_floor = valid & (y < cfg.floor_height) & (y > -cfg.below_floor)
+        if walkable is not None and walkable.any():
+            stairs = valid & walkable & (squared < cfg.obstacle_range**2)
+            is_obstacle &= ~walkable
+            is_floor &= ~walkable
+            steep = self.mark_stairs(x[stairs], z[stairs], y[stairs])
         flat = self._flat_or_minus_one(x, z)
         obstacle_cells = flat[is_obstacle]
         obstacle_cells = obstacle_cells[obstacle_cells >= 0]
@@ -182,11 +243,50 @@ class ObstacleMap:
         self.explored.flat[seen] = True
         self._grow_box(seen)
         if tilt == 0.0:
-            self._trace_free(pose, squared, is_obstacle, is_floor, valid, d)
+            # A hole in the floor (the way down a flight) stops free space like an obstacle.
+            is_drop = valid & (y < -cfg.below_floor)
+            self._trace_free(pose, squared, is_obstacle | is_drop, is_floor, valid, d)
+        if walkable is not None and walkable.any():
+            new = np.union1d(new, steep)
         return new
 
+    def update_stairs(
+        self,
+        depth: NDArray[np.float32],
+        pose: Pose,
+        tilt: float,
+        feet: float,
+        walkable: NDArray[np.bool_],
+    ) -> None:
+        """Add only the stairs of a frame (a look down a flight from its head)."""
+        _, valid, (x, y, z), squared = self._points(depth, pose, tilt, feet)
+        stairs = valid & walkable & (squared < self.config.obstacle_range**2)
+        self.mark_stairs(x[stairs], z[stairs], y[stairs])
+
+    def _points(
+        self, depth: NDArray[np.float32], pose: Pose, tilt: float, feet: float
+    ) -> tuple[
+        NDArray[np.float32],
+        NDArray[np.bool_],
+        tuple[NDArray[np.float32], NDArray[np.float32], NDArray[np.float32]],
+        NDArray[np.float32],
+    ]:
+        """Depth, validity, (x, y, z) and squared floor-plan distance from the agent of the
+        back-projected pixels; y is the height above the floor."""
+        d = np.asarray(depth, np.float32)[self._pixels]
+        valid = (d > 0.0) & (d < self.camera.max_depth * 0.999)
+        pose_matrix = self.camera.camera_to_world((pose.x, 0.0, pose.z), pose.yaw, tilt)
+        r = pose_matrix[:3, :3].astype(np.float32)
+        # Camera-frame point = ray * depth with ray = (rx, ry, -1); rotate and translate.
+        cx, cy = self._ray_x * d, self._ray_y * d
+        x = r[0, 0] * cx + r[0, 1] * cy - r[0, 2] * d + np.float32(pose.x)
+        y = r[1, 0] * cx + r[1, 1] * cy - r[1, 2] * d + np.float32(pose_matrix[1, 3] + feet)
+        z = r[2, 0] * cx + r[2, 1] * cy - r[2, 2] * d + np.float32(pose.z)
+        dx, dz = x - np.float32(pose.x), z - np.float32(pose.z)
+        return d, valid, (x, y, z), dx * dx + dz * dz
+
     def _flat_or_minus_one(
-        self, x: NDArray[np.float32], z: NDArray[np.float32]
+        self, x: NDArray[np.floating], z: NDArray[np.floating]
     ) -> NDArray[np.intp]:
         """Flat cell index of every point, -1 for points off the map."""
         s = self.cell_size
@@ -206,8 +306,8 @@ class ObstacleMap:
         valid: NDArray[np.bool_],
         depth: NDArray[np.float32],
     ) -> None:
-        """Explore each level column from the camera to its first obstacle (or as far as it
-        sees floor, or ``free_range`` where nothing was hit).
+        """Explore each level column from the camera to its first obstacle or drop (or as far
+        as it sees floor, or ``free_range`` where nothing was hit).
 
         The cells along each column's ray are fixed offsets from the agent's cell for a given
         heading, so they are computed once per heading (the agent only ever faces a few)."""

@@ -4,7 +4,8 @@ One Dijkstra from the agent over the explored window gives the distance to every
 both ranks frontiers and yields the path to the chosen goal, so a replan costs one search.
 Obstacles are inflated by the agent's radius; unexplored cells count as free (the map is
 optimistic, and a wrong guess shows up as a new obstacle or a bump that triggers a replan).
-Cells near obstacles cost more, which keeps paths off walls and door frames.
+Cells near obstacles cost more, which keeps paths off walls and door frames. Stairs that
+climb or drop more than a step are left out of paths unless the agent means to take them.
 
 The graph is built from the eight neighbour slots of every cell, row by row, so it takes a few
 vectorised array operations and no sorting.
@@ -97,8 +98,11 @@ class Planner:
     def __init__(self, config: PlannerConfig | None = None) -> None:
         self.config = config or PlannerConfig()
 
-    def plan(self, obstacle_map: ObstacleMap, pose: Pose) -> DistanceField:
-        """Distances from the agent over the explored window (plus a margin)."""
+    def plan(
+        self, obstacle_map: ObstacleMap, pose: Pose, over_stairs: bool = False
+    ) -> DistanceField:
+        """Distances from the agent over the explored window (plus a margin); paths go up or
+        down stairs only ``over_stairs``."""
         cfg = self.config
         s = obstacle_map.cell_size
         row, col = obstacle_map.cell_of(pose.x, pose.z)
@@ -111,6 +115,8 @@ class Planner:
         )
         obstacle = obstacle_map.obstacle[box.r0 : box.r1, box.c0 : box.c1]
         blocked = ndimage.maximum_filter(obstacle, footprint=_disc(cfg.inflation / s))
+        if not over_stairs:
+            blocked |= obstacle_map.steep_window(box)
         # The extra cost near walls is a soft preference: a square neighbourhood will do.
         near = ndimage.maximum_filter(obstacle, size=2 * math.floor(cfg.near_wall / s) + 1)
         local_r, local_c = row - box.r0, col - box.c0
