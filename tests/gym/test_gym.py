@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import itertools
 import subprocess
 import sys
 from pathlib import Path
@@ -13,6 +14,7 @@ import pytest
 from gymnasium.utils.env_checker import check_env
 
 import vlln.gym
+from tests.stairs import SCENE_ID, upstairs_episode
 from vlln.gym.spaces import TALK
 from vlln.sim.agent import Action
 from vlln.tasks.generation import load_or_build_split
@@ -112,3 +114,30 @@ def test_async_vector_rollout_equals_sequential(cache_dir: str) -> None:
     assert len(parallel) == len(sequential)
     for a, b in zip(parallel, sequential, strict=True):
         np.testing.assert_array_equal(a, b)
+
+
+def test_height_rises_as_the_expert_climbs_to_a_target_upstairs(
+    cache_dir: str, tmp_path: Path
+) -> None:
+    from vlln.tasks.episode import write_episodes
+    from vlln.tasks.scenes import SceneCache
+
+    scenes = SceneCache(capacity=1)
+    episode = upstairs_episode(scenes.get(SCENE_ID), "stairs-gym")
+    scenes.close()
+    path = tmp_path / "upstairs.json.gz"
+    write_episodes(path, [episode])
+    env = gymnasium.make(
+        "vlln/IGN-v0", episode_file=str(path), privileged=True, width=64, height=48
+    )
+    obs, _ = env.reset(seed=0)
+    heights = [float(obs["height"][0])]
+    for _ in range(200):
+        obs, _, terminated, truncated, _ = env.step(int(obs["expert_action"]))
+        heights.append(float(obs["height"][0]))
+        assert env.observation_space.contains(obs)  # structure ids are negative
+        if terminated or truncated:
+            break
+    env.close()
+    assert heights[0] == 0.0 and heights[-1] == pytest.approx(2.8)
+    assert all(b >= a for a, b in itertools.pairwise(heights)), "it only climbs"

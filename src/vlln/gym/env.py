@@ -10,7 +10,8 @@ Datasheet
   accepted for the motion actions.
 * **Observation space**: ``Dict`` with ``rgb`` Box(H, W, 3) uint8, ``depth`` Box(H, W) float32
   metres (0 to the camera's ``max_depth``), ``gps`` Box(2,) float32 metres from the start in
-  the start's frame, ``compass`` and ``tilt`` Box(1,) float32 radians, ``instruction``
+  the start's frame, ``height`` Box(1,) float32 metres of the feet above the start's (it
+  changes only on stairs), ``compass`` and ``tilt`` Box(1,) float32 radians, ``instruction``
   Text, ``oracle_answer`` Text (the answer to a TALK on the step right after it, else ""),
   ``questions_left`` Discrete(budget + 1). With ``privileged=True`` also ``instance_ids``
   Box(H, W) int32 and ``expert_action`` Discrete(6) (the shortest-path follower's action).

@@ -18,12 +18,14 @@ from vlln.errors import ConfigError
 from vlln.sim.agent import Action, MotionConfig
 from vlln.sim.camera import CameraSpec
 from vlln.tasks.spec import AgentOutput, Talk
+from vlln.world.model import StructureId
 
 TALK = len(Action)
 """The action index that asks a question (the indices below it are :class:`Action`)."""
 
 MAX_GPS = 1000.0
-"""Metres from the start the ``gps`` space admits (houses are tens of metres across)."""
+"""Metres from the start the ``gps`` and ``height`` spaces admit (houses are tens of metres
+across and a few storeys high)."""
 
 MAX_TEXT = 1024
 """Characters of an instruction, answer or question the spaces admit."""
@@ -46,6 +48,7 @@ def observation_space(
         "rgb": spaces.Box(0, 255, (h, w, 3), np.uint8),
         "depth": spaces.Box(0.0, camera.max_depth, (h, w), np.float32),
         "gps": spaces.Box(-MAX_GPS, MAX_GPS, (2,), np.float32),
+        "height": spaces.Box(-MAX_GPS, MAX_GPS, (1,), np.float32),
         "compass": spaces.Box(-math.pi, math.pi, (1,), np.float32),
         "tilt": spaces.Box(low_tilt - 1e-6, high_tilt + 1e-6, (1,), np.float32),
         "instruction": text_space(1),
@@ -53,7 +56,8 @@ def observation_space(
         "questions_left": spaces.Discrete(budget + 1),
     }
     if privileged:
-        items["instance_ids"] = spaces.Box(0, np.iinfo(np.int32).max, (h, w), np.int32)
+        lowest = min(StructureId)  # the structure's ids are negative, objects' positive
+        items["instance_ids"] = spaces.Box(int(lowest), np.iinfo(np.int32).max, (h, w), np.int32)
         items["expert_action"] = spaces.Discrete(len(Action))
     return spaces.Dict(items)
 
@@ -69,6 +73,7 @@ def to_space(observation: dict[str, Any], privileged: bool) -> dict[str, Any]:
         "rgb": observation["rgb"].copy(),  # a TALK step shows the same frame again
         "depth": observation["depth"].copy(),
         "gps": observation["gps"],
+        "height": np.array([observation["height"]], np.float32),
         "compass": np.array([observation["compass"]], np.float32),
         "tilt": np.array([observation["tilt"]], np.float32),
         "instruction": observation["instruction"],
