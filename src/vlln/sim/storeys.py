@@ -28,7 +28,7 @@ from vlln.errors import ConfigError, NavigationError
 from vlln.sim.footprint import floor_cells
 from vlln.sim.navgrid import NavGrid, lattice_extent
 from vlln.world.mesh import Mesh
-from vlln.world.model import StructureId
+from vlln.world.model import StructureId, nearest_floor
 
 Point3 = tuple[float, float, float]
 
@@ -108,7 +108,7 @@ class Storeys:
 
     def level_of(self, y: float) -> int:
         """The storey whose floor is nearest the height (the lower one on a tie)."""
-        return min(range(len(self.floor_ys)), key=lambda k: (abs(self.floor_ys[k] - y), k))
+        return nearest_floor(self.floor_ys, y)
 
     def level_under(self, y: float) -> int:
         """The highest storey whose floor is at or below the height: where an object whose

@@ -18,7 +18,7 @@ from matplotlib.patches import Polygon, Rectangle
 from vlln.sim.navgrid import NavGrid
 from vlln.sim.storeys import Storeys
 from vlln.viz.labels import declutter
-from vlln.world.model import House, ObjectInstance
+from vlln.world.model import House, ObjectInstance, nearest_floor
 
 ROOM_LABEL = "room-label"
 OBJECT_LABEL = "object-label"
@@ -153,7 +153,8 @@ def storey_at_height(house: House, y: float) -> int:
     """The storey whose floor is nearest the height (the lower one on a tie), as the
     simulator assigns an agent halfway up a flight of stairs."""
     floors = {room.level: room.floor_y for room in house.rooms}
-    return min(floors, key=lambda level: (abs(floors[level] - y), level), default=0)
+    levels = sorted(floors)
+    return levels[nearest_floor([floors[level] for level in levels], y)] if levels else 0
 
 
 def stands_on(house: House, inst: ObjectInstance, storey: int) -> bool:

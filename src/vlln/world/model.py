@@ -7,6 +7,7 @@ imported from a scene summary have no geometry.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from enum import IntEnum
 
@@ -15,6 +16,12 @@ from vlln.world.mesh import Mesh
 
 Point2 = tuple[float, float]  # floor-plan (x, z), see vlln.world.frame
 Point3 = tuple[float, float, float]
+
+
+def nearest_floor(floor_ys: Sequence[float], y: float) -> int:
+    """Index of the floor height nearest ``y`` (the first on a tie): the storey of something
+    at that height, so that halfway up a flight the agent passes to the storey above."""
+    return min(range(len(floor_ys)), key=lambda k: (abs(floor_ys[k] - y), k))
 
 
 class StructureId(IntEnum):

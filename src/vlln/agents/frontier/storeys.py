@@ -16,6 +16,7 @@ from dataclasses import dataclass
 
 from vlln.agents.frontier.explorer import Explorer
 from vlln.agents.frontier.mapping import ObstacleMap
+from vlln.world.model import nearest_floor
 
 NEW_STOREY = 1.0  # m: a floor this far from every known one is a new storey
 _SAME_HEIGHT = 1e-3  # m
@@ -59,7 +60,7 @@ class StoreyMemory:
         if self._level_moves >= 2 and min(abs(height - f) for f in floors) > NEW_STOREY:
             self.storeys.append(self._new_storey(height))
             floors.append(height)
-        nearest = min(range(len(floors)), key=lambda k: (abs(floors[k] - height), k))
+        nearest = nearest_floor(floors, height)
         changed = nearest != self.current
         self.current = nearest
         return changed
