@@ -61,8 +61,9 @@ def question_positions(record: EpisodeRecord) -> list[tuple[float, float]]:
 def pose_storeys(record: EpisodeRecord, house: House) -> list[int] | None:
     """The storey of every recorded pose; None when the house has several storeys and the
     record holds no heights (a record written before heights were recorded)."""
-    if len(storeys_of(house)) == 1:
-        return [storeys_of(house)[0]] * len(record.positions)
+    storeys = storeys_of(house)
+    if len(storeys) == 1:
+        return storeys * len(record.positions)
     if len(record.heights) != len(record.positions):
         return None
     return [storey_at_height(house, y) for y in record.heights]

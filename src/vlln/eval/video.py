@@ -32,7 +32,7 @@ from vlln.errors import ConfigError
 from vlln.sim.agent import Action, AgentState
 from vlln.sim.simulator import Simulator
 from vlln.tasks.record import DialogTurn, EpisodeRecord
-from vlln.viz.topdown import draw_house, storey_at_height, storey_name, storeys_of
+from vlln.viz.topdown import draw_house, storey_name, storeys_of
 from vlln.world.frame import heading_vector
 from vlln.world.model import House
 
@@ -145,7 +145,7 @@ def _frames(
     caption: tuple[DialogTurn, int] | None = None
     for index, step in enumerate(replay(record, sim)):
         x, z, yaw = record.positions[step.pose_index]
-        storey = storey_at_height(sim.house, step.state.position[1]) if len(bases) > 1 else 0
+        storey = 0 if sim.storeys is None else sim.storeys.level_of(step.state.position[1])
         if not trail or trail[-1] != (to_pixel(x, z), storey):
             trail.append((to_pixel(x, z), storey))
         view = sim.render(step.state).rgb

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import NamedTuple, TypeVar
+from typing import Any, NamedTuple, TypeVar
 
 import numpy as np
 from numpy.typing import NDArray
@@ -197,17 +197,16 @@ class ObstacleMap:
     def steep(self, cells: NDArray[np.intp]) -> NDArray[np.bool_]:
         """Which of the cells (flat indices) are stairs too far above or below the floor to
         step onto from it."""
-        step = self.config.stair_step
-        high, low = self.stair_high.reshape(-1)[cells], self.stair_low.reshape(-1)[cells]
-        steep: NDArray[np.bool_] = self.stairs.reshape(-1)[cells] & ((high > step) | (low < -step))
-        return steep
+        return self._steep_at(np.unravel_index(cells, self.shape))
 
     def steep_window(self, box: CellBox) -> NDArray[np.bool_]:
         """:meth:`steep` for every cell of a window."""
-        window = (slice(box.r0, box.r1), slice(box.c0, box.c1))
+        return self._steep_at((slice(box.r0, box.r1), slice(box.c0, box.c1)))
+
+    def _steep_at(self, index: Any) -> NDArray[np.bool_]:
         step = self.config.stair_step
-        high, low = self.stair_high[window], self.stair_low[window]
-        steep: NDArray[np.bool_] = self.stairs[window] & ((high > step) | (low < -step))
+        high, low = self.stair_high[index], self.stair_low[index]
+        steep: NDArray[np.bool_] = self.stairs[index] & ((high > step) | (low < -step))
         return steep
 
     def update(
