@@ -41,7 +41,7 @@ from vlln.sim.shaders import (
 )
 from vlln.sim.simulator import Simulator
 from vlln.sim.storey_field import StoreyField
-from vlln.sim.viewpoints import GoalPoint, storey_view_points, view_points
+from vlln.sim.viewpoints import GoalPoint
 from vlln.world.generator import generate_house
 from vlln.world.mesh import Mesh
 from vlln.world.model import House
@@ -244,12 +244,7 @@ def _goal_sets(sim: Simulator, rng: np.random.Generator, count: int) -> list[lis
     (``(x, y, z)`` in a house with several storeys)."""
     sets: list[list[GoalPoint]] = []
     for index in rng.permutation(len(sim.house.instances)):
-        box = sim.house.instances[int(index)].box
-        points: list[GoalPoint] = (
-            list(storey_view_points(sim.storeys, box))
-            if sim.storeys is not None
-            else list(view_points(sim.grid, box))
-        )
+        points = sim.view_points(sim.house.instances[int(index)].box)
         if points:
             sets.append(points)
         if len(sets) == count:

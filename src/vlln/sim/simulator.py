@@ -23,7 +23,8 @@ from vlln.sim.navgrid import NavGrid
 from vlln.sim.renderer import Frame, Renderer
 from vlln.sim.storey_field import StoreyField
 from vlln.sim.storeys import Storeys
-from vlln.world.model import House
+from vlln.sim.viewpoints import GoalPoint, storey_view_points, view_points
+from vlln.world.model import Box3, House
 
 Point2 = tuple[float, float]
 Field = GeodesicField | StoreyField
@@ -148,6 +149,13 @@ class Simulator:
     def render_instance_ids(self, state: AgentState) -> NDArray[np.int32]:
         """The instance-id image of :meth:`render` alone (cheaper: one read-back)."""
         return self.renderer.render_instance_ids(state.position, state.yaw, state.tilt)
+
+    def view_points(self, box: Box3) -> list[GoalPoint]:
+        """Where an object in ``box`` counts as reached (:mod:`vlln.sim.viewpoints`):
+        ``(x, z)`` on one storey, ``(x, y, z)`` on its storey in a house with several."""
+        if self.storeys is not None:
+            return list(storey_view_points(self.storeys, box))
+        return list(view_points(self.grid, box))
 
     def geodesic_field(self, goals: Sequence[Sequence[float]]) -> GeodesicField:
         """The distance field to ``(x, z)`` goals on a one-storey house, built once, cached."""

@@ -51,7 +51,7 @@ from vlln.sim.agent import Action, AgentState, MotionConfig
 from vlln.sim.camera import CameraSpec
 from vlln.sim.follower import GreedyFollower
 from vlln.sim.simulator import Simulator
-from vlln.sim.viewpoints import GoalPoint, storey_view_points, view_points
+from vlln.sim.viewpoints import GoalPoint
 from vlln.tasks.episode import Episode
 from vlln.tasks.record import DialogTurn, EndReason, EpisodeRecord, ModelCall
 from vlln.tasks.scenes import SceneCache
@@ -447,10 +447,7 @@ class NavigationEnv:
                 box = self.targets[k].box
             else:
                 box = Box3(goal.position, goal.position)
-            if storeys is not None:
-                points += storey_view_points(storeys, box)
-            else:
-                points += view_points(self.sim.grid, box)
+            points += self.sim.view_points(box)
         if not points:
             raise ConfigError(
                 f"episode {episode.episode_id} in {episode.scene_id}: no goal has a navigable "

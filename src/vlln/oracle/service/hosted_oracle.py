@@ -42,7 +42,7 @@ from vlln.sim.agent import AgentState
 from vlln.sim.renderer import Frame
 from vlln.sim.simulator import Simulator
 from vlln.sim.storeys import Storeys
-from vlln.sim.viewpoints import GoalPoint, storey_view_points, view_points
+from vlln.sim.viewpoints import GoalPoint
 from vlln.tasks.episode import Episode
 from vlln.tasks.scenes import SceneCache, canonical_seed, procedural_scene_id
 from vlln.tasks.spec import REFUSAL_MESSAGE
@@ -81,7 +81,7 @@ class HostedOracle:
             scene_id, episode_id, instruction = request.scene_id, None, None
             sim = self._simulator(scene_id, client)
             target = self._instance(sim, request.target_instance_id)
-            goals = _view_points(sim, target)
+            goals = sim.view_points(target.box)
         else:
             raise ServiceError(
                 422, "no target", "give scene_id and target_instance_id, or episode_id"
@@ -312,14 +312,6 @@ class HostedOracle:
                 f"{low:g}..{high:g} deg",
             )
         return pose.tilt
-
-
-def _view_points(sim: Simulator, target: ObjectInstance) -> list[GoalPoint]:
-    """Where the target counts as reached: ``(x, z)`` on one storey, ``(x, y, z)`` on its
-    storey of a house with several (as episodes on such houses list them)."""
-    if sim.storeys is not None:
-        return list(storey_view_points(sim.storeys, target.box))
-    return list(view_points(sim.grid, target.box))
 
 
 def _view(sim: Simulator, state: AgentState, question: str) -> Frame:
