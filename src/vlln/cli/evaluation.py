@@ -42,6 +42,7 @@ def _eval(args: argparse.Namespace) -> int:
         max_steps=args.max_steps,
         agent_options=_agent_options(args),
         detector=args.detector,
+        preset=args.preset,
     )
     from vlln.tasks.scenes import SceneCache
 
@@ -151,6 +152,7 @@ def _report(args: argparse.Namespace) -> int:
 def add_eval_commands(commands: Commands) -> None:
     """`vlln eval`, `vlln score` and `vlln report`."""
     from vlln.tasks.metrics import ORACLE_SUCCESS_RADIUS, SUCCESS_RADIUS
+    from vlln.world.generator.presets import DEFAULT_PRESET, PRESETS
 
     run = commands.add_parser("eval", help="play an agent over episodes into a run directory")
     run.add_argument("--agent", required=True, help="agent name (random, expert, frontier, ...)")
@@ -171,6 +173,12 @@ def add_eval_commands(commands: Commands) -> None:
     run.add_argument("--shard", default="0/1", help="i/n: every episode whose index mod n is i")
     run.add_argument("--seed", type=int, default=0, help="base seed of agents and oracle")
     run.add_argument("--houses", type=int, help="houses of the split (default: 61/15/14)")
+    run.add_argument(
+        "--preset",
+        default=DEFAULT_PRESET,
+        choices=sorted(PRESETS),
+        help=f"houses of the split: mp3d (the benchmark's, default) or small (demo, fast tests)",
+    )
     run.add_argument("--max-steps", type=int, default=500, help="counted-step cap (default 500)")
     run.add_argument("--cache-dir", help="where built splits are kept (default ~/.cache/vlln)")
     run.add_argument("--stop-after", type=int, help="play at most N episodes now, then stop")

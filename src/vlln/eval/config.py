@@ -18,6 +18,7 @@ from vlln.errors import ConfigError, DataFormatError
 from vlln.eval.sharding import Shard
 from vlln.tasks.spec import TaskType
 from vlln.tasks.splits import SPLIT_SIZES, SPLITS
+from vlln.world.generator.presets import DEFAULT_PRESET, SMALL, preset
 
 DEFAULT_DIALOG_BUDGET = TaskType.IIGN.default_budget
 """Answered questions per IIGN episode (reference-facts §1)."""
@@ -51,6 +52,10 @@ class EvalConfig:
     # never a secret. Run files written before this field read as no options.
     agent_options: dict[str, str] = field(default_factory=dict)
     detector: str | None = None
+    # Houses of a built-in split: ``mp3d`` (the benchmark's) or ``small`` (demo, fast
+    # tests). Run files written before presets existed read as ``small``, the houses they
+    # were played on.
+    preset: str = DEFAULT_PRESET
 
     def __post_init__(self) -> None:
         task = TaskType.parse(self.task)
@@ -83,6 +88,7 @@ class EvalConfig:
                 f"(got {list(self.budgets)}); drop --budget/--budgets or use --task iign or ign"
             )
         object.__setattr__(self, "detector", resolve_detector(self.agent, self.detector))
+        preset(self.preset)
 
     def to_json(self) -> dict[str, Any]:
         data = asdict(self)
@@ -100,6 +106,7 @@ class EvalConfig:
             values = dict(data)
             values["budgets"] = tuple(values["budgets"])
             values["shard"] = Shard.parse(values["shard"])
+            values.setdefault("preset", SMALL.name)
             return EvalConfig(**values)
         except (KeyError, TypeError, ConfigError) as error:
             raise DataFormatError(f"{where}: malformed run arguments ({error})") from None

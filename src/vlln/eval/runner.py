@@ -172,6 +172,7 @@ def load_episodes(
         config.houses,
         cache_dir or default_cache_dir(),
         progress=progress,
+        preset=config.preset,
     )
 
 

@@ -55,6 +55,7 @@ from vlln.tasks.spec import TaskType
 from vlln.tasks.splits import house_seeds
 from vlln.world.catalogue import default_catalogue
 from vlln.world.frame import yaw_to_quaternion
+from vlln.world.generator.presets import SMALL
 from vlln.world.model import ObjectInstance
 
 # Why a target gave no episodes, in the order the checks run.
@@ -385,9 +386,11 @@ def build_split(
     scenes: SceneCache | None = None,
     progress: bool = True,
     floors: int = 1,
+    preset: str = SMALL.name,
 ) -> Path:
     """Write the episodes of the first ``houses`` houses of ``split`` to ``out_dir``
-    (houses of ``floors`` storeys: a target is often on another storey than the start).
+    (houses of ``preset``; ``small`` houses of ``floors`` storeys: a target is often on
+    another storey than the start).
 
     Writes ``<split>_iign.json.gz``, ``<split>_ign.json.gz``, ``<split>_objectnav.json.gz``
     and, last, ``<split>_stats.json``; the same arguments give byte-identical files. Houses
@@ -402,7 +405,7 @@ def build_split(
     per_house: list[HouseStats] = []
     try:
         for seed in tqdm(seeds, desc=f"{split} episodes", unit="house", disable=not progress):
-            sim = cache.get(procedural_scene_id(seed, floors))
+            sim = cache.get(procedural_scene_id(seed, floors, preset))
             made = generate_house_episodes(sim, house_rng(rng_seed, seed), config)
             for task in TaskType:
                 episodes[task].extend(made.of_task(task))
@@ -420,7 +423,7 @@ def build_split(
     for stats in per_house:
         totals.add(stats)
     document = {
-        "build": _build_settings(split, seeds, rng_seed, config, floors),
+        "build": _build_settings(split, seeds, rng_seed, config, floors, preset),
         "totals": {"houses": len(per_house), **totals.counts_json()},
         "houses": [stats.to_json() for stats in per_house],
     }
@@ -438,22 +441,39 @@ def load_or_build_split(
     *,
     scenes: SceneCache | None = None,
     progress: bool = True,
+    preset: str = SMALL.name,
 ) -> list[Episode]:
-    """The split's episodes of ``task``: read from ``cache_dir``, built there first if needed.
+    """The split's episodes of ``task`` on houses of ``preset``: read from ``cache_dir``
+    (a folder per preset), built there first if needed.
 
     The cache is rebuilt when its stats file records other houses, seed, settings or vlln
     version than asked for.
     """
     config = config or EpisodeGenConfig()
-    path = episode_path(cache_dir, split, task)
-    wanted = _build_settings(split, house_seeds(split, houses), rng_seed, config)
-    if not (path.exists() and _recorded_settings(stats_path(cache_dir, split)) == wanted):
-        build_split(split, houses, cache_dir, rng_seed, config, scenes=scenes, progress=progress)
+    folder = Path(cache_dir) if preset == SMALL.name else Path(cache_dir) / preset
+    path = episode_path(folder, split, task)
+    wanted = _build_settings(split, house_seeds(split, houses), rng_seed, config, 1, preset)
+    if not (path.exists() and _recorded_settings(stats_path(folder, split)) == wanted):
+        build_split(
+            split,
+            houses,
+            folder,
+            rng_seed,
+            config,
+            scenes=scenes,
+            progress=progress,
+            preset=preset,
+        )
     return read_episodes(path)
 
 
 def _build_settings(
-    split: str, seeds: list[int], rng_seed: int, config: EpisodeGenConfig, floors: int = 1
+    split: str,
+    seeds: list[int],
+    rng_seed: int,
+    config: EpisodeGenConfig,
+    floors: int = 1,
+    preset: str = SMALL.name,
 ) -> dict[str, Any]:
     settings = {
         "split": split,
@@ -465,6 +485,8 @@ def _build_settings(
     }
     if floors != 1:  # one-storey settings stay as they were
         settings["floors"] = floors
+    if preset != SMALL.name:
+        settings["preset"] = preset
     return settings
 
 

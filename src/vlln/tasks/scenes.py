@@ -3,6 +3,8 @@
 Procedural houses are named ``vlln/house_<seed>/house_<seed>.glb`` in episode files, the shape
 of the released data's paths to scans (``<root>/<scene>/<scene>.glb``, whose folder the
 reference reads as the scene); the short ``vlln/house_<seed>`` of older files is read too.
+Houses of the ``mp3d`` preset (:mod:`vlln.world.generator.presets`) are
+``vlln/mp3d_<seed>/mp3d_<seed>.glb``; their storeys follow from the seed.
 Other scene ids name an imported scan: the folder ``<scenes dir>/<scene>`` (see
 :mod:`vlln.world.scans`). :class:`SceneCache` builds a simulator per scene and keeps the most
 recent few, since runners visit episodes scene by scene.
@@ -17,53 +19,73 @@ from pathlib import Path
 from vlln.errors import ConfigError
 from vlln.sim.simulator import Simulator, SimulatorConfig
 from vlln.tasks.episode import scene_name
-from vlln.world.generator import HouseParameters, generate_house
+from vlln.world.generator.presets import SMALL, generate_preset_house, house_name
 from vlln.world.model import House
 from vlln.world.scans import load_scene
 
 _PROCEDURAL = re.compile(
-    r"^vlln/house_([0-9]{1,12})(_[23]f)?(?:/house_\1(?(2)\2)\.glb)?$", re.ASCII
+    r"^vlln/(?P<kind>house|mp3d)_(?P<seed>[0-9]{1,12})(?P<floors>_[23]f)?"
+    r"(?:/(?P=kind)_(?P=seed)(?(floors)(?P=floors))\.glb)?$",
+    re.ASCII,
 )
 MAX_SEED = 999_999_999
 """The largest house seed a scene id may name."""
 
 
-def procedural_scene_id(seed: int, floors: int = 1) -> str:
+def procedural_scene_id(seed: int, floors: int = 1, preset: str = SMALL.name) -> str:
     """``vlln/house_<seed>/house_<seed>.glb``; a house of 2 or 3 storeys (a different house
-    for the same seed) adds ``_2f`` or ``_3f`` to the name."""
-    name = f"house_{seed:05d}" if floors == 1 else f"house_{seed:05d}_{floors}f"
+    for the same seed) adds ``_2f`` or ``_3f`` to the name. A house of another preset is
+    ``vlln/<preset>_<seed>/<preset>_<seed>.glb`` (its storeys follow from the seed)."""
+    name = house_name(preset, seed, floors)
     return f"vlln/{name}/{name}.glb"
 
 
 def house_scene_id(house: House) -> str:
-    """The scene id of a procedural house, storeys included."""
-    if house.seed is None:
+    """The scene id of a procedural house, storeys and preset included."""
+    if house.seed is None or not is_procedural(f"vlln/{house.name}"):
         raise ConfigError(f"house {house.name!r} is not a procedural house (it has no seed)")
-    return procedural_scene_id(house.seed, len({room.level for room in house.rooms}) or 1)
+    return f"vlln/{house.name}/{house.name}.glb"
 
 
-def procedural_floors(scene_id: str) -> int:
-    """How many storeys the procedural house of a scene id has."""
-    procedural_seed(scene_id)
+def _match(scene_id: str) -> re.Match[str]:
     match = _PROCEDURAL.match(scene_id)
-    suffix = match.group(2) if match is not None else None
+    if match is None or (match.group("kind") != "house" and match.group("floors")):
+        raise ConfigError(
+            f"scene {scene_id[:80]!r} is not a built-in procedural house "
+            "(vlln/house_<seed>/house_<seed>.glb or vlln/mp3d_<seed>/mp3d_<seed>.glb, ASCII "
+            "digits); pass the folder of imported scenes (--scenes)"
+        )
+    return match
+
+
+def procedural_floors(scene_id: str) -> int | None:
+    """How many storeys a ``house_`` scene id names; ``None`` for a preset whose storeys
+    follow from the seed."""
+    match = _match(scene_id)
+    procedural_seed(scene_id)
+    if match.group("kind") != "house":
+        return None
+    suffix = match.group("floors")
     return 1 if not suffix else int(suffix[1])
 
 
+def procedural_preset(scene_id: str) -> str:
+    """The house preset a procedural scene id names (``house_`` ids are ``small``)."""
+    kind = _match(scene_id).group("kind")
+    return SMALL.name if kind == "house" else kind
+
+
 def is_procedural(scene_id: str) -> bool:
-    return _PROCEDURAL.match(scene_id) is not None
+    try:
+        _match(scene_id)
+    except ConfigError:
+        return False
+    return True
 
 
 def procedural_seed(scene_id: str) -> int:
     """The house seed a scene id names (ASCII digits, at most :data:`MAX_SEED`)."""
-    match = _PROCEDURAL.match(scene_id)
-    if match is None:
-        raise ConfigError(
-            f"scene {scene_id[:80]!r} is not a built-in procedural house "
-            "(vlln/house_<seed>/house_<seed>.glb, ASCII digits); pass the folder of imported "
-            "scenes (--scenes)"
-        )
-    seed = int(match.group(1))
+    seed = int(_match(scene_id).group("seed"))
     if seed > MAX_SEED:
         raise ConfigError(f"scene {scene_id!r} names seed {seed}; seeds are at most {MAX_SEED}")
     return seed
@@ -71,9 +93,9 @@ def procedural_seed(scene_id: str) -> int:
 
 def procedural_house(scene_id: str) -> House:
     """The procedural house a scene id names, with its storeys (``_2f`` is another house
-    than the one-storey house of the same seed)."""
-    return generate_house(
-        procedural_seed(scene_id), HouseParameters(floors=procedural_floors(scene_id))
+    than the one-storey house of the same seed) and preset."""
+    return generate_preset_house(
+        procedural_seed(scene_id), procedural_preset(scene_id), procedural_floors(scene_id)
     )
 
 
@@ -81,7 +103,9 @@ def canonical_seed(scene_id: str) -> int:
     """:func:`procedural_seed` of a scene id in its one spelling, :func:`procedural_scene_id`;
     ``vlln/house_76`` and ``vlln/house_076`` are refused, naming ``vlln/house_00076``."""
     seed = procedural_seed(scene_id)
-    spelled = procedural_scene_id(seed, procedural_floors(scene_id))
+    spelled = procedural_scene_id(
+        seed, procedural_floors(scene_id) or 1, procedural_preset(scene_id)
+    )
     if scene_id != spelled:
         raise ConfigError(f"scene {scene_id!r} is spelled {spelled!r}; each house has one id")
     return seed

@@ -11,6 +11,7 @@ import numpy as np
 
 from vlln.errors import HouseParametersError
 from vlln.world.catalogue.registry import Catalogue, default_catalogue
+from vlln.world.generator.contents import EXPECTED_MEAN
 from vlln.world.generator.furnishing import furnish
 from vlln.world.generator.layout import plan_floor
 from vlln.world.generator.params import HouseParameters
@@ -19,6 +20,20 @@ from vlln.world.generator.structure import build_structure
 from vlln.world.mesh import Mesh
 from vlln.world.model import House, HouseGeometry
 from vlln.world.relations import build_relations
+
+
+def house_vocabulary(
+    catalogue: Catalogue, variety: float, rng: np.random.Generator
+) -> Catalogue:
+    """The catalogue one house furnishes from: every category that some room type nearly
+    always has (beds, toilets, stoves), and a ``variety`` share of the others, so a house
+    repeats fewer kinds of object more often, as a real building does."""
+    kept = [
+        category
+        for category in catalogue
+        if max(category.rooms.values(), default=0.0) >= EXPECTED_MEAN or rng.random() < variety
+    ]
+    return Catalogue(kept)
 
 
 def generate_house(
@@ -30,9 +45,12 @@ def generate_house(
     params = params if params is not None else HouseParameters()
     params.validate()
     catalogue = catalogue if catalogue is not None else default_catalogue()
-    plan_rng, shell_rng, furniture_rng = (
-        np.random.default_rng(child) for child in np.random.SeedSequence(int(seed)).spawn(3)
+    # A fourth stream draws the house's categories, leaving the first three as they were.
+    plan_rng, shell_rng, furniture_rng, vocabulary_rng = (
+        np.random.default_rng(child) for child in np.random.SeedSequence(int(seed)).spawn(4)
     )
+    if params.category_variety < 1.0:
+        catalogue = house_vocabulary(catalogue, params.category_variety, vocabulary_rng)
     if params.floors > 1:
         rooms, doors, instances, mesh = build_storeys(
             params, catalogue, plan_rng, shell_rng, furniture_rng

@@ -40,6 +40,13 @@ class HouseParameters:
         default=1.0, metadata={"help": "multiplies the mean number of objects per room"}
     )
     floors: int = field(default=1, metadata={"help": "storeys joined by stairs (1 to 3)"})
+    category_variety: float = field(
+        default=1.0,
+        metadata={
+            "help": "share of the optional categories a house draws its objects from "
+            "(lower: fewer kinds, more same-category distractors)"
+        },
+    )
 
     def validate(self) -> None:
         """Raise :class:`HouseParametersError` naming the first parameter that cannot work."""
@@ -86,6 +93,7 @@ class HouseParameters:
             )
         _check_number("clutter", self.clutter, 0.0, 3.0)
         _check_int("floors", self.floors, 1, 3)
+        _check_number("category_variety", self.category_variety, 0.1, 1.0)
 
 
 @dataclass(frozen=True)
