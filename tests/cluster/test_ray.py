@@ -72,6 +72,7 @@ def test_a_killed_worker_is_retried_and_the_folder_equals_a_local_run(
         "episodes": 5,
         "budgets": (0, 1),
         "max_steps": 150,
+        "preset": "small",
     }
     config = EvalConfig(**settings)
     local = run_evaluation(config, tmp_path / "local", cache_dir=split_cache, progress=False)

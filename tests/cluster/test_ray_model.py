@@ -44,6 +44,7 @@ def config(tiny_model: Path) -> EvalConfig:  # noqa: F811
         episodes=4,
         budgets=(5,),
         max_steps=3,
+        preset="small",
         agent_options={"model": str(tiny_model), "device": "cpu", "max_tokens": "12"},
     )
 

@@ -82,6 +82,7 @@ def evaluate(
         "episodes": 4,
         "budgets": (0, 1),
         "max_steps": 40,
+        "preset": "small",
     }
     values.update(overrides)
     return run_evaluation(

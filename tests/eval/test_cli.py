@@ -23,7 +23,7 @@ def eval_args(out: Path, cache_dir: Path) -> list[str]:
     """The command line of the small run that ``tests.eval.runs.evaluate`` makes by default."""
     return [
         "eval", "--agent", "random", "--task", "iign", "--houses", "1", "--episodes", "4",
-        "--budgets", "0-1", "--max-steps", "40", "--cache-dir", str(cache_dir),
+        "--budgets", "0-1", "--max-steps", "40", "--cache-dir", str(cache_dir), "--preset", "small",
         "--out", str(out), "--quiet",
     ]  # fmt: skip
 
@@ -116,7 +116,7 @@ def test_eval_refuses_a_run_directory_with_other_arguments(
 def test_episode_files_are_a_source_and_malformed_ones_give_the_readers_error(
     tmp_path: Path, split_cache: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    config = EvalConfig(agent="random", task="iign", houses=1)
+    config = EvalConfig(agent="random", task="iign", houses=1, preset="small")
     episode_file = tmp_path / "two_iign.json.gz"
     write_episodes(episode_file, load_episodes(config, split_cache, progress=False)[:2])
     args = ["eval", "--agent", "random", "--task", "iign", "--budget", "0", "--max-steps", "5"]

@@ -68,7 +68,7 @@ def test_duplicate_lines_count_once(tmp_path: Path) -> None:
 
 def test_resume_sets_bad_lines_aside_and_keeps_one_line_per_episode(tmp_path: Path) -> None:
     run = RunDirectory(tmp_path)
-    run.prepare(EvalConfig(agent="random", task="iign"), planned=3)
+    run.prepare(EvalConfig(agent="random", task="iign", preset="small"), planned=3)
     bad = b'{"episode_id": "e1", "steps": "lots"}\n'
     run.episodes_path.write_bytes(line(good(1)[0]) + bad + line(good(1)[0]))
     with run.writing() as writer:

@@ -32,7 +32,7 @@ def write_lines(path: Path, items: list[EpisodeRecord]) -> None:
 
 def test_append_then_read_round_trips(tmp_path: Path) -> None:
     run = RunDirectory(tmp_path / "run")
-    run.prepare(EvalConfig(agent="random", task="iign"))
+    run.prepare(EvalConfig(agent="random", task="iign", preset="small"))
     with run.writing() as writer:
         for record in records(3):
             writer.append(record)
@@ -53,7 +53,7 @@ def test_partial_last_line_is_ignored_and_cut_on_repair(tmp_path: Path) -> None:
 
 def test_resume_through_writer_starts_on_a_fresh_line(tmp_path: Path) -> None:
     run = RunDirectory(tmp_path)
-    run.prepare(EvalConfig(agent="random", task="iign"))
+    run.prepare(EvalConfig(agent="random", task="iign", preset="small"))
     write_lines(run.episodes_path, records(1))
     with run.episodes_path.open("ab") as handle:
         handle.write(b'{"episode_id": "e1", "sce')
@@ -90,21 +90,23 @@ def test_merging_runs_refuses_overlap(tmp_path: Path) -> None:
 
 def test_run_directory_refuses_other_arguments(tmp_path: Path) -> None:
     run = RunDirectory(tmp_path / "run")
-    run.prepare(EvalConfig(agent="random", task="iign", seed=0))
-    run.prepare(EvalConfig(agent="random", task="iign", seed=0, houses=14))  # same run
+    run.prepare(EvalConfig(agent="random", task="iign", seed=0, preset="small"))
+    run.prepare(
+        EvalConfig(agent="random", task="iign", seed=0, houses=14, preset="small")
+    )  # same run
     with pytest.raises(ConfigError, match=r"seed: 0 there, 1 now.*another --out"):
-        run.prepare(EvalConfig(agent="random", task="iign", seed=1))
+        run.prepare(EvalConfig(agent="random", task="iign", seed=1, preset="small"))
 
 
 def test_results_without_run_file_are_not_adopted(tmp_path: Path) -> None:
     write_lines(tmp_path / "episodes.jsonl", records(1))
     with pytest.raises(ConfigError, match=r"run.json does not"):
-        RunDirectory(tmp_path).prepare(EvalConfig(agent="random", task="iign"))
+        RunDirectory(tmp_path).prepare(EvalConfig(agent="random", task="iign", preset="small"))
 
 
 def test_second_writer_is_refused(tmp_path: Path) -> None:
     run = RunDirectory(tmp_path)
-    run.prepare(EvalConfig(agent="random", task="iign"))
+    run.prepare(EvalConfig(agent="random", task="iign", preset="small"))
     with run.writing(), pytest.raises(ConfigError, match="another evaluation"), run.writing():
         pass
 
@@ -135,7 +137,7 @@ def test_config_round_trips_and_diffs() -> None:
 def test_config_rejects_bad_arguments(kwargs: dict[str, Any], message: str) -> None:
     values: dict[str, Any] = {"agent": "random", "task": "iign", **kwargs}
     with pytest.raises(ConfigError, match=message):
-        EvalConfig(**values)
+        EvalConfig(**values, preset="small")
 
 
 def test_budgets_and_shards_parse() -> None:

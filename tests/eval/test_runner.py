@@ -141,7 +141,7 @@ def test_unknown_agent_fails_before_any_work(tmp_path: Path, split_cache: Path) 
 
 def test_unknown_task_names_the_valid_ones() -> None:
     with pytest.raises(ConfigError, match="iign, ign, objectnav"):
-        EvalConfig(agent="random", task="pointnav")
+        EvalConfig(agent="random", task="pointnav", preset="small")
 
 
 def test_other_arguments_in_an_existing_run_are_refused(
@@ -218,7 +218,7 @@ def test_plan_spreads_n_episodes_and_shards_round_robin(split_cache: Path) -> No
 
 
 def test_spread_over_scenes_shares_episodes_between_houses(split_cache: Path) -> None:
-    config = EvalConfig(agent="random", task="iign", houses=1)
+    config = EvalConfig(agent="random", task="iign", houses=1, preset="small")
     episodes = load_episodes(config, split_cache, progress=False)[:10]
     other = [
         replace(e, scene_id="vlln/house_99999", episode_id=f"o{i}")
@@ -230,7 +230,7 @@ def test_spread_over_scenes_shares_episodes_between_houses(split_cache: Path) ->
 
 
 def test_order_by_scene_keeps_first_appearance(split_cache: Path) -> None:
-    config = EvalConfig(agent="random", task="iign", houses=1)
+    config = EvalConfig(agent="random", task="iign", houses=1, preset="small")
     a, b, c = load_episodes(config, split_cache, progress=False)[:3]
     other = replace(a, scene_id="vlln/house_99999", episode_id="x")
     assert order_by_scene([a, other, b, c]) == [a, b, c, other]

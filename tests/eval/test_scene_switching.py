@@ -15,7 +15,7 @@ def test_moving_through_houses_changes_no_episode_line(
 ) -> None:
     """Three houses in one run: the third house's lines equal those of a run on it alone."""
     cache = tmp_path_factory.mktemp("three_houses")
-    three = EvalConfig(agent="random", task="iign", houses=3)
+    three = EvalConfig(agent="random", task="iign", houses=3, preset="small")
     by_scene: dict[str, list[Episode]] = {}
     for episode in load_episodes(three, cache, progress=False):
         by_scene.setdefault(episode.scene_id, []).append(episode)

@@ -22,6 +22,7 @@ def test_a_trained_checkpoint_plays_episodes_with_recorded_outputs(
     run = tmp_path / "run"
     evaluate = ["eval", "--agent", "vlln", "--model", str(trained), "--task", "iign"]
     evaluate += ["--houses", "1", "--episodes", "2", "--budget", "5", "--max-steps", "12"]
+    evaluate += ["--preset", "small"]
     evaluate += ["--cache-dir", str(tmp_path / "splits"), "--out", str(run), "--quiet"]
     assert main(evaluate) == 0
     assert "vlln on IIGN" in capsys.readouterr().out
@@ -44,6 +45,7 @@ def test_the_vlln_agent_needs_a_model_folder(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
     common = ["eval", "--agent", "vlln", "--task", "iign", "--houses", "1", "--episodes", "1"]
+    common += ["--preset", "small"]
     common += ["--cache-dir", str(tmp_path / "splits"), "--quiet"]
     assert main([*common, "--out", str(tmp_path / "a")]) == 2
     assert "the vlln agent needs --model PATH" in capsys.readouterr().err

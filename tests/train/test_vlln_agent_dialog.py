@@ -58,6 +58,7 @@ def test_a_checkpoint_trained_on_dialog_asks_and_the_answers_are_recorded(
     run = tmp_path / "run"
     evaluate = ["eval", "--agent", "vlln", "--model", str(trained), "--task", "iign"]
     evaluate += ["--houses", "1", "--episodes", "1", "--budget", "5", "--max-steps", "3"]
+    evaluate += ["--preset", "small"]
     evaluate += ["--cache-dir", str(tmp_path / "splits"), "--out", str(run), "--quiet"]
     assert main(evaluate) == 0
 

@@ -13,16 +13,23 @@ import statistics
 import time
 
 from vlln.bench.figures import Figure, emit
+from vlln.bench.world_fidelity import preset_statistics, print_comparison
 from vlln.errors import ConfigError
 from vlln.world.catalogue import default_catalogue
 from vlln.world.catalogue.reference import REFERENCE_CATEGORIES
-from vlln.world.generator.house import generate_house
+from vlln.world.generator.presets import SMALL, generate_preset_house
 
 
 def run_world_benchmark(
-    houses: int = 20, first_seed: int = 0, as_json: bool = False
+    houses: int = 20,
+    first_seed: int = 0,
+    as_json: bool = False,
+    preset: str = SMALL.name,
+    test_houses: int = 0,
 ) -> list[Figure]:
-    """Build houses ``first_seed .. first_seed + houses - 1`` and print their mean figures."""
+    """Build houses ``first_seed .. first_seed + houses - 1`` of ``preset`` and print their
+    mean figures; with ``test_houses``, then each anchored statistic of that many test houses
+    and their episodes beside its Matterport3D anchor (:mod:`vlln.bench.world_fidelity`)."""
     if houses < 1:
         raise ConfigError(f"--houses {houses} must be at least 1")
     if first_seed < 0:
@@ -30,7 +37,7 @@ def run_world_benchmark(
     instances, categories, triangles, walls, cpus = [], [], [], [], []
     for seed in range(first_seed, first_seed + houses):
         cpu_start, wall_start = time.process_time(), time.perf_counter()
-        house = generate_house(seed)
+        house = generate_preset_house(seed, preset)
         walls.append(time.perf_counter() - wall_start)
         cpus.append(time.process_time() - cpu_start)
         instances.append(len(house.instances))
@@ -49,4 +56,6 @@ def run_world_benchmark(
     ]
     for figure in figures:
         emit(figure, as_json)
+    if test_houses > 0:
+        print_comparison(preset_statistics(preset, test_houses), as_json)
     return figures

@@ -84,14 +84,36 @@ def _bench_data(args: argparse.Namespace) -> int:
     return 0
 
 
+def _bench_fidelity(args: argparse.Namespace) -> int:
+    from vlln.bench.fidelity import run_fidelity_benchmark
+
+    run_fidelity_benchmark(
+        Path(args.out),
+        episodes=args.episodes,
+        preset=args.preset,
+        workers=args.workers,
+        cache_dir=None if args.cache_dir is None else Path(args.cache_dir),
+        as_json=args.json,
+    )
+    return 0
+
+
 def _bench_world(args: argparse.Namespace) -> int:
     from vlln.bench.world import run_world_benchmark
 
-    run_world_benchmark(houses=args.houses, first_seed=args.first_seed, as_json=args.json)
+    run_world_benchmark(
+        houses=args.houses,
+        first_seed=args.first_seed,
+        as_json=args.json,
+        preset=args.preset,
+        test_houses=args.test_houses,
+    )
     return 0
 
 
 def add_bench_commands(commands: Commands) -> None:
+    from vlln.world.generator.presets import DEFAULT_PRESET, PRESETS
+
     bench = commands.add_parser("bench", help="speed and memory benchmarks").add_subparsers(
         dest="bench_command", required=True
     )
@@ -164,11 +186,42 @@ def add_bench_commands(commands: Commands) -> None:
     )
     bench_data.add_argument("--json", action="store_true", help="print one JSON object per line")
     bench_data.set_defaults(handler=_bench_data)
+    fidelity = bench.add_parser(
+        "fidelity",
+        help="SR/SPL with 95%% intervals and the failure taxonomy of frontier (noisy detector) "
+        "and expert on the paper's test protocol, beside the paper's Table 1",
+    )
+    fidelity.add_argument(
+        "--episodes", type=int, default=200, help="episodes of test500 per run (default 200)"
+    )
+    fidelity.add_argument(
+        "--out", default="out/fidelity", help="run folders, resumed (default out/fidelity)"
+    )
+    fidelity.add_argument(
+        "--preset", default=DEFAULT_PRESET, choices=sorted(PRESETS), help="houses (default mp3d)"
+    )
+    fidelity.add_argument("--workers", type=int, default=1, help="processes (default 1)")
+    fidelity.add_argument("--cache-dir", help="where built splits are kept (default ~/.cache/vlln)")
+    fidelity.add_argument("--json", action="store_true", help="print one JSON object per line")
+    fidelity.set_defaults(handler=_bench_fidelity)
     bench_world = bench.add_parser(
         "world", help="catalogue size; objects, triangles and build time per house"
     )
     bench_world.add_argument("--houses", type=int, default=20, help="houses (default 20)")
     bench_world.add_argument("--first-seed", type=int, default=0, help="first seed (default 0)")
+    bench_world.add_argument(
+        "--preset",
+        default=DEFAULT_PRESET,
+        choices=sorted(PRESETS),
+        help="houses to measure: mp3d (the benchmark's, default) or small",
+    )
+    bench_world.add_argument(
+        "--test-houses",
+        type=int,
+        default=14,
+        help="test houses whose statistics are printed beside the Matterport3D anchors "
+        "(default 14, the whole test split; 0: none)",
+    )
     bench_world.add_argument("--json", action="store_true", help="print one JSON object per line")
     bench_world.set_defaults(handler=_bench_world)
     add_bench_web(bench)

@@ -74,15 +74,23 @@ def _data_export_sft(args: argparse.Namespace) -> int:
 
 
 def _data_episodes(args: argparse.Namespace) -> int:
+    from vlln.errors import ConfigError
     from vlln.tasks.generation import build_split
+    from vlln.world.generator.presets import SMALL
 
+    if args.floors is not None and args.preset != SMALL.name:
+        raise ConfigError(
+            f"--floors sets the storeys of small houses; {args.preset} houses draw theirs from "
+            "the seed: add --preset small, or drop --floors"
+        )
     out = build_split(
         args.split,
         args.houses,
         Path(args.out),
         args.seed,
-        floors=args.floors,
+        floors=args.floors or 1,
         progress=not args.quiet,
+        preset=args.preset,
     )
     ign = out / f"{args.split}_ign.json.gz"
     print(f"episodes in {out} (evaluate with: vlln eval --episode-file {ign})")
@@ -90,6 +98,8 @@ def _data_episodes(args: argparse.Namespace) -> int:
 
 
 def add_data_commands(commands: Commands) -> None:
+    from vlln.world.generator.presets import DEFAULT_PRESET, PRESETS
+
     data = commands.add_parser("data", help="the training-data pipeline").add_subparsers(
         dest="data_command", required=True
     )
@@ -124,7 +134,13 @@ def add_data_commands(commands: Commands) -> None:
     episodes.add_argument("--split", default="test", help="house split (default test)")
     episodes.add_argument("--seed", type=int, default=0, help="seed of every random choice")
     episodes.add_argument(
-        "--floors", type=int, default=1, help="storeys joined by stairs, 1 to 3 (default 1)"
+        "--preset",
+        default=DEFAULT_PRESET,
+        choices=sorted(PRESETS),
+        help="houses: mp3d (the benchmark's, default) or small (demo, fast tests)",
+    )
+    episodes.add_argument(
+        "--floors", type=int, help="small houses: storeys joined by stairs, 1 to 3 (default 1)"
     )
     episodes.add_argument("--quiet", action="store_true", help="no progress bar")
     episodes.set_defaults(handler=_data_episodes)

@@ -158,7 +158,12 @@ def add_eval_commands(commands: Commands) -> None:
     run.add_argument("--agent", required=True, help="agent name (random, expert, frontier, ...)")
     run.add_argument("--task", required=True, help="iign, ign or objectnav")
     source = run.add_mutually_exclusive_group()
-    source.add_argument("--split", default="test", help="built-in split (default test)")
+    source.add_argument(
+        "--split",
+        default="test",
+        help="built-in split: train, val, test (default) or test500 (the paper's 500 "
+        "test episodes)",
+    )
     source.add_argument("--episode-file", help="released-format episode file (.json.gz)")
     run.add_argument("--scenes", help="folder of scanned scenes (<scenes>/<scene>/) the file names")
     run.add_argument("--episodes", type=int, help="first N episodes (default: all)")
@@ -177,7 +182,7 @@ def add_eval_commands(commands: Commands) -> None:
         "--preset",
         default=DEFAULT_PRESET,
         choices=sorted(PRESETS),
-        help=f"houses of the split: mp3d (the benchmark's, default) or small (demo, fast tests)",
+        help="houses of the split: mp3d (the benchmark's, default) or small (demo, fast tests)",
     )
     run.add_argument("--max-steps", type=int, default=500, help="counted-step cap (default 500)")
     run.add_argument("--cache-dir", help="where built splits are kept (default ~/.cache/vlln)")

@@ -18,6 +18,7 @@ from vlln.errors import ConfigError, DataFormatError
 from vlln.eval.sharding import Shard
 from vlln.tasks.spec import TaskType
 from vlln.tasks.splits import SPLIT_SIZES, SPLITS
+from vlln.tasks.test_protocol import TEST_PROTOCOL_EPISODES, TEST_PROTOCOL_SPLIT, source_split
 from vlln.world.generator.presets import DEFAULT_PRESET, SMALL, preset
 
 DEFAULT_DIALOG_BUDGET = TaskType.IIGN.default_budget
@@ -62,12 +63,21 @@ class EvalConfig:
         object.__setattr__(self, "task", task.value)
         if (self.split is None) == (self.episode_file is None):
             raise ConfigError("give exactly one episode source: a split or an episode file")
-        if self.split is not None and self.split not in SPLITS:
-            raise ConfigError(f"unknown split {self.split!r}; choose one of: {', '.join(SPLITS)}")
+        known = (*SPLITS, TEST_PROTOCOL_SPLIT)
+        if self.split is not None and self.split not in known:
+            raise ConfigError(f"unknown split {self.split!r}; choose one of: {', '.join(known)}")
+        if self.split == TEST_PROTOCOL_SPLIT:
+            episodes = TEST_PROTOCOL_EPISODES if self.episodes is None else self.episodes
+            object.__setattr__(self, "episodes", episodes)
+            if episodes > TEST_PROTOCOL_EPISODES or self.houses not in (None, 14):
+                raise ConfigError(
+                    f"split {TEST_PROTOCOL_SPLIT} is {TEST_PROTOCOL_EPISODES} episodes on the 14 "
+                    "test houses; pass --episodes up to 500 and no --houses, or use --split test"
+                )
         if self.episodes is not None and self.episodes < 1:
             raise ConfigError(f"--episodes must be at least 1, got {self.episodes}")
         if self.split is not None and self.houses is None:
-            object.__setattr__(self, "houses", SPLIT_SIZES[self.split])
+            object.__setattr__(self, "houses", SPLIT_SIZES[source_split(self.split)])
         if self.episode_file is not None and self.houses is not None:
             raise ConfigError("--houses applies to built-in splits, not to an episode file")
         if self.houses is not None and self.houses < 1:

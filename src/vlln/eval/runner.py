@@ -52,6 +52,7 @@ from vlln.tasks.metrics import success
 from vlln.tasks.record import EpisodeRecord, agent_label
 from vlln.tasks.scenes import SceneCache
 from vlln.tasks.spec import TaskConfig, TaskType
+from vlln.tasks.test_protocol import source_split
 
 AgentFactory = Callable[[str, int, str | None], Agent]  # (name, seed, detector)
 OracleFactory = Callable[[int], Oracle]
@@ -167,7 +168,7 @@ def load_episodes(
     if config.split is None or config.houses is None:
         raise ConfigError("the run names no episode source; give a split or an episode file")
     return load_or_build_split(
-        config.split,
+        source_split(config.split),
         config.task,
         config.houses,
         cache_dir or default_cache_dir(),

@@ -182,12 +182,18 @@ def read_episodes(path: str | Path) -> list[Episode]:
 def write_episodes(path: str | Path, episodes: Iterable[Episode]) -> None:
     """Write episodes to ``path`` atomically; the same episodes always give the same bytes."""
     path = Path(path)
-    items = [episode.to_json() for episode in episodes]
-    try:
-        text = json.dumps({"episodes": items}, allow_nan=False)
-    except (TypeError, ValueError) as err:
-        raise DataFormatError(f"cannot write episodes to {path}: {err}") from None
-    _parse_file(json.loads(text), f"episodes for {path}")
+    # Episode by episode, so a split whose ObjectNav goals list thousands of view points never
+    # holds more than one episode as JSON objects; each is read back as a reader would.
+    parts = []
+    for index, episode in enumerate(episodes):
+        try:
+            part = json.dumps(episode.to_json(), allow_nan=False)
+        except (TypeError, ValueError) as err:
+            raise DataFormatError(f"cannot write episodes to {path}: {err}") from None
+        where = f"episodes for {path}: episode {index} (episode_id {episode.episode_id!r})"
+        Episode.from_json(json.loads(part), where)
+        parts.append(part)
+    text = '{"episodes": [' + ", ".join(parts) + "]}"
     blob = gzip.compress(text.encode("utf-8"), compresslevel=9, mtime=0)
     write_bytes_atomic(path, blob)
 

@@ -22,9 +22,7 @@ from vlln.world.model import House, HouseGeometry
 from vlln.world.relations import build_relations
 
 
-def house_vocabulary(
-    catalogue: Catalogue, variety: float, rng: np.random.Generator
-) -> Catalogue:
+def house_vocabulary(catalogue: Catalogue, variety: float, rng: np.random.Generator) -> Catalogue:
     """The catalogue one house furnishes from: every category that some room type nearly
     always has (beds, toilets, stoves), and a ``variety`` share of the others, so a house
     repeats fewer kinds of object more often, as a real building does."""

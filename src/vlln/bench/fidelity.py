@@ -1,0 +1,204 @@
+"""``vlln bench fidelity``: how hard the benchmark is, next to the paper's Table 1.
+
+It plays the paper's non-learned baseline, frontier exploration with a detector that sees no
+privileged labels (our ``noisy`` detector), and the privileged shortest-path expert on the
+same episodes of the paper's test protocol (``--split test500``: the 14 test houses of the
+``mp3d`` preset), on ObjectNav, IGN and IIGN (IIGN at dialog budgets 0 and 5). Every run is an
+ordinary run directory under ``--out``, so a killed benchmark resumes where it stopped and the
+runs can be scored, reported and filmed like any other.
+
+For each task and budget it prints SR and SPL with 95 % intervals (Wilson's interval for the
+success rate, Student's t for the mean SPL), the failure taxonomy's shares, and for IIGN the
+dialog gain, SR at budget 5 minus SR at budget 0 on the same episodes, with a paired 95 %
+interval (the paper's MSP over budgets 0..5 is the mean of such gains; 0 and 5 bound it).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import multiprocessing
+import statistics
+import sys
+from collections import Counter
+from collections.abc import Sequence
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+from scipy import stats
+
+from vlln.errors import ConfigError
+from vlln.eval.config import EvalConfig
+from vlln.eval.results import RunDirectory
+from vlln.eval.runner import default_cache_dir, load_episodes, run_evaluation
+from vlln.tasks.metrics import record_spl, success
+from vlln.tasks.record import EpisodeRecord
+from vlln.tasks.taxonomy import CLASS_ABBREVIATIONS, FAILURE_CLASSES, classify
+from vlln.tasks.test_protocol import TEST_PROTOCOL_EPISODES, TEST_PROTOCOL_SPLIT
+from vlln.world.generator.presets import DEFAULT_PRESET
+
+CONFIDENCE = 0.95
+
+
+@dataclass(frozen=True)
+class FidelityRun:
+    """One run of the benchmark: an agent (and detector) on a task at some budgets."""
+
+    agent: str
+    detector: str | None
+    task: str
+    budgets: tuple[int, ...]
+
+    @property
+    def folder(self) -> str:
+        detector = f"_{self.detector}" if self.detector else ""
+        return f"{self.agent}{detector}_{self.task}"
+
+    def config(self, episodes: int, preset: str) -> EvalConfig:
+        return EvalConfig(
+            agent=self.agent,
+            task=self.task,
+            split=TEST_PROTOCOL_SPLIT,
+            episodes=episodes,
+            budgets=self.budgets,
+            detector=self.detector,
+            preset=preset,
+        )
+
+
+RUNS: tuple[FidelityRun, ...] = (
+    FidelityRun("frontier", "noisy", "objectnav", (0,)),
+    FidelityRun("frontier", "noisy", "ign", (0,)),
+    FidelityRun("frontier", "noisy", "iign", (0, 5)),
+    FidelityRun("expert", None, "objectnav", (0,)),
+    FidelityRun("expert", None, "ign", (0,)),
+    FidelityRun("expert", None, "iign", (0,)),
+)
+
+
+@dataclass(frozen=True)
+class Interval:
+    value: float
+    low: float
+    high: float
+
+    def to_json(self) -> dict[str, float]:
+        return {k: round(v, 2) for k, v in (("value", self.value), ("low", self.low),
+                                             ("high", self.high))}  # fmt: skip
+
+
+def success_interval(successes: int, n: int) -> Interval:
+    """SR in % with Wilson's 95 % score interval (sound near 0 % and 100 %, unlike Wald's)."""
+    ci = stats.binomtest(successes, n).proportion_ci(CONFIDENCE, method="wilson")
+    return Interval(100.0 * successes / n, 100.0 * ci.low, 100.0 * ci.high)
+
+
+def mean_interval(values: Sequence[float]) -> Interval:
+    """The mean with Student's t 95 % interval (a point when there is one value or no spread)."""
+    mean = statistics.fmean(values)
+    if len(values) < 2 or statistics.pstdev(values) == 0.0:
+        return Interval(mean, mean, mean)
+    sem = statistics.stdev(values) / math.sqrt(len(values))
+    half = float(stats.t.ppf(0.5 + CONFIDENCE / 2.0, len(values) - 1)) * sem
+    return Interval(mean, mean - half, mean + half)
+
+
+def group_figures(records: Sequence[EpisodeRecord]) -> dict[str, object]:
+    """SR and SPL with intervals, and the share of each failure class, of one group."""
+    n = len(records)
+    outcomes = Counter(classify(r) for r in records)
+    return {
+        "n": n,
+        "sr": success_interval(sum(success(r) for r in records), n).to_json(),
+        "spl": mean_interval([100.0 * record_spl(r) for r in records]).to_json(),
+        "taxonomy": {
+            CLASS_ABBREVIATIONS[name]: round(100.0 * outcomes[name] / n, 2)
+            for name in FAILURE_CLASSES
+        },
+    }
+
+
+def dialog_gain(records: Sequence[EpisodeRecord], low: int, high: int) -> Interval | None:
+    """SR at budget ``high`` minus SR at ``low`` on the episodes played at both, with a paired
+    95 % interval, in percentage points."""
+    by_budget: dict[int, dict[tuple[str, str], bool]] = {low: {}, high: {}}
+    for record in records:
+        if record.budget in by_budget:
+            key = (record.scene_id, record.episode_id)
+            by_budget[record.budget][key] = success(record)
+    shared = sorted(set(by_budget[low]) & set(by_budget[high]))
+    if not shared:
+        return None
+    gains = [100.0 * (by_budget[high][k] - by_budget[low][k]) for k in shared]
+    return mean_interval(gains)
+
+
+def _play(job: tuple[FidelityRun, int, str, str, str | None]) -> str:
+    run, episodes, preset, out, cache_dir = job
+    config = run.config(episodes, preset)
+    cache = None if cache_dir is None else Path(cache_dir)
+    outcome = run_evaluation(config, Path(out) / run.folder, cache_dir=cache, progress=False)
+    return f"{run.folder}: {len(outcome.records)} of {outcome.planned} episode lines"
+
+
+def run_fidelity_benchmark(
+    out: Path,
+    episodes: int = 200,
+    preset: str = DEFAULT_PRESET,
+    workers: int = 1,
+    cache_dir: Path | None = None,
+    as_json: bool = False,
+) -> list[dict[str, object]]:
+    """Play (or resume) every run of :data:`RUNS` into ``out`` and print the figures."""
+    if not 1 <= episodes <= TEST_PROTOCOL_EPISODES:
+        raise ConfigError(f"--episodes must be 1..{TEST_PROTOCOL_EPISODES}, got {episodes}")
+    if workers < 1:
+        raise ConfigError(f"--workers must be at least 1, got {workers}")
+    cache = None if cache_dir is None else str(cache_dir)
+    jobs = [(run, episodes, preset, str(out), cache) for run in RUNS]
+    # Every task's episodes are built once, before the workers share the cache.
+    for task in sorted({run.task for run in RUNS}):
+        config = RUNS[0].config(episodes, preset)
+        load_episodes(replace(config, task=task), cache_dir or default_cache_dir(), progress=False)
+    if workers == 1:
+        done = [_play(job) for job in jobs]
+    else:  # spawned, not forked: a forked child would share the parent's GL state
+        with multiprocessing.get_context("spawn").Pool(workers) as pool:
+            done = pool.map(_play, jobs, chunksize=1)
+    for line in done:
+        print(f"fidelity: {line}", file=sys.stderr)
+    rows = [
+        row for run in RUNS for row in fidelity_rows(run, RunDirectory(out / run.folder).records())
+    ]
+    for row in rows:
+        print(json.dumps(row) if as_json else _table_line(row))
+    return rows
+
+
+def fidelity_rows(run: FidelityRun, records: Sequence[EpisodeRecord]) -> list[dict[str, object]]:
+    """One row per budget of a run, and for IIGN the dialog gain between its budgets."""
+    label = run.agent + (f" ({run.detector} detector)" if run.detector else "")
+    rows: list[dict[str, object]] = []
+    for budget in run.budgets:
+        group = [r for r in records if r.budget == budget]
+        if group:
+            rows.append({"agent": label, "task": run.task, "budget": budget,
+                         **group_figures(group)})  # fmt: skip
+    if len(run.budgets) > 1:
+        gain = dialog_gain(records, min(run.budgets), max(run.budgets))
+        if gain is not None:
+            rows.append({"agent": label, "task": run.task,
+                         "dialog_gain_pp": gain.to_json(),
+                         "budgets": [min(run.budgets), max(run.budgets)]})  # fmt: skip
+    return rows
+
+
+def _table_line(row: dict[str, object]) -> str:
+    head = f"{row['agent']:<28} {row['task']:<9}"
+    if "dialog_gain_pp" in row:
+        gain = row["dialog_gain_pp"]
+        return f"{head} dialog gain {gain} pp (budgets {row['budgets']})"
+    return (
+        f"{head} b{row['budget']} n={row['n']} SR {row['sr']} SPL {row['spl']} "
+        f"taxonomy {row['taxonomy']}"
+    )
