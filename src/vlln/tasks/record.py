@@ -79,7 +79,7 @@ class EpisodeRecord:
     geodesic_start: float  # d0: start to the nearest goal view point, metres
     geodesic_trace: list[float]  # after every counted step, metres (inf: unreachable)
     path_length: float  # L: sum of straight-line displacements
-    stop_instance_id: int | None  # what it stopped at (see NavigationEnv._stop_instance)
+    stop_instance_id: int | None  # what it stopped at (see vlln.tasks.stop)
     stop_instance_category: str | None
     target_seen_step: int | None  # first step the target was observed (see metrics)
     positions: list[list[float]] = field(default_factory=list)  # [x, z, yaw] per step
