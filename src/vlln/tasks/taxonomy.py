@@ -12,9 +12,10 @@ The paper (supplementary, "Failure analysis") defines five failure modes in word
 
 Our decision rules turn these into a function of a finished :class:`EpisodeRecord`. They are
 applied in this order and the first that matches decides, so success plus the five failures
-partition all episodes. "Near" an object means a geodesic distance below the stop radius
-(1 m) to one of its view points, the measure success uses; the facts about a stop come from
-:mod:`vlln.tasks.stop`.
+partition all episodes. "Near" an object means a geodesic distance strictly below the stop
+radius (1 m) to one of its view points, the measure success uses; the facts about a stop come
+from :mod:`vlln.tasks.stop`. docs/metrics.md gives the reasons for each rule and the
+hand-checked episodes they are tested against.
 
 1. **success** -- stopped strictly closer than the success radius (0.25 m) to a goal's view
    point.
@@ -25,7 +26,7 @@ A stop outside the success radius:
 
 3. **ST** -- near the target (final geodesic distance below 1 m), unless the stop is at a
    distractor: facing a same-category instance that is not a goal, or nearer to a
-   distractor's view points than to the target's (then rule 5 or 7 decides).
+   distractor's view points than to the target's (then the rules below decide).
 4. The agent stopped because nothing was left to explore (``stop_reason`` is
    ``explored``): it did not stop *at* anything, so **MD** if it observed the target, else
    **Expl**.
@@ -41,8 +42,8 @@ A stop outside the success radius:
    target was observed, else **Expl**.
 
 Old records without ``stop_reason`` or ``distractor_distance`` (written before these
-fields) skip rules 4 and 7 and the nearer-distractor test of rule 3; the other rules read
-them as before. Agents that do not report a stop reason (all but the frontier agent) skip
+fields) skip rules 4 and 7 and the nearer-distractor test of rule 3; the other rules apply to
+them unchanged. Agents that do not report a stop reason (all but the frontier agent) skip
 rule 4.
 
 "Observed" has one definition, :func:`target_observed`, which the runner uses to fill
