@@ -3,14 +3,20 @@ import math
 import pytest
 
 from tests.agents import world
+from tests.sim import scenes
 from vlln.agents.frontier import FrontierAgent
 from vlln.errors import ConfigError
+from vlln.eval.runner import play_episode
+from vlln.eval.sweep import play_sweep
 from vlln.sim.agent import Action, MotionConfig
 from vlln.sim.camera import CameraSpec
 from vlln.sim.simulator import Simulator
 from vlln.tasks.env import EpisodeInfo
+from vlln.tasks.record import StopReason
 from vlln.tasks.spec import Talk, TaskType
 from vlln.tasks.taxonomy import classify
+from vlln.world.mesh import Mesh
+from vlln.world.model import Attributes, Box3, House, HouseGeometry, ObjectInstance, Room
 
 
 @pytest.fixture(scope="module")
@@ -45,8 +51,11 @@ def test_iign_without_dialog_takes_the_first_chair_and_with_dialog_the_right_one
 ) -> None:
     episode = world.episode(sim, world.BLUE_CHAIR, (3.5, 2.0), -math.pi / 2)
     alone = world.make_env(sim, [episode], TaskType.IIGN, budget=0)
-    world.play(alone, FrontierAgent(seed=3))
-    assert classify(alone.record("frontier")) == "ambiguous_detection"
+    agent = FrontierAgent(seed=3)
+    world.play(alone, agent)
+    record = alone.record("frontier", stop_reason=agent.stop_reason())
+    assert record.stop_reason == StopReason.CANDIDATE  # it took the red chair for the target
+    assert classify(record) == "ambiguous_detection"
 
     talking = world.make_env(sim, [episode], TaskType.IIGN, budget=5)
     actions = world.play(talking, FrontierAgent(seed=3))
@@ -113,3 +122,40 @@ def test_needs_reset_and_a_privileged_environment() -> None:
     )
     with pytest.raises(ConfigError, match="privileged"):
         agent.reset(info)
+
+
+def hidden_chair_house() -> Simulator:
+    """One room; the only chair stands inside a closed wardrobe, where no camera can see it."""
+    wardrobe = ObjectInstance(
+        3, "wardrobe", "wardrobe", Attributes(color="brown"), "a brown wardrobe",
+        Box3((0.05, 0.0, 0.05), (1.05, 2.0, 1.05)), 0,
+    )  # fmt: skip
+    chair = ObjectInstance(
+        4, "chair", "chair", Attributes(color="red"), "a red chair",
+        Box3((0.3, 0.0, 0.3), (0.8, 0.9, 0.8)), 0,
+    )  # fmt: skip
+    parts = [scenes.empty_room()]
+    for inst in (wardrobe, chair):
+        x, _, z = inst.box.center
+        parts.append(scenes.box_object(inst.id, x, z, inst.box.size))
+    room = Room(0, "bedroom", ((0.0, 0.0), (6.0, 0.0), (6.0, 4.0), (0.0, 4.0)))
+    geometry = HouseGeometry(Mesh.concatenate(parts))
+    return Simulator(House("hidden", [room], [], [wardrobe, chair], geometry=geometry))
+
+
+def test_nothing_left_to_explore_is_recorded_and_is_an_exploration_failure() -> None:
+    sim = hidden_chair_house()
+    episode = world.episode(sim, 4, (4.5, 2.0), 0.0)
+    env = world.make_env(sim, [episode], TaskType.IIGN, budget=0)
+    record = play_episode(env, FrontierAgent(seed=3), "frontier")
+    assert record.end_reason == "stop" and record.stop_reason == StopReason.EXPLORED
+    assert record.target_seen_step is None and record.geodesic_final > 1.0
+    assert record.distractor_distance is None  # the only chair is the target
+    assert classify(record) == "exploration_failure"
+    # The budget sweep records the reason at every budget too.
+    env = world.make_env(sim, [episode], TaskType.IIGN, budget=2)
+    swept = play_sweep(env, FrontierAgent(seed=3), "frontier", [0, 2])
+    assert [r.stop_reason for r in swept.values()] == [StopReason.EXPLORED] * 2
+    # Budget 0 went on from a copy taken at the refused question.
+    assert [t.answered for t in swept[0].dialog] == [False]
+    assert [t.answered for t in swept[2].dialog] == [True]

@@ -80,8 +80,8 @@ def test_summarize_radii_change_results() -> None:
     assert summarize(records, os_radius=0.25).os == pytest.approx(100.0 / 6)
     wide = summarize(records, success_radius=0.6, stop_radius=5.0)
     assert wide.sr == pytest.approx(200.0 / 6)
-    assert wide.failures[STOP_FAILURE] == 1  # the AD stop at 4 m became a stop failure
-    assert wide.failures[AMBIGUOUS_DETECTION] == 0
+    assert wide.failures[STOP_FAILURE] == 0  # the stop at 0.5 m became a success
+    assert wide.failures[AMBIGUOUS_DETECTION] == 1  # facing a distractor is AD at any radius
     assert wide.success_radius == 0.6
 
 

@@ -193,7 +193,34 @@ def test_stopping_at_a_distractor_is_an_ambiguous_detection(scenes: SceneCache) 
     stopped = sim.house.instance(record.stop_instance_id)  # the distractor or its neighbour
     assert stopped.category == target.category
     assert record.geodesic_final > 1.0
+    assert record.distractor_distance is not None and record.distractor_distance < 0.25
     assert classify(record) == "ambiguous_detection"
+
+
+def test_a_stop_at_a_distractor_facing_away_is_still_ambiguous(scenes: SceneCache) -> None:
+    target, distractor = ambiguous_target(scenes)
+    sim = scenes.get(procedural_scene_id(SEED))
+    cx, _, cz = distractor.position
+    points = view_points(sim.grid, distractor.box)
+    x, z = min(points, key=lambda p: math.hypot(p[0] - cx, p[1] - cz))
+    away = yaw_of(x - cx, z - cz)  # the back to the distractor
+    for task in (TaskType.IGN, TaskType.OBJECTNAV):
+        env = NavigationEnv([episode_for(scenes, target, (x, z), away)], TaskConfig(task), scenes)
+        env.reset(options={"episode_index": 0})
+        env.step(Action.STOP)
+        record = env.record("turned")
+        assert record.stop_instance_id != distractor.id
+        if task == TaskType.IGN:
+            assert record.distractor_distance is not None and record.distractor_distance < 0.25
+            assert classify(record) == "ambiguous_detection"
+        else:  # every instance of the category is a goal: none is a distractor
+            assert record.distractor_distance is None
+            assert classify(record) != "ambiguous_detection"
+    # Not stopped: no stop facts.
+    env.reset(options={"episode_index": 0})
+    env.step(Action.TURN_LEFT)
+    record = env.record("unfinished")
+    assert record.end_reason == EndReason.ERROR and record.distractor_distance is None
 
 
 def test_ign_answers_questions_when_given_a_budget_objectnav_never(scenes: SceneCache) -> None:

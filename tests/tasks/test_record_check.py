@@ -90,3 +90,27 @@ def test_unreachable_distance_reads_as_null_and_optional_fields_default() -> Non
     record = EpisodeRecord.from_json(data)
     assert record.geodesic_trace == [2.0, math.inf]
     assert record.dialog == []
+
+
+def test_stop_facts_are_written_only_when_set_and_round_trip() -> None:
+    data = valid()
+    assert "stop_reason" not in data and "distractor_distance" not in data
+    record = EpisodeRecord.from_json(data)  # a record written before these fields
+    assert record.stop_reason is None and record.distractor_distance is None
+    data |= {"stop_reason": "explored", "distractor_distance": 0.4}
+    assert EpisodeRecord.from_json(json.loads(json.dumps(data))).to_json() == data
+
+
+@pytest.mark.parametrize(
+    ("field", "value", "message"),
+    [
+        ("stop_reason", "bored", r"field 'stop_reason' must be one of candidate, explored"),
+        ("stop_reason", 3, r"field 'stop_reason' must be a string"),
+        ("distractor_distance", -0.5, r"field 'distractor_distance' must be >= 0"),
+        ("distractor_distance", "near", r"field 'distractor_distance' must be a number"),
+    ],
+)
+def test_bad_stop_facts_name_the_field(field: str, value: Any, message: str) -> None:
+    data = valid() | {field: value}
+    with pytest.raises(DataFormatError, match=message):
+        EpisodeRecord.from_json(data)

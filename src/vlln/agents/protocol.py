@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Protocol, runtime_checkable
 
 from vlln.tasks.env import EpisodeInfo, Observation
-from vlln.tasks.record import ModelCall
+from vlln.tasks.record import ModelCall, StopReason
 from vlln.tasks.spec import AgentOutput
 
 
@@ -26,3 +26,17 @@ class RecordsModelCalls(Protocol):
     """An agent that asks a model; its calls of the episode go into the episode record."""
 
     def model_calls(self) -> list[ModelCall]: ...
+
+
+@runtime_checkable
+class ReportsStopReason(Protocol):
+    """An agent that says why it chose STOP; the reason goes into the episode record, where
+    the failure taxonomy reads it (a stop with nothing left to explore is an exploration
+    failure, not a detection failure)."""
+
+    def stop_reason(self) -> StopReason | None: ...
+
+
+def reported_stop_reason(agent: object) -> StopReason | None:
+    """Why ``agent`` stopped, if it is an agent that says so."""
+    return agent.stop_reason() if isinstance(agent, ReportsStopReason) else None

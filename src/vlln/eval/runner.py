@@ -34,7 +34,7 @@ from pathlib import Path
 
 from tqdm import tqdm
 
-from vlln.agents.protocol import Agent, RecordsModelCalls
+from vlln.agents.protocol import Agent, RecordsModelCalls, reported_stop_reason
 from vlln.agents.registry import make_agent
 from vlln.errors import ConfigError
 from vlln.eval.config import EvalConfig
@@ -186,7 +186,9 @@ def play_episode(
 
     def record(error: str | None = None) -> EpisodeRecord:
         calls = agent.model_calls() if isinstance(agent, RecordsModelCalls) else []
-        return env.record(agent_name, error=error, model_calls=calls)
+        return env.record(
+            agent_name, error=error, model_calls=calls, stop_reason=reported_stop_reason(agent)
+        )
 
     try:
         agent.reset(env.episode_info())

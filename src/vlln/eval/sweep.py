@@ -23,7 +23,7 @@ import dataclasses
 from collections.abc import Sequence
 from typing import Any
 
-from vlln.agents.protocol import Agent
+from vlln.agents.protocol import Agent, reported_stop_reason
 from vlln.oracle.knowledge import HouseIndex
 from vlln.sim.agent import AgentState
 from vlln.sim.follower import GreedyFollower
@@ -84,7 +84,7 @@ def play_sweep(
             snapshots[asked] = _snapshot(env, agent, action)
         observation, _, terminated, truncated, _ = env.step(action)
         if terminated or truncated:
-            full = env.record(agent_name)
+            full = env.record(agent_name, stop_reason=reported_stop_reason(agent))
             break
     records = {top: full}
     for budget in sorted(lower):
@@ -134,7 +134,7 @@ def _continue(snapshot: _Snapshot, budget: int, agent_name: str) -> EpisodeRecor
         observation: Observation
         observation, _, terminated, truncated, _ = env.step(action)
         if terminated or truncated:
-            return env.record(agent_name)
+            return env.record(agent_name, stop_reason=reported_stop_reason(agent))
         try:
             action = agent.act(observation)
         except Exception as error:

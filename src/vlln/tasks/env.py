@@ -53,7 +53,7 @@ from vlln.sim.follower import GreedyFollower
 from vlln.sim.simulator import Simulator
 from vlln.sim.viewpoints import GoalPoint
 from vlln.tasks.episode import Episode
-from vlln.tasks.record import DialogTurn, EndReason, EpisodeRecord, ModelCall
+from vlln.tasks.record import DialogTurn, EndReason, EpisodeRecord, ModelCall, StopReason
 from vlln.tasks.scenes import SceneCache
 from vlln.tasks.spec import (
     REFUSAL_MESSAGE,
@@ -64,6 +64,7 @@ from vlln.tasks.spec import (
     TaskConfig,
     TaskType,
 )
+from vlln.tasks.stop import distractor_distance, stop_instance
 from vlln.tasks.taxonomy import target_observed
 from vlln.tasks.waypoint import Waypoint, waypoint_for_pixel
 from vlln.world.frame import quaternion_to_yaw, wrap_angle
@@ -71,9 +72,6 @@ from vlln.world.model import Attributes, Box3, ObjectInstance
 
 Observation = dict[str, Any]
 SUCCESS_REWARD = 2.5
-# The object an agent stopped at is one it sees (this many pixels) within this floor distance.
-STOP_OBJECT_MIN_PIXELS = 50
-STOP_OBJECT_RANGE = 1.5
 
 
 @dataclass(frozen=True)
@@ -367,12 +365,20 @@ class NavigationEnv:
         agent_name: str,
         error: str | None = None,
         model_calls: Sequence[ModelCall] = (),
+        stop_reason: StopReason | None = None,
     ) -> EpisodeRecord:
         """The finished episode as a record; an unfinished one is recorded as an error.
-        ``model_calls`` are a model agent's calls, kept in the record as they were."""
+        ``model_calls`` are a model agent's calls, kept in the record as they were;
+        ``stop_reason`` why the agent stopped, kept when the episode ended with STOP. A stop
+        records what it was at (:mod:`vlln.tasks.stop`)."""
         episode = self._require_episode()
         end = self._end or EndReason.ERROR
-        stop_id, stop_category = self._stop_instance() if end == EndReason.STOP else (None, None)
+        stop_id = stop_category = near = None
+        if end == EndReason.STOP:
+            goals = {t.id for t in self.targets}
+            level = self._frame.instance_ids if self.sim.state.tilt == 0.0 else None
+            stop_id, stop_category = stop_instance(self.sim, level, goals, episode.object_category)
+            near = distractor_distance(self.sim, goals, episode.object_category)
         return EpisodeRecord(
             episode_id=episode.episode_id,
             scene_id=episode.scene_id,
@@ -397,36 +403,9 @@ class NavigationEnv:
             error=error,
             failures=dict(self._failures),
             model_calls=list(model_calls),
+            stop_reason=stop_reason.value if stop_reason and end == EndReason.STOP else None,
+            distractor_distance=near,
         )
-
-    def _stop_instance(self) -> tuple[int | None, str | None]:
-        """What the agent stopped at: among the objects it sees in a level view within
-        :data:`STOP_OBJECT_RANGE`, a goal if there is one, else an instance of the target
-        category, else the nearest; ties go to the object with more pixels."""
-        state = self.sim.state
-        level = AgentState(state.position, state.yaw, 0.0)
-        ids = self._frame.instance_ids if state.tilt == 0.0 else self.sim.render(level).instance_ids
-        visible, pixels = np.unique(ids[ids > 0], return_counts=True)
-        house = self.sim.house
-        goals = {t.id for t in self.targets}
-        category = self._require_episode().object_category
-        x, _, z = state.position
-        best: tuple[int, float, int, int] | None = None
-        for instance_id, count in zip(visible.tolist(), pixels.tolist(), strict=True):
-            if count < STOP_OBJECT_MIN_PIXELS:
-                continue
-            inst = house.instance(instance_id)
-            distance = _floor_distance(inst.box, x, z)
-            if distance > STOP_OBJECT_RANGE:
-                continue
-            rank = 0 if instance_id in goals else 1 if inst.category == category else 2
-            key = (rank, round(distance, 1), -count, instance_id)
-            if best is None or key < best:
-                best = key
-        if best is None:
-            return None, None
-        instance_id = best[3]
-        return instance_id, house.instance(instance_id).category
 
     def _goal_points(self, episode: Episode) -> list[GoalPoint]:
         """The goals' view points; a goal listing none gets those of its box (reference §1).
@@ -481,13 +460,6 @@ class NavigationEnv:
 
     def close(self) -> None:
         self.scenes.close()
-
-
-def _floor_distance(box: Box3, x: float, z: float) -> float:
-    """Floor-plan distance from a point to the footprint of a box (0 inside it)."""
-    dx = max(box.min[0] - x, 0.0, x - box.max[0])
-    dz = max(box.min[2] - z, 0.0, z - box.max[2])
-    return math.hypot(dx, dz)
 
 
 def _box_distance(box: Box3, point: Any) -> float:

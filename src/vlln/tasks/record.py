@@ -26,6 +26,13 @@ class EndReason(StrEnum):
     ERROR = "error"  # the agent raised or kept returning garbage
 
 
+class StopReason(StrEnum):
+    """Why an agent chose STOP, as it reports it (see vlln.agents.protocol.ReportsStopReason)."""
+
+    CANDIDATE = "candidate"  # at the object it took for the target
+    EXPLORED = "explored"  # nothing left to explore and nothing it took for the target
+
+
 @dataclass(frozen=True)
 class DialogTurn:
     """One question and its answer; ``step`` is the counted step at which it was asked."""
@@ -72,7 +79,7 @@ class EpisodeRecord:
     geodesic_start: float  # d0: start to the nearest goal view point, metres
     geodesic_trace: list[float]  # after every counted step, metres (inf: unreachable)
     path_length: float  # L: sum of straight-line displacements
-    stop_instance_id: int | None  # what it stopped at (see NavigationEnv._stop_instance)
+    stop_instance_id: int | None  # what it stopped at (see vlln.tasks.stop)
     stop_instance_category: str | None
     target_seen_step: int | None  # first step the target was observed (see metrics)
     positions: list[list[float]] = field(default_factory=list)  # [x, z, yaw] per step
@@ -89,6 +96,11 @@ class EpisodeRecord:
     model_calls: list[ModelCall] = field(default_factory=list)  # model agents only
     detector: str | None = None  # the agent's object detector ("truth", "noisy"); None: none
     oracle: str | None = None  # rules | llm | human; None: not stated (vlln eval: the rule oracle)
+    # Stopped episodes only; absent from the JSON when None (and in records written before):
+    stop_reason: str | None = None  # a StopReason value, when the agent reported one
+    # Geodesic metres from the stop to the nearest view point of a same-category instance
+    # that is not a goal; None: no such instance is reachable (always on ObjectNav).
+    distractor_distance: float | None = None
 
     @property
     def agent_label(self) -> str:
@@ -109,6 +121,9 @@ class EpisodeRecord:
         data["geodesic_start"] = _finite_or_none(self.geodesic_start)
         if not self.heights:
             del data["heights"]
+        for name in _OMITTED_WHEN_NONE:
+            if data[name] is None:
+                del data[name]
         return data
 
     @staticmethod
@@ -126,6 +141,11 @@ class EpisodeRecord:
             raise DataFormatError(
                 f"field 'end_reason' must be one of {', '.join(_END_REASONS)}, "
                 f"got {data['end_reason']!r:.60}"
+            )
+        if data.get("stop_reason") is not None and data["stop_reason"] not in _STOP_REASONS:
+            raise DataFormatError(
+                f"field 'stop_reason' must be one of {', '.join(_STOP_REASONS)}, "
+                f"got {data['stop_reason']!r:.60}"
             )
         for index, position in enumerate(data.get("positions", [])):
             if len(position) != 3:
@@ -146,6 +166,8 @@ class EpisodeRecord:
 
 _IDENTITY_FIELDS = ("episode_id", "scene_id", "task", "agent", "object_category")
 _END_REASONS = tuple(reason.value for reason in EndReason)
+_STOP_REASONS = tuple(reason.value for reason in StopReason)
+_OMITTED_WHEN_NONE = ("stop_reason", "distractor_distance")
 
 
 def agent_label(agent: str, detector: str | None) -> str:

@@ -1,26 +1,50 @@
 """The failure taxonomy of VL-LN Bench: every episode is a success or exactly one failure.
 
-The paper names five failure modes (missed detection, wrong detection, ambiguous detection,
-exploration failure, stop failure) without decision rules. Ours are applied in this order to
-a finished :class:`EpisodeRecord`; the first rule that matches decides, so success plus the
-five failures partition all episodes:
+The paper (supplementary, "Failure analysis") defines five failure modes in words:
 
-1. **success** -- stopped strictly closer than the success radius (0.25 m) to a view point.
-2. **stop_failure** (ST) -- stopped with the final geodesic distance below the stop radius
-   (1.0 m): near the target but outside the success radius.
-3. **stop_failure** (ST) as well -- stopped farther away while the object it stopped at is a
-   goal instance (``stop_instance_id in target_ids``; the environment records a visible goal
-   within 1.5 m first, then a same-category instance, then the nearest visible object): the
-   right object was found and the agent stopped too early. For ObjectNav every instance of
-   the category is a goal, so a stop at any instance of the category lands here or in rules
-   1-2, never in rule 4.
-4. **ambiguous_detection** (AD) -- stopped facing an instance of the target category that is
-   not a goal: a same-category distractor (IIGN/IGN only, see rule 3).
-5. **wrong_detection** (WD) -- stopped otherwise: facing an object of another category, or
-   nothing identifiable (``stop_instance_category`` is ``None``).
-6. **missed_detection** (MD) -- did not stop (step, look or talk cap, or an error) although
-   the target was observed (``target_seen_step`` is set).
-7. **exploration_failure** (Expl) -- did not stop and never observed the target.
+* **missed detection** (MD): the agent observes the target but fails to recognise it, and
+  explores until the step budget is spent;
+* **wrong detection** (WD): it stops at an object of the wrong category;
+* **ambiguous detection** (AD): it stops at a same-category distractor rather than the target;
+* **exploration failure** (Expl): it never observes the target;
+* **stop failure** (ST): it stops near the target (within 1 m) but outside the success
+  radius (0.25 m).
+
+Our decision rules turn these into a function of a finished :class:`EpisodeRecord`. They are
+applied in this order and the first that matches decides, so success plus the five failures
+partition all episodes. "Near" an object means a geodesic distance strictly below the stop
+radius (1 m) to one of its view points, the measure success uses; the facts about a stop come
+from :mod:`vlln.tasks.stop`. docs/metrics.md gives the reasons for each rule and the
+hand-checked episodes they are tested against.
+
+1. **success** -- stopped strictly closer than the success radius (0.25 m) to a goal's view
+   point.
+2. Not stopped (step, look or talk cap, or an error): **MD** if the target was observed
+   (``target_seen_step`` is set), else **Expl**.
+
+A stop outside the success radius:
+
+3. **ST** -- near the target (final geodesic distance below 1 m), unless the stop is at a
+   distractor: facing a same-category instance that is not a goal, or nearer to a
+   distractor's view points than to the target's (then the rules below decide).
+4. The agent stopped because nothing was left to explore (``stop_reason`` is
+   ``explored``): it did not stop *at* anything, so **MD** if it observed the target, else
+   **Expl**.
+5. **ST** -- facing a goal instance (``stop_instance_id in target_ids``) from farther away:
+   the right object was found and the agent stopped short. On ObjectNav every instance of the
+   category is a goal, so a stop at any of them lands here or in rules 1 and 3.
+6. **AD** -- facing a same-category instance that is not a goal.
+7. **AD** -- near a same-category distractor (``distractor_distance`` below 1 m) while facing
+   something else or nothing: small or high objects (a bottle on a sill, a ceiling light)
+   are often out of the level view of an agent standing at them.
+8. **WD** -- facing an object of another category.
+9. A stop at nothing identifiable, far from the target and every distractor: **MD** if the
+   target was observed, else **Expl**.
+
+Old records without ``stop_reason`` or ``distractor_distance`` (written before these
+fields) skip rules 4 and 7 and the nearer-distractor test of rule 3; the other rules apply to
+them unchanged. Agents that do not report a stop reason (all but the frontier agent) skip
+rule 4.
 
 "Observed" has one definition, :func:`target_observed`, which the runner uses to fill
 ``target_seen_step``: the target instance covers at least :data:`OBSERVE_MIN_PIXELS` pixels of
@@ -35,7 +59,8 @@ import math
 
 from vlln.errors import ConfigError
 from vlln.tasks.metrics import SUCCESS_RADIUS, require_radius, success
-from vlln.tasks.record import EpisodeRecord
+from vlln.tasks.record import EpisodeRecord, StopReason
+from vlln.world.catalogue.aliases import canonical_category
 
 SUCCESS = "success"
 STOP_FAILURE = "stop_failure"
@@ -110,18 +135,33 @@ def classify(
         )
     if success(record, success_radius):
         return SUCCESS
-    if record.stopped:
-        if record.geodesic_final < stop_radius:
-            return STOP_FAILURE
-        if record.stop_instance_id is not None and record.stop_instance_id in record.target_ids:
-            return STOP_FAILURE
-        if _same_category(record.stop_instance_category, record.object_category):
-            return AMBIGUOUS_DETECTION
+    seen = record.target_seen_step is not None
+    if not record.stopped:
+        return MISSED_DETECTION if seen else EXPLORATION_FAILURE
+    facing_goal = (
+        record.stop_instance_id is not None and record.stop_instance_id in record.target_ids
+    )
+    facing_distractor = not facing_goal and _same_category(
+        record.stop_instance_category, record.object_category
+    )
+    near = record.distractor_distance
+    nearer_distractor = near is not None and near < record.geodesic_final
+    if record.geodesic_final < stop_radius and not (facing_distractor or nearer_distractor):
+        return STOP_FAILURE
+    if record.stop_reason == StopReason.EXPLORED:
+        return MISSED_DETECTION if seen else EXPLORATION_FAILURE
+    if facing_goal:
+        return STOP_FAILURE
+    if facing_distractor or (near is not None and near < stop_radius):
+        return AMBIGUOUS_DETECTION
+    if record.stop_instance_category is not None:
         return WRONG_DETECTION
-    if record.target_seen_step is not None:
-        return MISSED_DETECTION
-    return EXPLORATION_FAILURE
+    return MISSED_DETECTION if seen else EXPLORATION_FAILURE
 
 
 def _same_category(seen: str | None, target: str) -> bool:
-    return seen is not None and seen.strip().lower() == target.strip().lower()
+    return seen is not None and _canonical(seen) == _canonical(target)
+
+
+def _canonical(category: str) -> str:
+    return canonical_category(category.strip().lower())

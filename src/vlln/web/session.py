@@ -21,7 +21,7 @@ from typing import Any
 
 import numpy as np
 
-from vlln.agents.protocol import Agent
+from vlln.agents.protocol import Agent, reported_stop_reason
 from vlln.agents.registry import make_agent
 from vlln.eval.results import RecordKey
 from vlln.eval.runner import derive_seed
@@ -254,7 +254,8 @@ class EpisodeSession:
                 return
             observation, finished = self._apply(output)
             if finished:
-                self._end(env.record(self.label), Status.FINISHED)
+                record = env.record(self.label, stop_reason=reported_stop_reason(agent))
+                self._end(record, Status.FINISHED)
                 return
 
     def _apply(self, output: object, journal: bool = True) -> tuple[Observation, bool]:

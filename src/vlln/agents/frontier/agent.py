@@ -41,6 +41,7 @@ from vlln.agents.frontier.storeys import Storey, StoreyMemory
 from vlln.errors import ConfigError
 from vlln.sim.agent import Action
 from vlln.tasks.env import EpisodeInfo, Observation
+from vlln.tasks.record import StopReason
 from vlln.tasks.spec import AgentOutput, Talk, TaskType
 from vlln.world.frame import wrap_angle, yaw_of
 
@@ -61,6 +62,7 @@ class FrontierAgent:
         self.config = config or FrontierConfig()
         self.detector = check_detector(detector)
         self._info: EpisodeInfo | None = None
+        self._stop_reason: StopReason | None = None
 
     # ----------------------------------------------------------------- episode start
     def reset(self, episode: EpisodeInfo) -> None:
@@ -114,6 +116,7 @@ class FrontierAgent:
         self._last: tuple[AgentOutput, Pose] | None = None
         self._trail = Trail(cfg.stuck_steps, cfg.stuck_distance)
         self._started = False
+        self._stop_reason = None
 
     def _new_storey(self, floor: float) -> Storey:
         obstacle_map = ObstacleMap(self.episode.camera, self.config.map)
@@ -246,8 +249,19 @@ class FrontierAgent:
             self._exhausted = True
             fallback = self._choose_candidate(pose)
             if fallback is not None:
-                return self._pursue(fallback, pose, tilt) or Action.STOP
+                action = self._pursue(fallback, pose, tilt)
+                if action is not None:
+                    return action
+        return self._stop(StopReason.EXPLORED)
+
+    def _stop(self, reason: StopReason) -> Action:
+        self._stop_reason = reason
         return Action.STOP
+
+    def stop_reason(self) -> StopReason | None:
+        """Why it stopped: at a candidate, or with nothing left to explore (the taxonomy's
+        exploration failure)."""
+        return self._stop_reason
 
     # ----------------------------------------------------------------- candidates
     def _choose_candidate(self, pose: Pose) -> Candidate | None:
@@ -298,10 +312,12 @@ class FrontierAgent:
             if action is not None:
                 return action
             if candidate.instance_id in self.explorer.unreachable:
-                return None if candidate.instance_id != self.confirmed else Action.STOP
+                if candidate.instance_id != self.confirmed:
+                    return None
+                return self._stop(StopReason.CANDIDATE)
         # As close as it gets: face the object and stop.
         error = wrap_angle(yaw_of(cx - pose.x, cz - pose.z) - pose.yaw)
-        return turn_toward(error, self._turn) or Action.STOP
+        return turn_toward(error, self._turn) or self._stop(StopReason.CANDIDATE)
 
     def _aim_and_ask(self, candidate: Candidate, pose: Pose, tilt: float) -> AgentOutput | None:
         """Face the candidate (turns, then camera tilt) and ask about it; None when it is not
