@@ -34,7 +34,9 @@ class EvalConfig:
     scene counts) or from a released-format ``episode_file``; exactly one is set.
     ``episodes`` keeps the first N (all when ``None``) after grouping by scene.
     ``detector`` names the perception of agents that detect objects (the frontier agent's
-    default is the ground-truth detector); other agents take none.
+    default is the ground-truth detector); other agents take none. ``scenes`` is the folder of
+    scanned scenes the episodes name (``--scenes``), kept so that ``vlln video`` and ``vlln
+    report`` find them again.
     """
 
     agent: str
@@ -51,6 +53,7 @@ class EvalConfig:
     # never a secret. Run files written before this field read as no options.
     agent_options: dict[str, str] = field(default_factory=dict)
     detector: str | None = None
+    scenes: str | None = None
 
     def __post_init__(self) -> None:
         task = TaskType.parse(self.task)
