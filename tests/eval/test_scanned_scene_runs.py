@@ -198,3 +198,42 @@ def test_a_procedural_episode_with_scenes_is_said_so(
     assert len(said) == 1 and f"not read from --scenes {root}" in said[0]
     assert first.seed == again.seed == 3
     assert np.array_equal(first.rooms[0].polygon, again.rooms[0].polygon)
+
+
+def test_episodes_written_for_an_exported_scan_name_it_and_play_on_it(
+    tmp_path: Path, caplog: pytest.LogCaptureFixture
+) -> None:
+    from vlln.tasks.episode import read_episodes
+
+    out = tmp_path / "scans"
+    assert (
+        main(["world", "export", "--seed", "3", "--style", "mp3d", "--episodes", "--out", str(out)])
+        == 0
+    )
+    path = out / "mp3d" / "house_00003_ign.json.gz"
+    episodes = read_episodes(path)
+    assert episodes and {e.scene_id for e in episodes} == {"mp3d/house_00003/house_00003.glb"}
+    assert (out / "mp3d" / "house_00003_iign.json.gz").is_file()
+    run = tmp_path / "run"
+    args = ["eval", "--agent", "expert", "--task", "ign", "--episode-file", str(path)]
+    with caplog.at_level(logging.WARNING):
+        assert (
+            main(
+                [
+                    *args,
+                    "--episodes",
+                    "1",
+                    "--scenes",
+                    str(out / "mp3d"),
+                    "--out",
+                    str(run),
+                    "--quiet",
+                ]
+            )
+            == 0
+        )
+    assert "names a procedural house" not in caplog.text
+    (record,) = read_records(run / "episodes.jsonl")
+    assert record.scene_id == "mp3d/house_00003/house_00003.glb" and success(record)
+    stored = json.loads((run / "run.json").read_text(encoding="utf-8"))
+    assert stored["scenes"] == str((out / "mp3d").resolve())

@@ -17,6 +17,7 @@ from vlln.sim.simulator import Simulator
 from vlln.world.model import House
 from vlln.world.scans import ImportReport, import_scene
 from vlln.world.scans.categories import is_flight, is_structure, is_void, mpcat40_group
+from vlln.world.scans.flights import flight_problem
 from vlln.world.scene_summary import export_scene_summary
 
 TOKENS = {"H": 29, "L": 18, "R": 20, "S": 22, "V": 13, "P": 13, "I": 41, "C": 11, "O": 24, "E": 19}
@@ -119,3 +120,27 @@ def test_mpcat40_decides_with_the_raw_word_as_fallback() -> None:
     assert not is_void("couch", "sofa") and not is_void("steps", "stairs")
     assert is_structure("floor#/#upstairs#room", "floor") and is_structure("wall", None)
     assert not is_structure("couch", "sofa")
+
+
+def _steps(treads: int, rise: float = 0.2, tread: float = 0.25) -> np.ndarray:
+    """Treads 1..``treads`` of a flight along z (two triangles each, y up), no risers."""
+    quads = []
+    for k in range(1, treads + 1):
+        y, z0, z1 = k * rise, k * tread, (k + 1) * tread
+        quads += [
+            [(0.0, y, z0), (1.0, y, z1), (1.0, y, z0)],  # up-facing (y up, z toward you)
+            [(0.0, y, z0), (0.0, y, z1), (1.0, y, z1)],
+        ]
+    return np.array(quads, float)
+
+
+def test_a_flight_arrives_when_its_last_rise_steps_onto_the_floor() -> None:
+    floors = [0.0, 2.8]
+    assert flight_problem(_steps(14), floors) is None  # the top tread level with the floor
+    assert flight_problem(_steps(13), floors) is None  # treads up to 2.6, a rise onto 2.8
+    assert flight_problem(_steps(12), floors) == (
+        "its top (2.400 m) is not the floor of the storey above its foot (0.000, 2.800 m)"
+    )  # 0.4 m below the floor: no step onto it
+    assert flight_problem(_steps(13)[2:], floors) == (
+        "its foot (0.400 m) is on no storey's floor (0.000, 2.800 m)"
+    )
