@@ -6,7 +6,7 @@ reference reads as the scene); the short ``vlln/house_<seed>`` of older files is
 Other scene ids name an imported scan: the folder ``<scenes dir>/<scene>`` (see
 :mod:`vlln.world.scans`); an exported scan's episodes name it as habitat names Matterport3D
 scans, ``<style>/<scene>/<scene>.glb`` (:func:`scan_scene_id`). A procedural scene id is never
-read from a scenes folder: with one given, that is said once per scene. :class:`SceneCache`
+read from a scenes folder: with one given, that is said once. :class:`SceneCache`
 builds a simulator per scene and keeps the most recent few, since runners visit episodes
 scene by scene.
 """
@@ -123,7 +123,7 @@ class SceneCache:
         self.capacity = capacity
         self.scenes_dir = None if scenes_dir is None else Path(scenes_dir)
         self._sims: OrderedDict[str, Simulator] = OrderedDict()
-        self._told: set[str] = set()  # procedural scenes said not to come from scenes_dir
+        self._told = False  # whether it said that procedural scenes ignore scenes_dir
 
     def get(self, scene_id: str) -> Simulator:
         sim = self._sims.get(scene_id)
@@ -138,12 +138,12 @@ class SceneCache:
         return sim
 
     def _house(self, scene_id: str) -> House:
-        if self.scenes_dir is not None and is_procedural(scene_id) and scene_id not in self._told:
-            self._told.add(scene_id)
+        if self.scenes_dir is not None and is_procedural(scene_id) and not self._told:
+            self._told = True
             logger.warning(
-                "%s names a procedural house: it is generated, not read from --scenes %s "
-                "(episodes of an exported scan name mp3d/<scene>/<scene>.glb; "
-                "vlln world export --episodes writes them)",
+                "%s names a procedural house: it and any other vlln/house_... scene are "
+                "generated, not read from --scenes %s (episodes of an exported scan name "
+                "mp3d/<scene>/<scene>.glb; vlln world export --episodes writes them)",
                 scene_id,
                 self.scenes_dir,
             )

@@ -32,7 +32,7 @@ NO_CATEGORY = ""  # the raw word of an object whose record names no category
 # The shell: mpcat40 groups, and raw words for scans without groups.
 STRUCTURE_GROUPS = frozenset({"wall", "floor", "ceiling", "column", "beam"})
 STRUCTURE_WORDS = frozenset(
-    {"floor", "wall", "ceiling", "door frame", "doorframe", "beam", "column", "void"}
+    {"floor", "wall", "ceiling", "door frame", "doorframe", "beam", "column"}
 )
 DOOR_FRAME_WORDS = frozenset({"door frame", "doorframe"})
 FLIGHT_GROUP = "stairs"
