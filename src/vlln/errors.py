@@ -10,6 +10,7 @@ fix it, so command-line entry points can print the message instead of a tracebac
     ├── DataFormatError             a file does not follow the expected format
     ├── RendererUnavailableError    no headless OpenGL (EGL) context could be created
     └── NavigationError             a point or goal is off the navigable area or unreachable
+        └── EpisodeRefusedError     an episode that cannot be played honestly in its scene
 """
 
 from __future__ import annotations
@@ -44,3 +45,14 @@ class RendererUnavailableError(VllnError, RuntimeError):
 
 class NavigationError(VllnError, ValueError):
     """A point or goal set is off the navigable area or cannot be reached."""
+
+
+class EpisodeRefusedError(NavigationError):
+    """An episode whose start or goals cannot be reached on their own storeys of its scene: it
+    is not played (a runner records the refusal and goes on), never played on another storey."""
+
+    def __init__(self, episode_id: str, scene_id: str, reason: str) -> None:
+        super().__init__(f"episode {episode_id} in {scene_id} is refused: {reason}")
+        self.episode_id = episode_id
+        self.scene_id = scene_id
+        self.reason = reason

@@ -1,11 +1,12 @@
 """The environment: the datasheet's promises on a real generated house."""
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
 
-from vlln.errors import ConfigError
+from vlln.errors import ConfigError, EpisodeRefusedError
 from vlln.oracle.knowledge import HouseIndex
 from vlln.oracle.rule_oracle import RuleOracle
 from vlln.sim.agent import Action
@@ -239,3 +240,39 @@ def test_ign_answers_questions_when_given_a_budget_objectnav_never(scenes: Scene
         record = env.record("talker")
         assert record.budget == (2 if answered else 0)
         assert [turn.answered for turn in record.dialog] == [answered]
+
+
+def test_a_start_or_goals_off_the_only_storey_refuse_the_episode(scenes: SceneCache) -> None:
+    """A one-storey scene never takes a start or view points from another storey's height
+    onto its floor (an episode made for a scan with an upper floor)."""
+    target, _ = ambiguous_target(scenes)
+    x, z = far_start(scenes, target)
+    made = episode_for(scenes, target, (x, z))
+    upstairs = replace(made, start_position=(x, 2.8, z))
+    lifted = replace(
+        made,
+        goals=tuple(
+            replace(
+                goal,
+                view_points=tuple(
+                    ViewPoint((p[0], 2.8, p[2])) for p in (vp.position for vp in goal.view_points)
+                ),
+            )
+            for goal in made.goals
+        ),
+    )
+    cx, _, cz = target.box.center
+    blocked = replace(made, start_position=(cx, 0.0, cz))  # inside the target
+    expected = {
+        "upstairs": "its start height 2.80 m is on no storey of the scene (floors at 0.00 m)",
+        "lifted": f"its {len(made.goals[0].view_points)} goal view points are on no storey",
+        "blocked": "is not navigable on storey 0 (the nearest navigable point is",
+    }
+    for name, episode in (("upstairs", upstairs), ("lifted", lifted), ("blocked", blocked)):
+        env = NavigationEnv(
+            [replace(episode, episode_id=name)], TaskConfig(task=TaskType.IGN), scenes
+        )
+        with pytest.raises(EpisodeRefusedError) as refused:
+            env.reset(options={"episode_index": 0})
+        assert str(refused.value).startswith(f"episode {name} in {made.scene_id} is refused: ")
+        assert expected[name] in refused.value.reason

@@ -272,4 +272,6 @@ def test_the_eval_command_finds_scenes_in_the_scenes_folder(
     assert main([*args, "--scenes", str(root), "--out", str(tmp_path / "run"), "--quiet"]) == 0
     assert "| 100.0 |" in capsys.readouterr().out.replace("100.00", "100.0")
     assert main([*args, "--out", str(tmp_path / "other"), "--quiet"]) == 2
-    assert "pass the folder of imported scenes (--scenes)" in capsys.readouterr().err
+    assert "pass the folder of scanned scenes that holds house_00007/ (--scenes DIR)" in (
+        capsys.readouterr().err
+    )

@@ -166,8 +166,12 @@ def test_a_flight_with_noisy_treads_is_left_out_and_said_so(
     assert "flat treads" in report.flights_left_out[flight.id]
     assert f"the stairs {flight.id} cannot be climbed" in caplog.text
     assert back.instances_of("stairs") == []
-    with Simulator(back) as sim:
-        assert sim.storeys is None  # the storeys stay apart: the agent walks the ground floor
+    with Simulator(back) as sim:  # the storeys stay apart, each one walkable on its own
+        assert sim.storeys is not None and len(sim.storeys.grids) == 2
+        labels, count = sim.storeys.components()
+        cells = labels.size // 2
+        assert count >= 2
+        assert not set(labels[:cells][labels[:cells] > 0]) & set(labels[cells:])
 
 
 def test_a_flight_must_join_a_floor_to_the_next(original: Simulator) -> None:

@@ -43,6 +43,7 @@ def _eval(args: argparse.Namespace) -> int:
         agent_options=_agent_options(args),
         detector=args.detector,
         preset=args.preset,
+        scenes=None if args.scenes is None else str(Path(args.scenes).resolve()),
     )
     from vlln.tasks.scenes import SceneCache
 
@@ -70,7 +71,7 @@ def _eval(args: argparse.Namespace) -> int:
             on_model_stats=report_servers,
         )
     else:
-        scenes = SceneCache(scenes_dir=args.scenes)
+        scenes = SceneCache(scenes_dir=config.scenes)
         try:
             outcome = run_evaluation(
                 config,
@@ -86,9 +87,10 @@ def _eval(args: argparse.Namespace) -> int:
     state = "complete" if outcome.complete else "incomplete: rerun the same command to go on"
     for line in outcome.repaired:
         print(f"repaired: {line.describe()}", file=sys.stderr)
+    refused = f", {outcome.health.refused} refused" if outcome.health.refused else ""
     print(
-        f"{len(outcome.records)} of {outcome.planned} episodes in {args.out} ({state}); "
-        f"played {outcome.played} in {outcome.seconds:.1f} s",
+        f"{len(outcome.records)} of {outcome.planned} episodes in {args.out}{refused} "
+        f"({state}); played {outcome.played} in {outcome.seconds:.1f} s",
         file=sys.stderr,
     )
     print(outcome.health.line(), file=sys.stderr)
@@ -144,6 +146,7 @@ def _report(args: argparse.Namespace) -> int:
         success_radius=args.success_radius,
         os_radius=args.os_radius,
         videos_per_run=args.videos,
+        scenes=Path(args.scenes) if args.scenes else None,
     )
     print(f"wrote {len(files)} files to {out}: {out / 'report.md'} and {out / 'report.html'}")
     return 0
@@ -226,6 +229,7 @@ def add_eval_commands(commands: Commands) -> None:
     report.add_argument(
         "--videos", type=int, default=0, help="episode videos per run (MP4, needs vlln[video])"
     )
+    report.add_argument("--scenes", help="folder of scanned scenes (default: the run's --scenes)")
     for command in (score, report):
         command.add_argument(
             "--os-radius",
@@ -247,7 +251,8 @@ def _video(args: argparse.Namespace) -> int:
     from vlln.eval.videos import make_video
 
     out = Path(args.out) if args.out else None
-    path, seconds = make_video(Path(args.source), out, args.episode, args.budget)
+    scenes = Path(args.scenes) if args.scenes else None
+    path, seconds = make_video(Path(args.source), out, args.episode, args.budget, scenes)
     print(f"wrote {path} ({seconds:.1f} s)")
     return 0
 
@@ -258,6 +263,7 @@ def add_video_command(commands: Commands) -> None:
     video.add_argument("--episode", help="episode id (default: the one with the most dialog)")
     video.add_argument("--budget", type=int, help="dialog budget (default: the largest)")
     video.add_argument("--out", help="MP4 file (default SOURCE_DIR/videos/video_<id>_b<k>.mp4)")
+    video.add_argument("--scenes", help="folder of scanned scenes (default: the run's --scenes)")
     video.set_defaults(handler=_video)
 
 

@@ -6,14 +6,18 @@ import argparse
 from pathlib import Path
 
 from vlln.cli.options import Commands
+from vlln.errors import ConfigError
 
 
 def _world_show(args: argparse.Namespace) -> int:
     from vlln.viz.show import show_world
     from vlln.world.generator import parameters_from_overrides
 
+    if args.scene is not None and (args.param or args.floors is not None):
+        raise ConfigError("--scene shows a scanned scene as it is; drop --param and --floors")
     params = parameters_from_overrides([*args.param, *_floors(args)])
-    files = show_world(args.seed, Path(args.out), n_views=args.views, params=params)
+    scene = None if args.scene is None else Path(args.scene)
+    files = show_world(args.seed, Path(args.out), n_views=args.views, params=params, scene=scene)
     print(f"wrote {len(files)} images to {args.out} (map: {files[0]})")
     return 0
 
@@ -26,7 +30,13 @@ def _world_export(args: argparse.Namespace) -> int:
     if args.subdivide:
         house = with_subdivided_mesh(house, args.subdivide)
     for style in args.style or ["mp3d", "hm3d"]:
-        print(f"wrote {export_scene(house, Path(args.out) / style, style)}")
+        scene_dir = export_scene(house, Path(args.out) / style, style)
+        print(f"wrote {scene_dir}")
+        if args.episodes:
+            from vlln.tasks.scan_episodes import write_scan_episodes
+
+            for path in write_scan_episodes(house, scene_dir, style):
+                print(f"wrote {path} (play it with --scenes {scene_dir.parent})")
     return 0
 
 
@@ -60,11 +70,12 @@ def _floors(args: argparse.Namespace) -> list[str]:
 
 
 def add_world_commands(commands: Commands) -> None:
-    world = commands.add_parser("world", help="procedural houses").add_subparsers(
+    world = commands.add_parser("world", help="procedural houses and scans").add_subparsers(
         dest="world_command", required=True
     )
     show = world.add_parser("show", help="write a top-down map and egocentric views of a house")
     show.add_argument("--seed", type=int, default=0, help="house seed (default 0)")
+    show.add_argument("--scene", help="a scanned scene folder <dir>/<scene>/ instead of a seed")
     show.add_argument("--out", required=True, help="output directory")
     show.add_argument("--views", type=int, default=4, help="number of rooms to view (default 4)")
     show.add_argument(
@@ -88,6 +99,11 @@ def add_world_commands(commands: Commands) -> None:
         default=0,
         metavar="N",
         help="split every triangle into 4, N times: a scan-sized test scene (N=2: 16x)",
+    )
+    export.add_argument(
+        "--episodes",
+        action="store_true",
+        help="also write the house's episodes naming the scan (<style>/<scene>/<scene>.glb)",
     )
     export.set_defaults(handler=_world_export)
     imported = world.add_parser("import", help="read a Matterport3D or HM3D scene folder")

@@ -36,7 +36,9 @@ class EvalConfig:
     scene counts) or from a released-format ``episode_file``; exactly one is set.
     ``episodes`` keeps the first N (all when ``None``) after grouping by scene.
     ``detector`` names the perception of agents that detect objects (the frontier agent's
-    default is the ground-truth detector); other agents take none.
+    default is the ground-truth detector); other agents take none. ``scenes`` is the folder of
+    scanned scenes the episodes name (``--scenes``), kept so that ``vlln video`` and ``vlln
+    report`` find them again.
     """
 
     agent: str
@@ -57,6 +59,7 @@ class EvalConfig:
     # tests). Run files written before presets existed read as ``small``, the houses they
     # were played on.
     preset: str = DEFAULT_PRESET
+    scenes: str | None = None
 
     def __post_init__(self) -> None:
         task = TaskType.parse(self.task)

@@ -4,15 +4,18 @@ A benchmark number must never come from a partial or degraded run without saying
 command that reads a run (``vlln eval``, ``vlln score``, ``vlln report``) states the health
 in one line and in what it writes. Failures are counted per kind in :data:`FAILURE_KINDS`, a
 mapping of name to a per-record counter; a new kind of failure (a model server's errors, an
-agent's unparseable outputs) is one more entry there.
+agent's unparseable outputs) is one more entry there. Refused episodes (unplayable in their
+scene, :mod:`vlln.eval.refusals`) have no record: they are counted apart, named, and make a
+run complete without being scored.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
+from vlln.eval.refusals import Refusal
 from vlln.eval.results import RunContents
 from vlln.tasks.record import EndReason, EpisodeRecord
 
@@ -40,15 +43,22 @@ class RunHealth:
     failures: dict[str, int]  # FAILURE_KINDS name -> count, every kind present
     backends: list[str]  # oracle backends that answered turns
     examples: list[str]  # the first skipped lines, described (file:line: reason)
+    refused: int = 0  # planned episode lines refused as unplayable in their scene
+    refused_episodes: list[str] = field(default_factory=list)  # "<episode> (<scene>): reason"
 
     @property
     def complete(self) -> bool:
-        return self.planned is not None and self.finished >= self.planned
+        return self.planned is not None and self.finished + self.refused >= self.planned
 
     @property
     def clean(self) -> bool:
-        """Complete, nothing skipped, no failure of any kind."""
-        return self.complete and not self.skipped and not any(self.failures.values())
+        """Complete, nothing skipped or refused, no failure of any kind."""
+        return (
+            self.complete
+            and not self.skipped
+            and not self.refused
+            and not any(self.failures.values())
+        )
 
     def line(self) -> str:
         """The health in one line, e.g. ``run health: INCOMPLETE, 11 of 12 episode lines;
@@ -59,7 +69,14 @@ class RunHealth:
             state = f"complete, {self.finished} of {self.planned} episode lines"
         else:
             state = f"INCOMPLETE, {self.finished} of {self.planned} episode lines"
+        if self.refused:
+            state += f" and {self.refused} refused"
         parts = [f"run health: {state}"]
+        if self.refused:
+            named = "; ".join(self.refused_episodes[:_EXAMPLES])
+            more = len(self.refused_episodes) - _EXAMPLES
+            named += f"; {more} more" if more > 0 else ""
+            parts.append(f"refused episodes {len(self.refused_episodes)} ({named})")
         if self.skipped:
             counts = ", ".join(f"{kind} {count}" for kind, count in self.skipped.items())
             where = f" ({'; '.join(self.examples)})" if self.examples else ""
@@ -81,20 +98,24 @@ class RunHealth:
             "skipped_lines": dict(self.skipped),
             "failures": dict(self.failures),
             "oracle_backends": list(self.backends),
+            "refused_lines": self.refused,
+            "refused_episodes": list(self.refused_episodes),
         }
 
 
 def run_health(contents: RunContents) -> RunHealth:
     """The health of what :func:`vlln.eval.results.load_runs` read."""
-    return health_of(contents.records, contents.planned, contents.skipped_kinds())
+    return health_of(contents.records, contents.planned, contents.skipped_kinds(), contents.refused)
 
 
 def health_of(
     records: Sequence[EpisodeRecord],
     planned: int | None,
     skipped: Sequence[tuple[str, str]] = (),
+    refused: Sequence[Refusal] = (),
 ) -> RunHealth:
-    """Health of ``records``; ``skipped`` holds (kind, description) per line not counted."""
+    """Health of ``records``; ``skipped`` holds (kind, description) per line not counted,
+    ``refused`` the refusals of the run."""
     skipped_counts: dict[str, int] = {}
     for kind, _ in skipped:
         skipped_counts[kind] = skipped_counts.get(kind, 0) + 1
@@ -109,4 +130,6 @@ def health_of(
         failures=failures,
         backends=[backend for backend in backends if backend != "none"],
         examples=[text for _, text in skipped if text][:_EXAMPLES],
+        refused=len(refused),
+        refused_episodes=list(dict.fromkeys(refusal.describe() for refusal in refused)),
     )

@@ -2,7 +2,8 @@
 
 Contents: the runs compared side by side in one metric table (radii stated), SR against dialog
 budget (when a run swept budgets), the failure taxonomy as bars, and top-down maps of sample
-episodes. Every number is recomputed from the episode lines (:mod:`vlln.eval.summary`), never
+episodes (a scanned scene is read from the folder the run was made with, or ``scenes``).
+Every number is recomputed from the episode lines (:mod:`vlln.eval.summary`), never
 copied from a summary file, so a report can use other radii than the run did.
 """
 
@@ -13,7 +14,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-from vlln.errors import ConfigError
+from vlln.errors import ConfigError, VllnError
 from vlln.eval.document import (
     Block,
     Heading,
@@ -34,7 +35,7 @@ from vlln.files import replace_folder, write_text_atomic
 from vlln.tasks.aggregate import BudgetSweep, MetricSummary, format_table
 from vlln.tasks.metrics import ORACLE_SUCCESS_RADIUS, SUCCESS_RADIUS
 from vlln.tasks.record import EpisodeRecord
-from vlln.tasks.scenes import procedural_house
+from vlln.tasks.scenes import scene_house
 from vlln.tasks.taxonomy import CLASS_ABBREVIATIONS, SUCCESS, classify
 from vlln.world.model import House
 
@@ -52,6 +53,7 @@ class ReportRun:
     records: list[EpisodeRecord]
     groups: list[GroupSummary]
     health: RunHealth
+    scenes: str | None = None  # folder of the scanned scenes its episodes name
 
 
 def write_report(
@@ -62,10 +64,12 @@ def write_report(
     success_radius: float = SUCCESS_RADIUS,
     os_radius: float = ORACLE_SUCCESS_RADIUS,
     videos_per_run: int = 0,
+    scenes: Path | None = None,
 ) -> list[Path]:
     """Write report.md, report.html and their PNGs into ``out``, replacing an earlier report
     there (:func:`vlln.files.replace_folder`); returns the files written.
-    ``videos_per_run`` adds that many episode videos per run (MP4, PyAV needed)."""
+    ``videos_per_run`` adds that many episode videos per run (MP4, PyAV needed); ``scenes``
+    is the folder of scanned scenes (default: each run's own ``--scenes``)."""
     if not run_dirs:
         raise ConfigError("give at least one run directory to report on")
     if out.exists() and not out.is_dir():
@@ -76,7 +80,8 @@ def write_report(
         contents = load_runs([path])
         records = contents.records
         groups = summarize_run(records, success_radius, os_radius)
-        runs.append(ReportRun(label, path, records, groups, run_health(contents)))
+        where = str(scenes) if scenes is not None else RunDirectory(path).stored_scenes()
+        runs.append(ReportRun(label, path, records, groups, run_health(contents), where))
 
     def write(folder: Path) -> list[Path]:
         return _write_report(
@@ -149,12 +154,15 @@ def _health_section(runs: Sequence[ReportRun]) -> list[Block]:
     blocks += [Paragraph(f"{run.label}: {run.health.line()}") for run in runs]
     kinds = sorted({kind for run in runs for kind in run.health.failures})
     skipped = sorted({kind for run in runs for kind in run.health.skipped})
-    header = ["run", "finished", "planned", *[f"skipped: {k}" for k in skipped], *kinds]
+    header = [
+        "run", "finished", "planned", "refused", *[f"skipped: {k}" for k in skipped], *kinds
+    ]  # fmt: skip
     rows = [
         [
             run.label,
             str(run.health.finished),
             "?" if run.health.planned is None else str(run.health.planned),
+            str(run.health.refused),
             *[str(run.health.skipped.get(kind, 0)) for kind in skipped],
             *[str(run.health.failures.get(kind, 0)) for kind in kinds],
         ]
@@ -266,7 +274,7 @@ def _samples_section(
     houses: dict[str, House] = {}
     for run_index, run in enumerate(runs):
         for record in pick_samples(run.records, per_run, success_radius):
-            house = _house(record.scene_id, houses)
+            house = _house(record.scene_id, run.scenes, houses)
             if house is None:
                 blocks.append(Paragraph(f"{record.episode_id}: scene {record.scene_id} has no map"))
                 continue
@@ -299,10 +307,9 @@ def _videos_section(
         ),
     ]
     for run_index, run in enumerate(runs):
-        chosen = dialog_first([r for r in run.records if replayable(r)], per_run)
-        for record, (path, seconds) in zip(
-            chosen, write_videos(chosen, out, prefix=f"video_{run_index}"), strict=True
-        ):
+        chosen = dialog_first([r for r in run.records if replayable(r, run.scenes)], per_run)
+        videos = write_videos(chosen, out, prefix=f"video_{run_index}", scenes=run.scenes)
+        for record, (path, seconds) in zip(chosen, videos, strict=True):
             written.append(path)
             caption = (
                 f"{run.label}: {record.episode_id} ({record.object_category}), budget "
@@ -338,10 +345,12 @@ def pick_samples(
     return chosen[:count]
 
 
-def _house(scene_id: str, cache: dict[str, House]) -> House | None:
+def _house(scene_id: str, scenes: str | None, cache: dict[str, House]) -> House | None:
+    """The house of a scene (procedural, or a scan in ``scenes``); None when it cannot be
+    rebuilt here (no scenes folder, or one without the scene)."""
     if scene_id not in cache:
         try:
-            cache[scene_id] = procedural_house(scene_id)
-        except ConfigError:
+            cache[scene_id] = scene_house(scene_id, scenes)
+        except VllnError:
             return None
     return cache[scene_id]

@@ -9,6 +9,7 @@ Layout::
     DIR/.lock           held while a process writes here, so two runs cannot interleave
 
     DIR/episodes.skipped.jsonl  lines a resume set aside: invalid or repeated (see below)
+    DIR/episodes.refused.jsonl  episodes refused as unplayable in their scene (vlln.eval.refusals)
 
 Each record is appended with one write, flushed and fsynced, so a kill loses at most the
 episode in flight. That episode may leave a partial last line; reading for a restart cuts it
@@ -32,6 +33,7 @@ from typing import IO, Any
 
 from vlln.errors import ConfigError, DataFormatError
 from vlln.eval.config import EvalConfig, describe_differences
+from vlln.eval.refusals import Refusal, read_refusals
 from vlln.files import write_bytes_atomic, write_text_atomic
 from vlln.tasks.record import EpisodeRecord
 
@@ -228,6 +230,14 @@ class RunDirectory:
         arguments = {name: value for name, value in data.items() if name not in RUN_FACTS}
         return EvalConfig.from_json(arguments, str(self.run_path))
 
+    def stored_scenes(self) -> str | None:
+        """The folder of scanned scenes the run was made with (``--scenes``), if any."""
+        try:
+            scenes = (self.stored_run() or {}).get("scenes")
+        except DataFormatError:
+            return None
+        return scenes if isinstance(scenes, str) else None
+
     def stored_planned(self) -> int | None:
         """Episode lines the run plans (None when its run.json predates the count)."""
         planned = (self.stored_run() or {}).get("planned_episodes")
@@ -304,12 +314,14 @@ class RunDirectory:
 @dataclass
 class RunContents:
     """The records of one or more run directories and what reading them found: lines skipped,
-    lines set aside by a resume, and the episode lines the runs planned (None if unknown)."""
+    lines set aside by a resume, the episode lines the runs planned (None if unknown) and the
+    episodes they refused (:mod:`vlln.eval.refusals`)."""
 
     records: list[EpisodeRecord] = field(default_factory=list)
     skipped: list[SkippedLine] = field(default_factory=list)
     set_aside: int = 0
     planned: int | None = 0
+    refused: list[Refusal] = field(default_factory=list)
 
     def skipped_kinds(self) -> list[tuple[str, str]]:
         """(kind, description) of every line not counted, set-aside lines included."""
@@ -344,6 +356,8 @@ def load_runs(paths: Iterable[Path]) -> RunContents:
         aside = file.parent / SKIPPED_FILE
         if aside.is_file():
             contents.set_aside += aside.read_bytes().count(b"\n")
+        if path.is_dir():
+            contents.refused += read_refusals(path)
         planned = RunDirectory(path).stored_planned() if path.is_dir() else None
         if planned is None or contents.planned is None:
             contents.planned = None

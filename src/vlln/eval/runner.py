@@ -17,7 +17,11 @@ is closed before the next one is built, and memory stays that of one house.
 
 Robustness: an exception inside the agent's ``reset`` or ``act`` ends that episode, recorded
 with end reason ``error`` and the exception text, and the run goes on; outputs that are not
-actions are failed actions, which the environment records and caps. Finished episodes are on
+actions are failed actions, which the environment records and caps. An episode the
+environment refuses (its start or goals not reachable on their own storeys,
+:mod:`vlln.tasks.refusal`) is named with the reason in one line on stderr, kept in
+``episodes.refused.jsonl`` (:mod:`vlln.eval.refusals`) and counted by the run's health; the run
+goes on with the others. Finished episodes are on
 disk before the next one starts (see :mod:`vlln.eval.results`), and a restart skips them.
 """
 
@@ -36,10 +40,11 @@ from tqdm import tqdm
 
 from vlln.agents.protocol import Agent, RecordsModelCalls, reported_stop_reason
 from vlln.agents.registry import make_agent
-from vlln.errors import ConfigError
+from vlln.errors import ConfigError, EpisodeRefusedError
 from vlln.eval.config import EvalConfig
 from vlln.eval.cost import eval_cost_line
 from vlln.eval.health import RunHealth, run_health
+from vlln.eval.refusals import Refusal, append_refusals, read_refusals
 from vlln.eval.results import RecordKey, RunDirectory, SkippedLine, load_runs, record_key
 from vlln.eval.summary import GroupSummary, summarize_run, summary_json, summary_markdown
 from vlln.eval.sweep import can_sweep, describe_error, play_sweep
@@ -91,7 +96,8 @@ class RunOutcome:
 
     @property
     def complete(self) -> bool:
-        return len(self.records) == self.planned
+        """Every planned episode line is written or refused."""
+        return self.health.complete
 
 
 def order_by_scene(episodes: Sequence[Episode]) -> list[Episode]:
@@ -237,7 +243,7 @@ def run_evaluation(
     run_dir.prepare(config, len(items), provenance or default_provenance(config, oracle_factory))
     task = TaskType.parse(config.task)
     own_scenes = scenes is None
-    cache = scenes if scenes is not None else SceneCache()
+    cache = scenes if scenes is not None else SceneCache(scenes_dir=config.scenes)
     played = 0
     started = time.perf_counter()
     try:
@@ -245,6 +251,7 @@ def run_evaluation(
             _check_same_agent(writer.records, config, out)
             repaired = list(writer.skipped)
             done = {record_key(record) for record in writer.records}
+            done |= {refusal.key() for refusal in read_refusals(out)}
             remaining = [item for item in items if item.key(config) not in done]
             todo = remaining if stop_after is None else remaining[:stop_after]
             if progress:
@@ -264,9 +271,15 @@ def run_evaluation(
                     if scene is not None and group[0].episode.scene_id != scene:
                         cache.close()  # episodes come grouped by scene: free the last house
                     scene = group[0].episode.scene_id
-                    plays = _play_group(
-                        group, config, task, cache, agent_factory, oracle_factory, sweep
-                    )
+                    try:
+                        plays = _play_group(
+                            group, config, task, cache, agent_factory, oracle_factory, sweep
+                        )
+                    except EpisodeRefusedError as refused:
+                        tqdm.write(f"refused: {refused}", file=sys.stderr)
+                        append_refusals(out, _refusals(group, config, refused.reason))
+                        bar.update(len(group))
+                        continue
                     for record in plays:
                         writer.append(record)
                         played += 1
@@ -369,6 +382,11 @@ def _play_group(
     env = NavigationEnv([episode], task_config, scenes, oracle, privileged=agent.privileged)
     records = play_sweep(env, agent, config.agent, budgets)
     return [replace(records[budget], detector=config.detector) for budget in budgets]
+
+
+def _refusals(group: list[WorkItem], config: EvalConfig, reason: str) -> list[Refusal]:
+    """The refusal of each budget of one refused episode."""
+    return [Refusal(*item.key(config), reason) for item in group]
 
 
 def _ids(episode: Episode) -> tuple[str, str]:

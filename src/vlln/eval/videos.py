@@ -2,7 +2,9 @@
 
 A source is a run directory, a results file (JSON Lines) or one record (a JSON file). Without
 a named episode, dialog episodes come first (most answered questions, then most questions),
-at the largest budget, so a video shows the dialog when there is one.
+at the largest budget, so a video shows the dialog when there is one. A scanned scene is read
+from the folder the run was made with (``--scenes`` in its ``run.json``) unless another is
+given.
 """
 
 from __future__ import annotations
@@ -13,11 +15,12 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from vlln.errors import ConfigError, DataFormatError
-from vlln.eval.results import load_run_records
+from vlln.eval.results import RunDirectory, load_run_records
 from vlln.eval.video import VideoConfig, write_episode_video
 from vlln.sim.simulator import Simulator
+from vlln.tasks.episode import scene_name
 from vlln.tasks.record import EpisodeRecord
-from vlln.tasks.scenes import procedural_house, procedural_seed
+from vlln.tasks.scenes import is_procedural, scene_house
 
 _UNSAFE = re.compile(r"[^A-Za-z0-9_.-]+")
 
@@ -47,13 +50,20 @@ def dialog_first(records: Sequence[EpisodeRecord], count: int) -> list[EpisodeRe
     return ranked[:count]
 
 
-def replayable(record: EpisodeRecord) -> bool:
-    """Whether the record's house can be rebuilt here (a built-in procedural house)."""
-    try:
-        procedural_seed(record.scene_id)
-    except ConfigError:
+def replayable(record: EpisodeRecord, scenes: str | Path | None = None) -> bool:
+    """Whether the record's house can be rebuilt here: a built-in procedural house, or a
+    scanned scene in the folder ``scenes``."""
+    if not record.positions:
         return False
-    return bool(record.positions)
+    if is_procedural(record.scene_id):
+        return True
+    return scenes is not None and (Path(scenes) / scene_name(record.scene_id)).is_dir()
+
+
+def scenes_of(source: Path) -> str | None:
+    """The ``--scenes`` folder a run was made with: from ``run.json`` of the run directory
+    ``source`` (or of the folder holding the results file ``source``)."""
+    return RunDirectory(source if source.is_dir() else source.parent).stored_scenes()
 
 
 def video_name(record: EpisodeRecord, prefix: str = "video") -> str:
@@ -65,12 +75,14 @@ def write_videos(
     out: Path,
     config: VideoConfig | None = None,
     prefix: str = "video",
+    scenes: str | Path | None = None,
 ) -> list[tuple[Path, float]]:
-    """One MP4 per record in folder ``out``; returns (file, seconds) for each."""
+    """One MP4 per record in folder ``out`` (scanned scenes read from ``scenes``); returns
+    (file, seconds) for each."""
     config = config or VideoConfig()
     written: list[tuple[Path, float]] = []
     for record in records:
-        house = procedural_house(record.scene_id)
+        house = scene_house(record.scene_id, scenes)
         with Simulator(house) as sim:
             path = out / video_name(record, prefix)
             written.append((path, write_episode_video(record, house, sim, path, config)))
@@ -78,9 +90,14 @@ def write_videos(
 
 
 def make_video(
-    source: Path, out: Path | None, episode: str | None, budget: int | None
+    source: Path,
+    out: Path | None,
+    episode: str | None,
+    budget: int | None,
+    scenes: Path | None = None,
 ) -> tuple[Path, float]:
-    """``vlln video``: one episode of ``source`` (named, or the first with dialog)."""
+    """``vlln video``: one episode of ``source`` (named, or the first with dialog); scanned
+    scenes come from ``scenes`` or the run's own ``--scenes``."""
     records = read_video_source(source)
     if episode is not None:
         records = [r for r in records if r.episode_id == episode]
@@ -94,7 +111,7 @@ def make_video(
         )
     record = chosen[0]
     folder = out.parent if out else (source if source.is_dir() else source.parent) / "videos"
-    [(path, seconds)] = write_videos([record], folder)
+    [(path, seconds)] = write_videos([record], folder, scenes=scenes or scenes_of(source))
     if out is not None and path != out:
         path = path.replace(out)
     return path, seconds

@@ -74,7 +74,7 @@ class Simulator:
         flights = [inst.id for inst in house.instances if inst.category == "stairs"]
         self.storeys: Storeys | None = None
         self._grid: NavGrid | None = None
-        if len(floor_ys) > 1 and flights:
+        if len(floor_ys) > 1:  # storeys no flight joins stay apart, never flattened
             self.storeys = Storeys.from_mesh(
                 house.geometry.mesh,
                 floor_ys,

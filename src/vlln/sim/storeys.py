@@ -5,7 +5,10 @@ all storeys. A flight's treads are walkable on both storeys it joins (see
 ``NavGrid.from_mesh(ramp_ids=...)``); its shaft walls let it be entered only from its foot
 below and its head above. A cell of a flight is therefore in two grids at the same height,
 and that shared cell is where the storeys meet: the graph over all storeys joins the two
-copies, so one Dijkstra finds paths that climb or descend.
+copies, so one Dijkstra finds paths that climb or descend. A flight reaches a storey when its
+foot is on that floor or its top tread is level with it, or when its first rise steps up from
+the floor or its last rise steps onto it (ordinary stairs, whose top landing is the floor
+itself; :func:`vlln.world.model.top_at`).
 
 Heights: every cell of a storey has a walking height, the floor's except on a flight,
 where it is the top of the tread under the cell centre. The agent belongs to the storey
@@ -16,7 +19,6 @@ Edges on a flight are as long as the slope makes them (plan length times
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 
 import numpy as np
@@ -28,7 +30,7 @@ from vlln.errors import ConfigError, NavigationError
 from vlln.sim.footprint import floor_cells
 from vlln.sim.navgrid import NavGrid, lattice_extent
 from vlln.world.mesh import Mesh
-from vlln.world.model import StructureId, nearest_floor
+from vlln.world.model import StructureId, foot_on, nearest_floor, top_at
 
 Point3 = tuple[float, float, float]
 
@@ -220,7 +222,7 @@ def _span(triangles: NDArray[np.float64]) -> tuple[float, float, float]:
 
 
 def _meets(floor_y: float, low: float, high: float) -> bool:
-    return math.isclose(floor_y, low, abs_tol=1e-3) or math.isclose(floor_y, high, abs_tol=1e-3)
+    return foot_on(floor_y, low) or top_at(floor_y, high)
 
 
 def _paint_treads(

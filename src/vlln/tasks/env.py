@@ -32,6 +32,9 @@ Datasheet
 * **Dialog**: the first ``dialog_budget`` questions are answered; later ones get
   :data:`vlln.tasks.spec.REFUSAL_MESSAGE`. Questions are answered on IIGN (default budget 5)
   and IGN (default budget 0), never on ObjectNav.
+* **Refusal**: an episode whose start is on no storey of the scene or not navigable, or whose
+  goals cannot be reached from it on their own storeys, is refused at ``reset``
+  (:mod:`vlln.tasks.refusal`), never played on another storey.
 * **Reward**: the decrease of geodesic distance to the nearest goal view point, plus 2.5 on
   success; the benchmark scores records, not rewards.
 """
@@ -45,7 +48,7 @@ from typing import Any
 
 import numpy as np
 
-from vlln.errors import ConfigError
+from vlln.errors import ConfigError, EpisodeRefusedError
 from vlln.oracle.protocol import EpisodeContext, Oracle, Question
 from vlln.sim.agent import Action, AgentState, MotionConfig
 from vlln.sim.camera import CameraSpec
@@ -54,6 +57,7 @@ from vlln.sim.simulator import Simulator
 from vlln.sim.viewpoints import GoalPoint
 from vlln.tasks.episode import Episode
 from vlln.tasks.record import DialogTurn, EndReason, EpisodeRecord, ModelCall, StopReason
+from vlln.tasks.refusal import no_goal_reason, on_the_storey, reach_problem, start_problem
 from vlln.tasks.scenes import SceneCache
 from vlln.tasks.spec import (
     REFUSAL_MESSAGE,
@@ -123,7 +127,9 @@ class NavigationEnv:
     def reset(
         self, *, seed: int | None = None, options: dict[str, Any] | None = None
     ) -> tuple[Observation, dict[str, Any]]:
-        """Start an episode: ``options={"episode_index": i}`` (default: drawn with ``seed``)."""
+        """Start an episode: ``options={"episode_index": i}`` (default: drawn with ``seed``).
+        An episode whose start or goals are not reachable on their own storeys raises
+        :class:`~vlln.errors.EpisodeRefusedError` (:mod:`vlln.tasks.refusal`)."""
         options = options or {}
         if "episode_index" in options:
             index = int(options["episode_index"])
@@ -136,12 +142,18 @@ class NavigationEnv:
         self.sim: Simulator = self.scenes.get(episode.scene_id)
         house = self.sim.house
         self.targets = self._goal_instances(episode)
+        x0, y0, z0 = episode.start_position
+        problem = start_problem(self.sim, x0, y0, z0)
+        if problem is not None:
+            raise EpisodeRefusedError(episode.episode_id, episode.scene_id, problem)
         self.goal_points = self._goal_points(episode)
         self.field = self.sim.distance_field(self.goal_points)
+        problem = reach_problem(self.sim, self.field, (x0, y0, z0), self.goal_points)
+        if problem is not None:
+            raise EpisodeRefusedError(episode.episode_id, episode.scene_id, problem)
         self.follower = GreedyFollower(
             self.sim.nav, self.field, self.config.success_radius, self.sim.config.motion
         )
-        x0, y0, z0 = episode.start_position
         start = AgentState(
             (x0, y0, z0),
             quaternion_to_yaw(episode.start_rotation),
@@ -409,15 +421,22 @@ class NavigationEnv:
 
     def _goal_points(self, episode: Episode) -> list[GoalPoint]:
         """The goals' view points; a goal listing none gets those of its box (reference §1).
-        ``(x, z)`` on one storey, ``(x, y, z)`` in a house with several."""
+        ``(x, z)`` on one storey (listed points off its floor are not its), ``(x, y, z)`` in a
+        house with several; none at all refuses the episode (:mod:`vlln.tasks.refusal`)."""
         points: list[GoalPoint] = []
         storeys = self.sim.storeys
+        listed = 0
         for k, goal in enumerate(episode.goals):
             if goal.view_points and storeys is not None:
                 points += [vp.position for vp in goal.view_points]
                 continue
             if goal.view_points:
-                points += [(vp.position[0], vp.position[2]) for vp in goal.view_points]
+                listed += len(goal.view_points)
+                points += [
+                    (vp.position[0], vp.position[2])
+                    for vp in goal.view_points
+                    if on_the_storey(self.sim, vp.position[1])
+                ]
                 continue
             if goal.bbox is not None:
                 x0, y0, z0, x1, y1, z1 = goal.bbox
@@ -428,10 +447,8 @@ class NavigationEnv:
                 box = Box3(goal.position, goal.position)
             points += self.sim.view_points(box)
         if not points:
-            raise ConfigError(
-                f"episode {episode.episode_id} in {episode.scene_id}: no goal has a navigable "
-                "view point"
-            )
+            reason = no_goal_reason(self.sim, listed)
+            raise EpisodeRefusedError(episode.episode_id, episode.scene_id, reason)
         return points
 
     def _goal_instances(self, episode: Episode) -> list[ObjectInstance]:

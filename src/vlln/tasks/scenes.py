@@ -6,12 +6,16 @@ reference reads as the scene); the short ``vlln/house_<seed>`` of older files is
 Houses of the ``mp3d`` preset (:mod:`vlln.world.generator.presets`) are
 ``vlln/mp3d_<seed>/mp3d_<seed>.glb``; their storeys follow from the seed.
 Other scene ids name an imported scan: the folder ``<scenes dir>/<scene>`` (see
-:mod:`vlln.world.scans`). :class:`SceneCache` builds a simulator per scene and keeps the most
-recent few, since runners visit episodes scene by scene.
+:mod:`vlln.world.scans`); an exported scan's episodes name it as habitat names Matterport3D
+scans, ``<style>/<scene>/<scene>.glb`` (:func:`scan_scene_id`). A procedural scene id is never
+read from a scenes folder: with one given, that is said once. :class:`SceneCache`
+builds a simulator per scene and keeps the most recent few, since runners visit episodes
+scene by scene.
 """
 
 from __future__ import annotations
 
+import logging
 import re
 from collections import OrderedDict
 from pathlib import Path
@@ -30,6 +34,7 @@ _PROCEDURAL = re.compile(
 )
 MAX_SEED = 999_999_999
 """The largest house seed a scene id may name."""
+logger = logging.getLogger(__name__)
 
 
 def procedural_scene_id(seed: int, floors: int = 1, preset: str = SMALL.name) -> str:
@@ -38,6 +43,24 @@ def procedural_scene_id(seed: int, floors: int = 1, preset: str = SMALL.name) ->
     ``vlln/<preset>_<seed>/<preset>_<seed>.glb`` (its storeys follow from the seed)."""
     name = house_name(preset, seed, floors)
     return f"vlln/{name}/{name}.glb"
+
+
+def scan_scene_id(style: str, name: str) -> str:
+    """``<style>/<name>/<name>.glb``: a scan's scene id, as the reference's Matterport3D
+    episodes write ``mp3d/<scan>/<scan>.glb``; ``--scenes`` is the folder holding ``<name>/``."""
+    return f"{style}/{name}/{name}.glb"
+
+
+def scene_house(scene_id: str, scenes_dir: str | Path | None = None) -> House:
+    """The house a scene id names: a procedural house, or the scan ``<scenes_dir>/<scene>``."""
+    if is_procedural(scene_id):
+        return procedural_house(scene_id)
+    if scenes_dir is None:
+        raise ConfigError(
+            f"scene {scene_id[:80]!r} is a scanned scene; pass the folder of scanned scenes "
+            f"that holds {scene_name(scene_id)}/ (--scenes DIR)"
+        )
+    return load_scene(Path(scenes_dir) / scene_name(scene_id))
 
 
 def house_scene_id(house: House) -> str:
@@ -124,6 +147,7 @@ class SceneCache:
         self.capacity = capacity
         self.scenes_dir = None if scenes_dir is None else Path(scenes_dir)
         self._sims: OrderedDict[str, Simulator] = OrderedDict()
+        self._told = False  # whether it said that procedural scenes ignore scenes_dir
 
     def get(self, scene_id: str) -> Simulator:
         sim = self._sims.get(scene_id)
@@ -138,9 +162,16 @@ class SceneCache:
         return sim
 
     def _house(self, scene_id: str) -> House:
-        if is_procedural(scene_id) or self.scenes_dir is None:
-            return procedural_house(scene_id)
-        return load_scene(self.scenes_dir / scene_name(scene_id))
+        if self.scenes_dir is not None and is_procedural(scene_id) and not self._told:
+            self._told = True
+            logger.warning(
+                "%s names a procedural house: it and any other vlln/house_... scene are "
+                "generated, not read from --scenes %s (episodes of an exported scan name "
+                "mp3d/<scene>/<scene>.glb; vlln world export --episodes writes them)",
+                scene_id,
+                self.scenes_dir,
+            )
+        return scene_house(scene_id, self.scenes_dir)
 
     def holds(self, scene_id: str) -> bool:
         """Whether the scene's simulator is built and kept (getting it builds nothing)."""

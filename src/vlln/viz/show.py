@@ -1,4 +1,5 @@
-"""`vlln world show`: a top-down map and egocentric RGB, depth and instance-id views of a house."""
+"""`vlln world show`: a top-down map and egocentric RGB, depth and instance-id views of a house,
+generated or read from a scanned scene folder."""
 
 from __future__ import annotations
 
@@ -15,6 +16,7 @@ from vlln.viz.frames import depth_image, instance_image, save_png
 from vlln.viz.topdown import save_house_map
 from vlln.world.generator import HouseParameters, generate_house
 from vlln.world.model import House, Room
+from vlln.world.scans import load_scene
 
 TURNS = 12  # candidate headings per viewpoint, 30 degrees apart
 
@@ -51,11 +53,16 @@ def pick_views(sim: Simulator, n_views: int) -> list[View]:
 
 
 def show_world(
-    seed: int, out: Path, n_views: int = 4, params: HouseParameters | None = None
+    seed: int,
+    out: Path,
+    n_views: int = 4,
+    params: HouseParameters | None = None,
+    scene: Path | None = None,
 ) -> list[Path]:
-    """Generate house ``seed`` and write its map and views under ``out``, replacing an earlier
-    output folder of this command (:func:`vlln.files.replace_folder`); returns the files."""
-    house = generate_house(seed, params)
+    """Generate house ``seed`` (or import the scanned scene folder ``scene``) and write its map
+    and views under ``out``, replacing an earlier output folder of this command
+    (:func:`vlln.files.replace_folder`); returns the files."""
+    house = load_scene(scene) if scene is not None else generate_house(seed, params)
     files = replace_folder(out, lambda folder: _write_views(house, folder, n_views), _is_ours)
     return [out / path.name for path in files]
 

@@ -24,6 +24,24 @@ def nearest_floor(floor_ys: Sequence[float], y: float) -> int:
     return min(range(len(floor_ys)), key=lambda k: (abs(floor_ys[k] - y), k))
 
 
+MAX_RISE = 0.3  # m: a step taller than this is no step
+FLOOR_MATCH = 0.05  # m: a scan's floor lies within this of its storey's floor height
+
+
+def foot_on(floor_y: float, low: float) -> bool:
+    """Whether a flight whose lowest point is at ``low`` starts from the floor at ``floor_y``:
+    its foot is on that floor, or its first rise steps up from it (a scan's flight box often
+    begins at the first tread)."""
+    return floor_y - FLOOR_MATCH <= low <= floor_y + MAX_RISE
+
+
+def top_at(floor_y: float, high: float) -> bool:
+    """Whether a flight whose highest point is at ``high`` arrives on the floor at ``floor_y``:
+    its top tread is level with that floor (a generated flight), or its last rise steps onto
+    the floor, which is then the top landing (ordinary stairs, and how scans annotate them)."""
+    return floor_y - MAX_RISE <= high <= floor_y + FLOOR_MATCH
+
+
 class StructureId(IntEnum):
     """Instance ids of the house's structure in the instance-id image; objects are >= 1."""
 

@@ -69,9 +69,9 @@ MP3D = HousePreset(
     name="mp3d",
     summary="calibrated to Matterport3D as VL-LN uses it (docs/world-statistics.md)",
     base=HouseParameters(clutter=0.72, category_variety=0.55),
-    floor_weights=(0.3, 0.3, 0.4),
-    rooms_per_storey=(9, 14),
-    area_per_room=(20.0, 30.0),
+    floor_weights=(0.2, 0.3, 0.5),
+    rooms_per_storey=(8, 13),
+    area_per_room=(24.0, 34.0),
 )
 PRESETS: dict[str, HousePreset] = {preset.name: preset for preset in (SMALL, MP3D)}
 DEFAULT_PRESET = MP3D.name

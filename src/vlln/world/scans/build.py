@@ -3,10 +3,12 @@
 Both scan formats come down to the same pieces: triangles with colours, annotated objects
 (an oriented box, or the triangles they own), and regions. Triangles owned by no object are
 structure, told apart by their normal and height: up-facing ones on a region's floor are
-floor (what the navigable grid stands on), down-facing ones ceiling, the rest wall. Object
-categories are mapped to the catalogue's names (:func:`map_category`); the mapping is part of
-the :class:`ImportReport`. Flights of stairs are instances of category ``stairs`` when they can
-be climbed, else shell too (:mod:`vlln.world.scans.flights`).
+floor (what the navigable grid stands on), down-facing ones ceiling, the rest wall. What an
+annotation is (object, shell, flight, void) comes from its mpcat40 group or raw word
+(:mod:`vlln.world.scans.categories`); void annotations are dropped. Object categories are
+mapped to the catalogue's names (:func:`map_category`); the mapping is part of the
+:class:`ImportReport`. Flights of stairs are instances of category ``stairs`` when they can be
+climbed, else shell too (:mod:`vlln.world.scans.flights`).
 """
 
 from __future__ import annotations
@@ -30,18 +32,16 @@ from vlln.world.model import (
     StructureId,
 )
 from vlln.world.relations import build_relations
-from vlln.world.scans.flights import (
-    FLIGHT_CATEGORIES,
-    FLIGHT_CATEGORY,
-    flight_problem,
-    taller_than_a_step,
+from vlln.world.scans.categories import (
+    FLIGHT_WORDS,
+    is_door_frame,
+    is_flight,
+    is_structure,
+    is_void,
+    word,
 )
+from vlln.world.scans.flights import FLIGHT_CATEGORY, flight_problem, taller_than_a_step
 
-# Annotation categories that are the house's shell, not objects.
-STRUCTURE_CATEGORIES = frozenset(
-    {"floor", "wall", "ceiling", "door frame", "doorframe", "beam", "column", "void"}
-)
-DOOR_FRAME_CATEGORIES = frozenset({"door frame", "doorframe"})
 # Common scan names for catalogue categories (the scans' vocabularies are larger than ours).
 SYNONYMS: dict[str, str] = {  # raw annotation words; the catalogue's aliases come on top
     "television": "tv",
@@ -72,7 +72,8 @@ _FLOOR_TOLERANCE = 0.15  # m: an up-facing triangle this close to a floor height
 @dataclass(frozen=True)
 class ScanObject:
     """One annotated object: id, raw category, region, and an oriented box when the format has
-    one (vlln frame; ``axes`` rows are unit vectors, ``half`` the half-extents along them)."""
+    one (vlln frame; ``axes`` rows are unit vectors, ``half`` the half-extents along them);
+    ``group`` is its mpcat40 group when the scan names one."""
 
     id: int
     category: str
@@ -80,6 +81,19 @@ class ScanObject:
     center: tuple[float, float, float] | None = None
     axes: tuple[tuple[float, float, float], ...] | None = None
     half: tuple[float, float, float] | None = None
+    group: str | None = None
+
+    @property
+    def void(self) -> bool:
+        return is_void(self.category, self.group)
+
+    @property
+    def structure(self) -> bool:
+        return is_structure(self.category, self.group)
+
+    @property
+    def flight(self) -> bool:
+        return is_flight(self.category, self.group)
 
 
 @dataclass
@@ -94,20 +108,21 @@ class ImportReport:
     category_mapping: dict[str, str] = field(default_factory=dict)  # raw -> catalogue name
     unmapped: list[str] = field(default_factory=list)  # raw categories kept as they are
     flights_left_out: dict[int, str] = field(default_factory=dict)  # id -> why not climbable
+    void_objects: int = 0  # annotations dropped as void (remove, unknown, no category...)
     seconds: float = 0.0
 
 
 def map_category(raw: str) -> tuple[str, bool]:
     """The catalogue name for an annotation category, and whether the catalogue has it."""
     names = set(default_catalogue().names)
-    word = raw.strip().lower().replace("_", " ").replace("#", " ")
-    if word in FLIGHT_CATEGORIES:
+    phrase = word(raw)
+    if phrase in FLIGHT_WORDS:
         return FLIGHT_CATEGORY, True
-    for candidate in (word, SYNONYMS.get(word, ""), word.rstrip("s")):
+    for candidate in (phrase, SYNONYMS.get(phrase, ""), phrase.rstrip("s")):
         candidate = canonical_category(candidate)
         if candidate in names:
             return candidate, True
-    return word, False
+    return phrase, False
 
 
 def on_storeys(rooms: list[Room]) -> list[Room]:
@@ -166,17 +181,20 @@ def build_house(
     rooms: list[Room],
     owners: NDArray[np.int64] | None = None,
 ) -> tuple[House, ImportReport]:
-    """The house: the rooms on their storeys (:func:`on_storeys`), one instance per
-    non-structure object, one mesh."""
-    frames = [o for o in objects if _word(o.category) in DOOR_FRAME_CATEGORIES]
+    """The house: the rooms on their storeys (:func:`on_storeys`), one instance per object
+    that is neither structure nor void, one mesh."""
+    void = [o.id for o in objects if o.void]
+    objects = [o for o in objects if not o.void]
+    frames = [o for o in objects if is_door_frame(o.category)]
     if owners is None:
-        owners = owners_by_box(triangles, [o for o in objects if not _is_structure(o)])
+        owners = owners_by_box(triangles, [o for o in objects if not o.structure])
         in_frame = owners_by_box(triangles, frames) >= 0
     else:
+        owners = np.where(np.isin(owners, void), -1, owners)
         in_frame = np.isin(owners, [o.id for o in frames])
     ids = _structure_ids(triangles, rooms)  # each region's own floor height tells floor
     rooms = on_storeys(rooms)
-    flights = [o.id for o in objects if _word(o.category) in FLIGHT_CATEGORIES]
+    flights = [o.id for o in objects if o.flight]
     if flights:
         owners = np.where(np.isin(owners, flights) & taller_than_a_step(triangles), -1, owners)
     floor_ys = sorted({room.floor_y for room in rooms})
@@ -185,13 +203,14 @@ def build_house(
         problem = flight_problem(triangles[owners == flight], floor_ys)
         if problem is not None:
             left_out[flight] = problem
-    structure = {o.id for o in objects if _is_structure(o)} | set(left_out)
+    structure = {o.id for o in objects if o.structure} | set(left_out)
     owners = np.where(np.isin(owners, list(structure)), -1, owners)
     ids[in_frame] = int(StructureId.DOOR_FRAME)
     ids = np.where(owners >= 0, owners, ids)
 
     report = ImportReport(name, len(triangles), len(rooms), 0, len(structure))
     report.flights_left_out = left_out
+    report.void_objects = len(void)
     region_room = {room.id: room.id for room in rooms}
     instances: list[ObjectInstance] = []
     for obj in objects:
@@ -201,7 +220,9 @@ def build_house(
         box = _box_of(obj, mine)
         if box is None:
             continue  # an object with neither a box nor triangles cannot be placed
-        category, known = map_category(obj.category)
+        category, known = (FLIGHT_CATEGORY, True) if obj.flight else map_category(obj.category)
+        if category == FLIGHT_CATEGORY and not obj.flight:
+            category = word(obj.category)  # a stair word whose group is not stairs (a rail)
         report.category_mapping[obj.category] = category
         if not known and obj.category not in report.unmapped:
             report.unmapped.append(obj.category)
@@ -230,14 +251,6 @@ def build_house(
         geometry=HouseGeometry(mesh),
     )
     return house, report
-
-
-def _word(category: str) -> str:
-    return category.strip().lower().replace("_", " ")
-
-
-def _is_structure(obj: ScanObject) -> bool:
-    return _word(obj.category) in STRUCTURE_CATEGORIES
 
 
 def _box_of(obj: ScanObject, points: NDArray[np.float64]) -> Box3 | None:

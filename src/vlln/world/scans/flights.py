@@ -1,12 +1,16 @@
 """Flights of stairs in a scan: the instance that joins one storey to the next.
 
-A scan's stairs (mpcat40 ``stairs``; HM3D's ``stairs`` objects) come in as an instance of
-category ``stairs`` whose triangles are the flight, which is what the simulator climbs
-(:mod:`vlln.sim.storeys`): it walks on the flight's flat, up-facing faces (its treads) and
-joins the two storeys whose floors are at the flight's foot and top. A flight that cannot be
-climbed that way (its foot or top on no floor, treads that are not flat, as in a noisy scan)
-is not imported as stairs: :func:`flight_problem` says why, and the import keeps its
-triangles as the house's shell, so the storeys stay apart.
+A scan's stairs (mpcat40 ``stairs``, whatever their raw name: ``steps``, ``step``,
+``staircase``...; HM3D's ``stairs`` objects) come in as an instance of category ``stairs``
+whose triangles are the flight, which is what the simulator climbs (:mod:`vlln.sim.storeys`):
+it walks on the flight's flat, up-facing faces (its treads) and joins the two storeys whose
+floors are at the flight's foot and top. Ordinary stairs end with a rise onto the upper floor,
+which is their top landing, and a scan's box around them ends below that floor: a top within
+one step below the floor arrives on it (:func:`vlln.world.model.top_at`), as a foot within one
+step above a floor starts from it. A flight that cannot be climbed (its foot or top on no
+floor, treads that are not flat, as in a noisy scan) is not imported as stairs:
+:func:`flight_problem` says why, and the import keeps its triangles as the house's shell, so
+the storeys stay apart.
 """
 
 from __future__ import annotations
@@ -14,12 +18,10 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-# Scan words for a flight of stairs; all are imported as the category ``stairs``.
-FLIGHT_CATEGORIES = frozenset({"stairs", "stair", "staircase", "stairway"})
-FLIGHT_CATEGORY = "stairs"
-MAX_RISE = 0.3  # m: a step taller than this is no step
+from vlln.world.model import MAX_RISE, foot_on, top_at
+
+FLIGHT_CATEGORY = "stairs"  # every flight's instance category (vlln.world.scans.categories)
 MIN_TREAD_SHARE = 0.5  # of a flight's up-facing plan area, at least this much is flat treads
-_HEIGHT_TOLERANCE = 1e-3  # m: how close a flight's foot and top must be to a floor (as sim's)
 
 
 def flight_problem(triangles: NDArray[np.float64], floor_ys: list[float]) -> str | None:
@@ -30,10 +32,10 @@ def flight_problem(triangles: NDArray[np.float64], floor_ys: list[float]) -> str
     heights = triangles[:, :, 1]
     low, high = float(heights.min()), float(heights.max())
     floors = ", ".join(f"{y:.3f}" for y in floor_ys)
-    foot = _floor_at(low, floor_ys)
+    foot = next((k for k, y in enumerate(floor_ys) if foot_on(y, low)), None)
     if foot is None:
         return f"its foot ({low:.3f} m) is on no storey's floor ({floors} m)"
-    if foot + 1 >= len(floor_ys) or _floor_at(high, floor_ys) != foot + 1:
+    if foot + 1 >= len(floor_ys) or not top_at(floor_ys[foot + 1], high):
         return f"its top ({high:.3f} m) is not the floor of the storey above its foot ({floors} m)"
     normals = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
     up_area = np.maximum(normals[:, 1], 0.0) / 2.0  # plan area of up-facing triangles
@@ -45,7 +47,7 @@ def flight_problem(triangles: NDArray[np.float64], floor_ys: list[float]) -> str
             f"{MIN_TREAD_SHARE:.0%} needed to walk on)"
         )
     treads = np.unique(heights[flat, 0])
-    rises = np.diff(np.concatenate([[low], treads, [high]]))
+    rises = np.diff(np.concatenate([[floor_ys[foot]], treads, [floor_ys[foot + 1]]]))
     if float(rises.max()) > MAX_RISE:
         return f"a step rises {float(rises.max()):.2f} m (at most {MAX_RISE} m)"
     return None
@@ -57,10 +59,3 @@ def taller_than_a_step(triangles: NDArray[np.float64]) -> NDArray[np.bool_]:
     rise that much)."""
     rise: NDArray[np.bool_] = np.ptp(triangles[:, :, 1], axis=1) > MAX_RISE
     return rise
-
-
-def _floor_at(y: float, floor_ys: list[float]) -> int | None:
-    for level, floor in enumerate(floor_ys):
-        if abs(floor - y) <= _HEIGHT_TOLERANCE:
-            return level
-    return None

@@ -15,8 +15,10 @@ The ``.house`` file is ASCII, one record per line, a letter first (Matterport3D'
 
 (I, P and E records are read past.) A region's floor polygon is its surface's vertices; a
 region label is one letter (``b`` bedroom, ``k`` kitchen, ...; :data:`REGION_LETTERS`); an
-object is an oriented box (centre, two axes, radii), its category a ``C`` record. Names use
-``#`` for spaces. Coordinates are z-up (see :mod:`vlln.world.scans.gltf`).
+object is an oriented box (centre, two axes, radii), its category the ``C`` record at that
+index (``-1``: none): the raw word (``#`` for spaces) and its mpcat40 group, which decide
+what the annotation is (:mod:`vlln.world.scans.categories`). Coordinates are z-up (see
+:mod:`vlln.world.scans.gltf`).
 """
 
 from __future__ import annotations
@@ -30,6 +32,7 @@ from vlln.files import write_text_atomic
 from vlln.world.mesh import Mesh
 from vlln.world.model import Door, House, Room, StructureId
 from vlln.world.scans.build import ImportReport, ScanObject, build_house
+from vlln.world.scans.categories import NO_CATEGORY, mpcat40_group, mpcat40_of
 from vlln.world.scans.gltf import from_scan_frame, read_glb, to_scan_frame, write_glb
 
 # Our room type -> Matterport3D region letter; the other letters are read as the nearest type.
@@ -71,7 +74,7 @@ def read_house_file(path: Path) -> tuple[list[Room], list[ScanObject]]:
     regions: dict[int, tuple[int, str, float, float]] = {}
     surfaces: dict[int, int] = {}  # surface -> region
     polygons: dict[int, list[tuple[float, float]]] = {}
-    categories: dict[int, str] = {}
+    categories: dict[int, tuple[str, str | None]] = {}  # index -> raw word, mpcat40 group
     raw_objects: list[list[str]] = []
     for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
         fields = line.split()
@@ -88,7 +91,8 @@ def read_house_file(path: Path) -> tuple[list[Room], list[ScanObject]]:
                 x, y = float(fields[4]), float(fields[5])
                 polygons.setdefault(int(fields[2]), []).append((x, -y))
             elif kind == "C":
-                categories[int(fields[1])] = fields[3].replace("#", " ")
+                group = mpcat40_group(int(fields[4]), fields[5]) if len(fields) > 5 else None
+                categories[int(fields[1])] = (fields[3].replace("#", " "), group)
             elif kind == "O":
                 raw_objects.append(fields)
         except (IndexError, ValueError):
@@ -120,14 +124,16 @@ def read_house_file(path: Path) -> tuple[list[Room], list[ScanObject]]:
         a1 = from_scan_frame(np.array([[float(v) for v in fields[10:13]]]))[0]
         a2 = np.cross(a0, a1)
         radii = tuple(float(v) for v in fields[13:16])
+        raw, group = categories.get(int(fields[3]), (NO_CATEGORY, None))
         objects.append(
             ScanObject(
                 id=int(fields[1]),
-                category=categories.get(int(fields[3]), "unknown"),
+                category=raw,
                 region=int(fields[2]),
                 center=(float(centre[0]), float(centre[1]), float(centre[2])),
                 axes=tuple((float(a[0]), float(a[1]), float(a[2])) for a in (a0, a1, a2)),
                 half=(radii[0], radii[1], radii[2]),
+                group=group,
             )
         )
     return rooms, objects
@@ -186,7 +192,8 @@ def _house_text(house: House) -> str:
             vertex += 1
     for index, category in enumerate(categories):
         word = category.replace(" ", "#")
-        lines.append(f"C {index} {index} {word} 0 {word} 0 0 0 0 0")
+        group, group_name = mpcat40_of(category)
+        lines.append(f"C {index} {index + 1} {word} {group} {group_name} 0 0 0 0 0")
     for inst in sorted(house.instances, key=lambda i: i.id):
         centre = to_scan_frame(np.array([inst.box.center]))[0]
         sx, sy, sz = inst.box.size
