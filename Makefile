@@ -1,18 +1,26 @@
 # The two commands of the README: `make demo` and `make test`. Both set themselves up.
+# `make demo` installs the package alone; `make test` (and `make setup`) everything the tests
+# use: every extra, torch's CPU build, the dev tools and a browser (scripts/setup.sh).
 VENV := .venv
 BIN := $(VENV)/bin
+DEMO_STAMP := $(VENV)/.demo-installed
 STAMP := $(VENV)/.installed
+SETUP := pyproject.toml scripts/setup.sh scripts/setup-lib.sh
 SRC := src tests
 
 .PHONY: setup demo test lint bench clean
 
-$(STAMP): pyproject.toml scripts/setup.sh
-	bash scripts/setup.sh
-	touch $(STAMP)
+$(DEMO_STAMP): $(SETUP)
+	bash scripts/setup.sh demo
+	touch $(DEMO_STAMP)
+
+$(STAMP): $(SETUP)
+	bash scripts/setup.sh dev
+	touch $(STAMP) $(DEMO_STAMP)
 
 setup: $(STAMP)
 
-demo: $(STAMP)
+demo: $(DEMO_STAMP)
 	$(BIN)/vlln demo --out out/demo
 
 lint: $(STAMP)
@@ -23,7 +31,7 @@ lint: $(STAMP)
 test: lint
 	$(BIN)/python -m pytest -q
 
-bench: $(STAMP)
+bench: $(DEMO_STAMP)
 	$(BIN)/vlln bench sim --json
 
 clean:

@@ -1,10 +1,19 @@
 #!/usr/bin/env bash
-# Installs everything vlln needs on a fresh Debian/Ubuntu machine with Python 3.11+:
-# the system EGL/Mesa libraries for headless rendering and Chromium for the browser tests
-# (each only when missing), a virtual
-# environment in .venv, and the package with its development tools.
+# Sets vlln up on a fresh Debian/Ubuntu machine with Python 3.11+, in a virtual environment in
+# .venv. Two sizes:
+#   scripts/setup.sh demo   the package alone (what `make demo` runs: about 0.5 GB), and the
+#                           system EGL/Mesa libraries for headless rendering when missing;
+#   scripts/setup.sh dev    (the default) everything the tests use besides: Chromium for the
+#                           browser tests, torch's CPU build, every extra and the dev tools.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source scripts/setup-lib.sh
+
+MODE="${1:-dev}"
+if [ "$MODE" != demo ] && [ "$MODE" != dev ]; then
+  echo "error: unknown set-up '$MODE'; use: scripts/setup.sh demo, or scripts/setup.sh dev" >&2
+  exit 1
+fi
 
 PYTHON="${PYTHON:-python3}"
 if ! "$PYTHON" -c 'import sys; sys.exit(sys.version_info < (3, 11))' 2>/dev/null; then
@@ -31,8 +40,8 @@ apt_install() {
       exit 1
     fi
   fi
-  $SUDO apt-get update -q
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q "$@"
+  apt_get update -q
+  apt_get install -y -q "$@"
 }
 
 if ! have_egl; then
@@ -41,7 +50,7 @@ fi
 # Headless Chromium for the browser tests (web app, report videos) and `vlln bench web`:
 # Debian's package, driven by Playwright's Python client; Playwright's own browser download is
 # never used.
-if ! command -v chromium >/dev/null; then
+if [ "$MODE" = dev ] && ! command -v chromium >/dev/null; then
   apt_install "a headless browser for the browser tests" chromium
 fi
 
@@ -49,8 +58,12 @@ if [ ! -x .venv/bin/python ]; then
   "$PYTHON" -m venv .venv
 fi
 .venv/bin/python -m pip install -q --upgrade pip
-# torch first, pinned to the CPU build, so the model extra in .[dev] finds it installed and
-# pulls no CUDA build.
-.venv/bin/python -m pip install -q torch==2.13.0
-.venv/bin/python -m pip install -q -e '.[dev]'
+if [ "$MODE" = demo ]; then
+  .venv/bin/python -m pip install -q -e .
+else
+  # torch first, the CPU build, so the model extra in .[dev] finds it installed and pulls no
+  # CUDA build.
+  install_torch .venv/bin/python
+  .venv/bin/python -m pip install -q -e '.[dev]'
+fi
 echo "vlln is installed in .venv (activate with: source .venv/bin/activate)"

@@ -1,9 +1,11 @@
-"""Agents by name, for the command line and the evaluation runner."""
+"""Agents by name, for the command line and the evaluation runner: the built-in ones, and
+any class that implements the protocol, named ``package.module:Class``."""
 
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
 
+from vlln.agents.custom import is_agent_spec, load_agent
 from vlln.agents.expert import ExpertAgent
 from vlln.agents.frontier import FrontierAgent
 from vlln.agents.frontier.perception import check_detector
@@ -58,12 +60,17 @@ def make_agent(
     if configured is not None:
         resolve_detector(name, detector)
         return configured(seed, options)
-    if name not in AGENTS:
+    if name not in AGENTS and not is_agent_spec(name):
         names = ", ".join(sorted([*AGENTS, *CONFIGURED_AGENTS]))
-        raise ConfigError(f"unknown agent {name!r}; choose one of: {names}")
+        raise ConfigError(
+            f"unknown agent {name!r}; choose one of: {names}, or name a class of your own as "
+            "package.module:Class (docs/own-agent.md)"
+        )
     if options:
         raise ConfigError(f"agent {name!r} takes no options, got {', '.join(sorted(options))}")
     chosen = resolve_detector(name, detector)
+    if is_agent_spec(name):
+        return load_agent(name, seed)
     if chosen is None:
         return AGENTS[name](seed)
     return DETECTING_AGENTS[name](seed, chosen)

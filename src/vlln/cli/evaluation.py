@@ -158,7 +158,12 @@ def add_eval_commands(commands: Commands) -> None:
     from vlln.world.generator.presets import DEFAULT_PRESET, PRESETS
 
     run = commands.add_parser("eval", help="play an agent over episodes into a run directory")
-    run.add_argument("--agent", required=True, help="agent name (random, expert, frontier, ...)")
+    run.add_argument(
+        "--agent",
+        required=True,
+        help="agent name (random, expert, frontier, ...) or your own class as "
+        "package.module:Class (docs/own-agent.md)",
+    )
     run.add_argument("--task", required=True, help="iign, ign or objectnav")
     source = run.add_mutually_exclusive_group()
     source.add_argument(

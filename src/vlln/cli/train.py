@@ -42,6 +42,20 @@ def _train_sft(args: argparse.Namespace) -> int:
     return 0
 
 
+def _train_tiny_model(args: argparse.Namespace) -> int:
+    from vlln.files import replace_folder
+    from vlln.train.tiny import build_tiny_model, is_tiny_model_file
+
+    out = Path(args.out)
+    replace_folder(out, lambda folder: build_tiny_model(folder, seed=args.seed), is_tiny_model_file)
+    print(
+        f"wrote a tiny randomly initialised Qwen2.5-VL-style model to {out} (it has learnt "
+        f"nothing): try the pipeline on a CPU with vlln train sft --model {out} and "
+        f"vlln eval --agent vlln --model {out}"
+    )
+    return 0
+
+
 def add_train_commands(commands: Commands) -> None:
     train = commands.add_parser("train", help="fine-tuning").add_subparsers(
         dest="train_command", required=True
@@ -73,3 +87,11 @@ def add_train_commands(commands: Commands) -> None:
     )
     sft.add_argument("--resume", help="a checkpoint folder (default: the newest in --out)")
     sft.set_defaults(handler=_train_sft)
+
+    tiny = train.add_parser(
+        "tiny-model",
+        help="write a tiny random Qwen2.5-VL-style model (CPU trials and tests; no download)",
+    )
+    tiny.add_argument("--out", required=True, help="model folder (replaced on a rerun)")
+    tiny.add_argument("--seed", type=int, default=0, help="seed of its weights (default 0)")
+    tiny.set_defaults(handler=_train_tiny_model)

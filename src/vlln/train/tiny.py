@@ -1,7 +1,8 @@
 """A tiny randomly initialised Qwen2.5-VL-style model and processor, built offline.
 
-Tests and ``vlln bench agent`` need a real model of the family the trainer and the ``vlln``
-agent target, and no weights can be downloaded: this builds one from a small config, with a
+Tests, ``vlln bench agent`` and ``vlln train tiny-model`` (a user's CPU trial of the pipeline)
+need a real model of the family the trainer and the ``vlln`` agent target, and no weights can
+be downloaded: this builds one from a small config, with a
 byte-level BPE tokenizer (so any text encodes) that knows Qwen's special tokens and the
 prompt's own tags, a Qwen2-VL image processor that shrinks every image to a few patches, and
 a chat template laid out as Qwen's.
@@ -64,6 +65,12 @@ _CORPUS = (
     "<move>←←→→↑↓ <move>STOP <move>320 240 system user assistant You are a helpful assistant.",
     " ".join(str(number) for number in range(0, 640, 7)),
 )
+
+
+def is_tiny_model_file(path: Path) -> bool:
+    """Whether ``path`` is a file :func:`build_tiny_model` writes (weights, configurations,
+    tokenizer, chat template), so that a rerun may replace its folder."""
+    return path.is_file() and path.suffix in (".json", ".safetensors", ".jinja")
 
 
 def build_tiny_model(out_dir: str | Path, seed: int = 0, max_pixels: int = 56 * 56) -> Path:
