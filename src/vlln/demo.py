@@ -1,6 +1,7 @@
 """`make demo`: the main job on the built-in houses.
 
-It shows a house, builds test episodes on a few built-in houses, runs the frontier agent on
+It shows a house, builds test episodes on a few built-in houses of the ``small`` preset (the
+benchmark's ``mp3d`` houses take minutes per run, see ``vlln bench fidelity``), runs the frontier agent on
 IIGN at every dialog budget from 0 (no dialog) to 5, prints the metric table with SR per
 budget and MSP, and writes the evaluation report. Rerunning resumes where it stopped.
 """
@@ -14,6 +15,7 @@ from vlln.eval.report import write_report
 from vlln.eval.runner import run_evaluation
 from vlln.tasks.splits import house_seeds
 from vlln.viz.show import show_world
+from vlln.world.generator.presets import SMALL
 
 DEMO_HOUSES = 3
 DEMO_EPISODES = 24
@@ -32,6 +34,7 @@ def run_demo(out: Path) -> None:
         episodes=DEMO_EPISODES,
         budgets=DEMO_BUDGETS,
         houses=DEMO_HOUSES,
+        preset=SMALL.name,
     )
     run = out / "frontier_iign"
     outcome = run_evaluation(config, run, cache_dir=out / "episodes")

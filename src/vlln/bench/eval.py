@@ -7,6 +7,11 @@ the house's simulator built before the clock starts, so the figures are the stea
 long run, where both are amortised over dozens of episodes per house; ``scene_load_s`` gives
 that one-off cost separately.
 
+The workload runs on the small houses and on the benchmark's ``mp3d`` houses, each in a fresh
+process, so each preset's ``peak_rss_mb`` is its own; ``mp3d_steps_per_s_ratio`` is the mp3d
+houses' environment steps per second over the small houses' (large houses must not make a
+step much dearer: rendering and geodesic reads should not grow with the house).
+
 ``sweep_cost_ratio`` is the time of the MSP sweep (budgets 0-5 of the same episodes, played by
 prefix sharing, :mod:`vlln.eval.sweep`) divided by the time of the budget-5 run (the mean of
 a run before and one after the sweep, so that a change of load on a shared machine moves
@@ -17,6 +22,8 @@ ratio in actions played, the part of it that does not depend on the machine.
 from __future__ import annotations
 
 import dataclasses
+import multiprocessing
+import resource
 import tempfile
 import time
 from pathlib import Path
@@ -27,15 +34,40 @@ from vlln.eval.runner import load_episodes, run_evaluation
 from vlln.tasks.metrics import success
 from vlln.tasks.record import EpisodeRecord
 from vlln.tasks.scenes import SceneCache
+from vlln.world.generator.presets import MP3D, SMALL
 
 BENCH_AGENT = "frontier"
 BENCH_BUDGET = 5
 
 
-def run_eval_benchmark(
+def compare_presets(
     episodes: int = 6, as_json: bool = False, cache_dir: Path | None = None
 ) -> list[Figure]:
-    """Play the fixed workload once and print its figures."""
+    """Play the workload on the small and the mp3d houses, each in a fresh process, and print
+    both presets' figures and the ratio of their environment steps per second."""
+    figures: list[Figure] = []
+    context = multiprocessing.get_context("spawn")  # a fresh process: its own peak memory
+    for preset in (SMALL.name, MP3D.name):
+        with context.Pool(1) as pool:
+            figures += pool.apply(run_eval_benchmark, (episodes, as_json, cache_dir, preset))
+    rate = {f.metric: f.value for f in figures if f.metric.endswith("env_steps_per_s")}
+    ratio = Figure(
+        "mp3d_steps_per_s_ratio",
+        rate[f"{MP3D.name}_env_steps_per_s"] / rate[f"{SMALL.name}_env_steps_per_s"],
+        "x",
+    )
+    emit(ratio, as_json)
+    return [*figures, ratio]
+
+
+def run_eval_benchmark(
+    episodes: int = 6,
+    as_json: bool = False,
+    cache_dir: Path | None = None,
+    preset: str = SMALL.name,
+) -> list[Figure]:
+    """Play the fixed workload once on the first test house of ``preset`` and print its
+    figures, each named ``<preset>_<figure>``."""
     config = EvalConfig(
         agent=BENCH_AGENT,
         task="iign",
@@ -43,11 +75,12 @@ def run_eval_benchmark(
         houses=1,
         episodes=episodes,
         budgets=(BENCH_BUDGET,),
+        preset=preset,
     )
     figures: list[Figure] = []
 
     def note(metric: str, value: float, unit: str) -> None:
-        figure = Figure(metric, value, unit)
+        figure = Figure(f"{preset}_{metric}", value, unit)
         figures.append(figure)
         emit(figure, as_json)
 
@@ -80,13 +113,14 @@ def run_eval_benchmark(
     note("episodes_per_hour", 3600.0 * n / outcome.seconds, "episodes/h")
     note("seconds_per_episode", outcome.seconds / n, "s")
     note("mean_steps_per_episode", steps / n, "steps")
-    note("actions_per_second", actions / outcome.seconds, "actions/s")
+    note("env_steps_per_s", actions / outcome.seconds, "actions/s")
     note("success_rate", 100.0 * sum(map(success, outcome.records)) / n, "%")
     note("mean_questions_per_episode", sum(len(r.dialog) for r in outcome.records) / n, "count")
     note("sweep_seconds", swept.seconds, "s")
     swept_actions = sum(len(r.actions) for r in swept.records if r.budget == BENCH_BUDGET)
     note("sweep_actions_ratio", _sweep_actions(swept.records) / swept_actions, "x")
     note("sweep_cost_ratio", swept.seconds / ((outcome.seconds + again.seconds) / 2), "x")
+    note("peak_rss_mb", resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0, "MB")
     return figures
 
 

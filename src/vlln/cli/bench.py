@@ -31,10 +31,10 @@ def _bench_sim(args: argparse.Namespace) -> int:
 
 
 def _bench_eval(args: argparse.Namespace) -> int:
-    from vlln.bench.eval import run_eval_benchmark
+    from vlln.bench.eval import compare_presets
 
     cache_dir = None if args.cache_dir is None else Path(args.cache_dir)
-    run_eval_benchmark(episodes=args.episodes, as_json=args.json, cache_dir=cache_dir)
+    compare_presets(episodes=args.episodes, as_json=args.json, cache_dir=cache_dir)
     return 0
 
 

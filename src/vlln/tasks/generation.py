@@ -104,7 +104,7 @@ def episode_config(preset: str) -> EpisodeGenConfig:
     long instead of thousands (a 14-house test split reads in seconds, in well under 1 GB)."""
     if preset == SMALL.name:
         return EpisodeGenConfig()
-    return EpisodeGenConfig(view_point_stride=4, min_start_distance=4.0, max_start_distance=60.0)
+    return EpisodeGenConfig(view_point_stride=4, min_start_distance=3.0, max_start_distance=45.0)
 
 
 @dataclass

@@ -71,7 +71,7 @@ MP3D = HousePreset(
     base=HouseParameters(clutter=0.72, category_variety=0.55),
     floor_weights=(0.2, 0.3, 0.5),
     rooms_per_storey=(8, 13),
-    area_per_room=(24.0, 34.0),
+    area_per_room=(22.0, 31.0),
 )
 PRESETS: dict[str, HousePreset] = {preset.name: preset for preset in (SMALL, MP3D)}
 DEFAULT_PRESET = MP3D.name

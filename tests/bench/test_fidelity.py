@@ -1,0 +1,82 @@
+"""The fidelity benchmark's statistics: intervals and the paired dialog gain."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import pytest
+
+from vlln.bench.fidelity import (
+    RUNS,
+    dialog_gain,
+    fidelity_rows,
+    mean_interval,
+    success_interval,
+)
+from vlln.errors import ConfigError
+from vlln.eval.config import EvalConfig
+from vlln.tasks.record import EndReason, EpisodeRecord
+
+
+def record(episode: str, budget: int, succeeded: bool, **overrides: Any) -> EpisodeRecord:
+    values: dict[str, Any] = {
+        "episode_id": episode,
+        "scene_id": "vlln/mp3d_00076/mp3d_00076.glb",
+        "task": "iign",
+        "agent": "frontier",
+        "budget": budget,
+        "object_category": "chair",
+        "target_ids": [7],
+        "end_reason": EndReason.STOP.value,
+        "steps": 20,
+        "geodesic_start": 4.0,
+        "geodesic_trace": [3.0, 0.1 if succeeded else 6.0],
+        "path_length": 5.0,
+        "stop_instance_id": 7 if succeeded else 9,
+        "stop_instance_category": "chair",
+        "target_seen_step": 2,
+    }
+    values.update(overrides)
+    return EpisodeRecord(**values)
+
+
+def test_wilson_interval_stays_inside_0_100_and_covers_the_rate() -> None:
+    none = success_interval(0, 20)
+    assert none.value == 0.0 and none.low == 0.0 and 10.0 < none.high < 20.0
+    half = success_interval(100, 200)
+    assert half.low < 50.0 < half.high and half.high - half.low < 15.0
+    assert success_interval(20, 20).high == pytest.approx(100.0)
+
+
+def test_mean_interval_of_constant_values_is_a_point() -> None:
+    assert mean_interval([3.0, 3.0]).low == 3.0
+    spread = mean_interval([0.0, 10.0, 20.0])
+    assert spread.low < 10.0 < spread.high
+
+
+def test_dialog_gain_pairs_the_same_episodes() -> None:
+    records = [record("1", 0, False), record("1", 5, True), record("2", 0, True)]
+    records += [record("2", 5, True), record("3", 5, True)]  # 3 has no budget-0 line
+    gain = dialog_gain(records, 0, 5)
+    assert gain is not None and gain.value == pytest.approx(50.0)
+    assert dialog_gain([record("1", 0, True)], 0, 5) is None
+
+
+def test_rows_give_sr_spl_taxonomy_and_gain() -> None:
+    iign = next(run for run in RUNS if run.task == "iign" and run.agent == "frontier")
+    records = [record(str(k), b, k % 2 == 0 or b == 5) for k in range(10) for b in (0, 5)]
+    rows = fidelity_rows(iign, records)
+    assert [row.get("budget") for row in rows] == [0, 5, None]
+    assert rows[0]["sr"]["value"] == 50.0  # type: ignore[index]
+    assert rows[1]["taxonomy"]["SR"] == 100.0  # type: ignore[index]
+    assert rows[2]["dialog_gain_pp"]["value"] == 50.0  # type: ignore[index]
+
+
+def test_the_test_protocol_is_500_episodes_on_the_14_test_houses() -> None:
+    config = EvalConfig(agent="random", task="iign", split="test500")
+    assert (config.episodes, config.houses) == (500, 14)
+    assert EvalConfig(agent="random", task="iign", split="test500", episodes=210).episodes == 210
+    with pytest.raises(ConfigError, match="test500 is 500 episodes"):
+        EvalConfig(agent="random", task="iign", split="test500", houses=3)
+    with pytest.raises(ConfigError, match="test500 is 500 episodes"):
+        EvalConfig(agent="random", task="iign", split="test500", episodes=501)
