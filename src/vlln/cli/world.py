@@ -15,9 +15,16 @@ def _world_show(args: argparse.Namespace) -> int:
 
     if args.scene is not None and (args.param or args.floors is not None):
         raise ConfigError("--scene shows a scanned scene as it is; drop --param and --floors")
+    if args.preset is not None and (args.param or args.floors is not None):
+        raise ConfigError(
+            f"--preset {args.preset} draws the house's parameters from the seed; drop --param "
+            "and --floors, or drop --preset"
+        )
     params = parameters_from_overrides([*args.param, *_floors(args)])
     scene = None if args.scene is None else Path(args.scene)
-    files = show_world(args.seed, Path(args.out), n_views=args.views, params=params, scene=scene)
+    files = show_world(
+        args.seed, Path(args.out), args.views, params, scene=scene, preset=args.preset
+    )
     print(f"wrote {len(files)} images to {args.out} (map: {files[0]})")
     return 0
 
@@ -86,6 +93,11 @@ def add_world_commands(commands: Commands) -> None:
         help="a house-generator parameter, e.g. --param max_rooms=6 (repeatable)",
     )
     show.add_argument("--floors", type=int, help="storeys joined by stairs, 1 to 3 (default 1)")
+    show.add_argument(
+        "--preset",
+        choices=("small", "mp3d"),
+        help="a house of a preset: mp3d is the benchmark's (its parameters follow the seed)",
+    )
     show.set_defaults(handler=_world_show)
     export = world.add_parser("export", help="write a house as Matterport3D/HM3D scene folders")
     export.add_argument("--seed", type=int, default=0, help="house seed (default 0)")

@@ -15,6 +15,7 @@ from vlln.sim.simulator import Simulator
 from vlln.viz.frames import depth_image, instance_image, save_png
 from vlln.viz.topdown import save_house_map
 from vlln.world.generator import HouseParameters, generate_house
+from vlln.world.generator.presets import generate_preset_house
 from vlln.world.model import House, Room
 from vlln.world.scans import load_scene
 
@@ -58,11 +59,17 @@ def show_world(
     n_views: int = 4,
     params: HouseParameters | None = None,
     scene: Path | None = None,
+    preset: str | None = None,
 ) -> list[Path]:
-    """Generate house ``seed`` (or import the scanned scene folder ``scene``) and write its map
-    and views under ``out``, replacing an earlier output folder of this command
-    (:func:`vlln.files.replace_folder`); returns the files."""
-    house = load_scene(scene) if scene is not None else generate_house(seed, params)
+    """Generate house ``seed`` (of ``preset`` when given, or import the scanned scene folder
+    ``scene``) and write its map and views under ``out``, replacing an earlier output folder
+    of this command (:func:`vlln.files.replace_folder`); returns the files."""
+    if scene is not None:
+        house = load_scene(scene)
+    elif preset is not None:
+        house = generate_preset_house(seed, preset)
+    else:
+        house = generate_house(seed, params)
     files = replace_folder(out, lambda folder: _write_views(house, folder, n_views), _is_ours)
     return [out / path.name for path in files]
 

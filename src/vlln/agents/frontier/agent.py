@@ -267,7 +267,7 @@ class FrontierAgent:
     def _choose_candidate(self, pose: Pose) -> Candidate | None:
         """The candidate to go to: the confirmed one, else the current one while it still fits,
         else the nearest that fits what is known (anything not rejected once the house is
-        explored)."""
+        explored or the steps run out)."""
         detected = {c.instance_id: c for c in self.tracker.detected()}
         if self.confirmed is not None and self.confirmed in detected:
             return detected[self.confirmed]
@@ -277,7 +277,7 @@ class FrontierAgent:
             if self._on_this_storey(c)
             and c.instance_id not in self.rejected
             and c.instance_id not in self.explorer.unreachable
-            and (self._exhausted or dialog.matches_known(c.attributes, self.known))
+            and (self._settling() or dialog.matches_known(c.attributes, self.known))
         ]
         if not pool:
             self._target = None
@@ -287,6 +287,11 @@ class FrontierAgent:
             current = min(pool, key=lambda c: (c.distance_from(pose.x, pose.z), c.instance_id))
             self._target = current.instance_id
         return current
+
+    def _settling(self) -> bool:
+        """Whether any unrejected instance of the category will do: the house is explored,
+        or the steps are running out (:attr:`FrontierConfig.settle_after`)."""
+        return self._exhausted or self._steps >= self.config.settle_after
 
     def _on_this_storey(self, candidate: Candidate) -> bool:
         """Whether the candidate stands on the agent's storey, where the target may be."""

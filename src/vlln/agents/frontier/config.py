@@ -26,6 +26,10 @@ class FrontierConfig:
     stuck_steps: int = 30  # mostly forward moves over this many steps ...
     stuck_distance: float = 0.6  # ... that got less far than this mean stuck
     max_looks: int = 40  # camera tilts per episode (the task caps them too)
+    # Counted steps after which an instance of the category that the detector says does not
+    # fit the stated attributes is taken anyway: attributes are misread, and in a large house
+    # the best instance seen beats exploring to the step cap.
+    settle_after: int = 350
     # Questions the agent plans with; it learns the real budget from the refusal, as the
     # reference's agents do, so every budget plays alike until then (vlln.eval.sweep).
     question_budget: int = 5
