@@ -8,6 +8,7 @@ import shutil
 import signal
 import subprocess
 import sys
+import threading
 from pathlib import Path
 from typing import Any
 
@@ -18,6 +19,8 @@ from gymnasium.utils.env_checker import check_env
 
 import vlln.gym
 from tests.stairs import SCENE_ID, upstairs_episode
+from vlln.errors import ConfigError
+from vlln.gym.remote import RemoteEnv
 from vlln.gym.spaces import TALK
 from vlln.sim.agent import Action
 from vlln.tasks.generation import load_or_build_split
@@ -212,3 +215,9 @@ def test_the_docs_snippet_runs_as_pasted(cache_dir: str, tmp_path: Path) -> None
     env = {**os.environ, "XDG_CACHE_HOME": str(tmp_path / "cache")}
     out = _run_guarded([sys.executable, str(script)], tmp_path, env)
     assert out.splitlines()[-1] == "(2, 480, 640, 3)"
+
+
+def test_arguments_that_do_not_pickle_are_refused_in_one_line() -> None:
+    # What a process that cannot render sends to the environment's own process.
+    with pytest.raises(ConfigError, match="cannot be sent to the environment's own process"):
+        RemoteEnv({"oracle": threading.Lock()})

@@ -17,7 +17,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from vlln.errors import RendererUnavailableError
+from vlln.errors import ConfigError, RendererUnavailableError
 
 _PACKAGE_ROOT = str(Path(__file__).resolve().parents[2])  # the folder holding vlln/
 
@@ -33,14 +33,25 @@ class RemoteEnv:
             stdout=subprocess.PIPE,
             env={**os.environ, "PYTHONPATH": path},
         )
-        self.call("__init__", **arguments)
+        try:
+            self.call("__init__", **arguments)
+        except BaseException:
+            self._end()
+            raise
 
     def call(self, method: str, *args: Any, **kwargs: Any) -> Any:
         """``env.method(*args, **kwargs)`` in the child; its exception is raised here."""
         stdin, stdout = self._process.stdin, self._process.stdout
         assert stdin is not None and stdout is not None
         try:
-            pickle.dump((method, args, kwargs), stdin, pickle.HIGHEST_PROTOCOL)
+            message = pickle.dumps((method, args, kwargs), pickle.HIGHEST_PROTOCOL)
+        except (pickle.PicklingError, TypeError, AttributeError) as error:
+            raise ConfigError(
+                f"{method}'s arguments cannot be sent to the environment's own process ({error}); "
+                "pass arguments that pickle, e.g. oracle='rule'"
+            ) from None
+        try:
+            stdin.write(message)
             stdin.flush()
             ok, value = pickle.load(stdout)
         except (EOFError, OSError):
@@ -55,6 +66,10 @@ class RemoteEnv:
     def close(self) -> None:
         if self._process.poll() is None:
             self.call("close")
-        if self._process.stdin is not None:
-            self._process.stdin.close()  # the child ends at the end of its input
+        self._end()
+
+    def _end(self) -> None:
+        for pipe in (self._process.stdin, self._process.stdout):
+            if pipe is not None:
+                pipe.close()  # the child ends at the end of its input
         self._process.wait()
