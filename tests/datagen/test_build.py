@@ -15,10 +15,12 @@ import pytest
 from tests.datagen.conftest import SMALL, dataset_files
 from vlln.cli import main
 from vlln.datagen.build import BuildConfig, build_dataset, check_settings, summarize
+from vlln.datagen.house_locks import lock_houses
 from vlln.datagen.reader import HouseDataset, house_folders
 from vlln.errors import ConfigError
 from vlln.eval.sharding import Shard
 from vlln.tasks.episode import read_episodes
+from vlln.tasks.splits import house_seeds
 from vlln.world.catalogue import default_catalogue
 
 
@@ -126,3 +128,47 @@ def test_a_folder_built_from_another_catalogue_is_refused(tmp_path: Path) -> Non
 def test_bad_settings_are_refused() -> None:
     with pytest.raises(ConfigError, match="houses"):
         BuildConfig(houses=0)
+
+
+# Another build holding the first shard's houses, as `vlln data build --shard 0/2` would.
+_HOLDER = """
+import sys
+from pathlib import Path
+from vlln.datagen.build import BuildConfig
+from vlln.datagen.house_locks import lock_houses
+from vlln.eval.sharding import Shard
+from vlln.tasks.splits import house_seeds
+config = BuildConfig(houses=2, per_house=1)
+with lock_houses(Path(sys.argv[1]), Shard(0, 2).take(house_seeds("train", 2)), config.scene_id):
+    print("held", flush=True)
+    sys.stdin.read()
+"""
+
+
+def test_a_build_of_houses_another_build_holds_stops_in_one_line(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    out = tmp_path / "data"
+    holder = subprocess.Popen(
+        [sys.executable, "-c", _HOLDER, str(out)],
+        stdin=subprocess.PIPE,
+        stdout=subprocess.PIPE,
+        text=True,
+    )
+    try:
+        assert holder.stdout is not None and holder.stdout.readline() == "held\n"
+        build = ["data", "build", "--houses", "2", "--per-house", "1", "--quiet"]
+        assert main([*build, "--out", str(out)]) == 2
+        err = capsys.readouterr().err.splitlines()  # the estimate, then the error
+        assert len(err) == 2 and "Traceback" not in err[0]
+        assert err[1].startswith("error: another data build is writing vlln/house_00000")
+        assert not (out / "trajectories").exists() and not (out / "episodes").exists()
+        # The other shard's houses are free: shards still build side by side.
+        with lock_houses(out, Shard(1, 2).take(house_seeds("train", 2)), SMALL.scene_id):
+            pass
+    finally:
+        assert holder.stdin is not None
+        holder.stdin.close()
+        holder.wait(timeout=30)
+    with lock_houses(out, house_seeds("train", 2), SMALL.scene_id):  # released at its end
+        pass

@@ -24,7 +24,7 @@ from vlln.tasks.env import NavigationEnv
 from vlln.tasks.episode import Episode, write_episodes
 from vlln.tasks.generation import load_or_build_split
 from vlln.tasks.metrics import success
-from vlln.tasks.record import EpisodeRecord
+from vlln.tasks.record import MAX_STORED_OUTPUT_CHARS, EpisodeRecord
 from vlln.tasks.scenes import SceneCache
 from vlln.tasks.spec import TaskConfig, TaskType
 from vlln.world.frame import heading_vector, quaternion_to_yaw
@@ -342,3 +342,41 @@ def test_the_cli_runs_the_agent_and_refuses_a_missing_model(
         "model": "m",
     }
     assert "openai-vlm on IIGN" in capsys.readouterr().out
+
+
+def test_a_trickling_server_is_cut_off_and_counted_as_a_server_failure(
+    split_cache: Path, scenes: SceneCache, tmp_path: Path
+) -> None:
+    episode = split_episodes(split_cache)[0]
+    # One byte every 50 ms: no read waits long, but the reply would take over 10 s.
+    trickle = Scripted(200, completion("<move>←").body, trickle_s=0.05)
+    with chat_server([trickle, completion("<move>STOP")]) as server:
+        outcome = run(
+            server, episode_file(tmp_path, episode), tmp_path / "run", scenes, max_retries="0"
+        )
+    (record,) = outcome.records
+    assert record.actions == ["FAILED:server", "STOP"]
+    assert record.failures == {"server": 1}
+    failed = record.model_calls[0]
+    assert failed.text is None and "0.5 s deadline" in (failed.error or "")
+    assert failed.latency_ms < 5000.0  # cut off long before the reply could end
+    summary = json.loads((tmp_path / "run" / "summary.json").read_text())
+    assert summary["health"]["failures"]["model server failures"] == 1
+
+
+def test_an_endless_output_is_stored_cut_and_the_cut_counted(
+    split_cache: Path, scenes: SceneCache, tmp_path: Path
+) -> None:
+    episode = split_episodes(split_cache)[0]
+    endless = "<move>←" + " and on" * 30_000  # a server that ignores max_tokens
+    with chat_server([completion(endless), completion("<move>STOP")]) as server:
+        outcome = run(server, episode_file(tmp_path, episode), tmp_path / "run", scenes)
+    (record,) = outcome.records
+    long_call, stop_call = record.model_calls
+    assert long_call.text == endless[:MAX_STORED_OUTPUT_CHARS]
+    assert long_call.truncated_chars == len(endless) - MAX_STORED_OUTPUT_CHARS
+    assert stop_call.text == "<move>STOP" and stop_call.truncated_chars == 0
+    line = (tmp_path / "run" / "episodes.jsonl").read_text()
+    assert len(line.encode()) < 4 * MAX_STORED_OUTPUT_CHARS + 10_000
+    summary = json.loads((tmp_path / "run" / "summary.json").read_text())
+    assert summary["health"]["failures"]["truncated model outputs"] == 1

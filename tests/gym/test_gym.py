@@ -3,8 +3,12 @@
 from __future__ import annotations
 
 import itertools
+import os
+import shutil
+import signal
 import subprocess
 import sys
+import threading
 from pathlib import Path
 from typing import Any
 
@@ -15,6 +19,8 @@ from gymnasium.utils.env_checker import check_env
 
 import vlln.gym
 from tests.stairs import SCENE_ID, upstairs_episode
+from vlln.errors import ConfigError
+from vlln.gym.remote import RemoteEnv
 from vlln.gym.spaces import TALK
 from vlln.sim.agent import Action
 from vlln.tasks.generation import load_or_build_split
@@ -141,3 +147,77 @@ def test_height_rises_as_the_expert_climbs_to_a_target_upstairs(
     env.close()
     assert heights[0] == 0.0 and heights[-1] == pytest.approx(2.8)
     assert all(b >= a for a, b in itertools.pairwise(heights)), "it only climbs"
+
+
+_GUARD_S = 300  # a hang fails the test after this, it never blocks the suite
+PACKAGE_ROOT = str(Path(vlln.gym.__file__).resolve().parents[2])
+
+
+def _run_guarded(args: list[str], cwd: Path, env: dict[str, str] | None = None) -> str:
+    """Run ``args`` in a session of its own; kill the whole session (forked workers too) if
+    it hangs. Returns its standard output and fails on a non-zero exit."""
+    env = dict(os.environ if env is None else env)  # the vlln under test, from any folder
+    env["PYTHONPATH"] = os.pathsep.join(filter(None, [PACKAGE_ROOT, env.get("PYTHONPATH")]))
+    process = subprocess.Popen(
+        args,
+        cwd=cwd,
+        env=env,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        start_new_session=True,
+    )
+    try:
+        out, err = process.communicate(timeout=_GUARD_S)
+    except subprocess.TimeoutExpired:
+        os.killpg(process.pid, signal.SIGKILL)
+        process.communicate()
+        pytest.fail(f"{args[-1]} hung for {_GUARD_S} s")
+    assert process.returncode == 0, err
+    return out
+
+
+_STEP_THEN_VECTOR = """
+import sys
+import gymnasium, numpy as np, vlln.gym
+kwargs = dict(cache_dir=sys.argv[1], max_steps=50, houses=1, width=64, height=48)
+env = gymnasium.make("vlln/IIGN-v0", **kwargs)
+env.reset(seed=0)
+env.step({"action": 2, "question": ""})  # this process has rendered now
+vector = gymnasium.make_vec("vlln/IIGN-v0", num_envs=2, vectorization_mode="async", **kwargs)
+sync = gymnasium.make_vec("vlln/IIGN-v0", num_envs=2, vectorization_mode="sync", **kwargs)
+actions = {"action": np.array([2, 1]), "question": ("", "")}
+pairs = [(vector.reset(seed=[5, 9])[0], sync.reset(seed=[5, 9])[0])]
+pairs.append((vector.step(actions)[0], sync.step(actions)[0]))
+same = all(np.array_equal(a[k], b[k]) for a, b in pairs for k in ("rgb", "depth", "gps"))
+vector.close(), sync.close(), env.close()
+print("same" if same else "different")
+"""
+
+
+def test_async_vector_env_after_an_env_has_stepped_in_the_process(
+    cache_dir: str, tmp_path: Path
+) -> None:
+    # The workers are forked (the default start method) after this process rendered.
+    script = tmp_path / "step_then_vector.py"
+    script.write_text(_STEP_THEN_VECTOR)
+    out = _run_guarded([sys.executable, str(script), cache_dir], tmp_path)
+    assert out.strip() == "same"
+
+
+def test_the_docs_snippet_runs_as_pasted(cache_dir: str, tmp_path: Path) -> None:
+    text = (Path(__file__).parents[2] / "docs" / "gym.md").read_text(encoding="utf-8")
+    snippet = text.split("```python\n", 1)[1].split("```", 1)[0]
+    script = tmp_path / "snippet.py"
+    script.write_text(snippet)
+    # The snippet's default cache folder, holding the first test house's episodes.
+    shutil.copytree(cache_dir, tmp_path / "cache" / "vlln" / "episodes")
+    env = {**os.environ, "XDG_CACHE_HOME": str(tmp_path / "cache")}
+    out = _run_guarded([sys.executable, str(script)], tmp_path, env)
+    assert out.splitlines()[-1] == "(2, 480, 640, 3)"
+
+
+def test_arguments_that_do_not_pickle_are_refused_in_one_line() -> None:
+    # What a process that cannot render sends to the environment's own process.
+    with pytest.raises(ConfigError, match="cannot be sent to the environment's own process"):
+        RemoteEnv({"oracle": threading.Lock()})

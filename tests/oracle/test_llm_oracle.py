@@ -248,3 +248,25 @@ def test_the_environment_records_backend_latency_and_tokens(
     assert EpisodeRecord.from_json(old).dialog[0] == DialogTurn(
         answered.step, answered.question, answered.answer, "attribute", True
     )
+
+
+def test_a_trickling_server_is_cut_off_and_the_rule_answer_given(
+    sim: Simulator, target: ObjectInstance
+) -> None:
+    asked = question(sim, "What color is it?")
+    rules = RuleOracle(seed=3)
+    rules.start(context(sim, target))
+    offline = rules.answer(asked)
+    # One byte every 50 ms: no read waits long, but the reply would take over 10 s.
+    trickle = Scripted(200, completion("attribute").body, trickle_s=0.05)
+    with chat_server([trickle]) as server:
+        settings = OpenAISettings(
+            model="test-model", base_url=server.base_url, timeout_s=0.5, max_retries=0
+        )
+        client = OpenAIChatClient(settings, rng=np.random.default_rng(0))
+        oracle = LLMOracle(client, seed=3)
+        oracle.start(context(sim, target))
+        reply = oracle.answer(asked)
+    assert reply.fallback and reply.answer == offline.answer
+    assert client.ledger.failed_requests >= 1
+    assert reply.latency_ms < 5000.0  # cut off long before the reply could end

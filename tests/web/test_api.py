@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import secrets
 from pathlib import Path
 
 import httpx
@@ -78,6 +79,26 @@ def test_bodies_and_request_rates_are_bounded(study: Study, tmp_path: Path) -> N
         assert client.post("/api/sessions", json=huge).status_code == 413
         codes = [client.get("/api/health").status_code for _ in range(8)]
         assert codes[:4] == [200] * 4 and codes[-1] == 429
+
+
+def test_made_up_session_codes_share_the_address_bucket(study: Study, tmp_path: Path) -> None:
+    config = WebConfig(
+        episodes=tuple(study.episodes),
+        out=tmp_path / "a",
+        requests_per_second=1.0,
+        request_burst=5,
+    )
+    with TestClient(create_app(config)) as client:
+        body = {"navigator": "human", "participant": "p40", "oracle": "rules"}
+        code = client.post("/api/sessions", json=body).json()["navigator_code"]
+        made_up = [secrets.token_urlsafe(12) for _ in range(8)]
+        codes = [
+            client.get("/api/health", headers={"X-Session-Code": c}).status_code for c in made_up
+        ]
+        assert codes[:4] == [200] * 4 and codes[-1] == 429
+        # A code the server issued is a page of its own, with its own bucket.
+        page = client.get("/api/navigator", headers={"X-Session-Code": code})
+        assert page.status_code == 200
 
 
 def test_an_idle_episode_is_recorded_as_abandoned(study: Study, tmp_path: Path) -> None:

@@ -200,7 +200,9 @@ def add_eval_commands(commands: Commands) -> None:
     model.add_argument("--base-url", help="OpenAI-compatible server, e.g. http://localhost:8000/v1")
     model.add_argument("--model", help="openai-vlm: the served model's name; vlln: its folder")
     model.add_argument("--api-key-env", help="variable holding the key (default OPENAI_API_KEY)")
-    model.add_argument("--model-timeout", type=float, help="seconds per request (default 60)")
+    model.add_argument(
+        "--model-timeout", type=float, help="deadline of each whole request (default 60 s)"
+    )
     model.add_argument("--model-retries", type=int, help="retries per request (default 4)")
     model.add_argument("--model-cache", help="folder caching model replies (default: none)")
 

@@ -24,6 +24,7 @@ from vlln.datagen.build import (
     choose_episodes,
     prepare_episodes,
 )
+from vlln.datagen.house_locks import lock_houses
 from vlln.datagen.layout import house_dir_name
 from vlln.files import write_bytes_atomic
 from vlln.tasks.episode import Episode
@@ -62,27 +63,28 @@ def build_dataset_ray(
     ray = connect(address)  # an unreachable cluster fails before any work
     check_settings(root, config)
     seeds = house_seeds(config.split, config.houses)
-    cache = SceneCache(capacity=1)
-    try:
-        by_house = prepare_episodes(root, config, seeds, cache, progress)
-    finally:
-        cache.close()
-    todo = [seed for seed in seeds if not _finished(root, config.scene_id(seed))]
-    task = remote_function(build_house_files, max_retries)
-    config_ref = ray.put(config)
-    refs = []
-    for seed in todo:
-        episodes = by_house.get(config.scene_id(seed), [])
-        refs.append(task.remote(config_ref, seed, choose_episodes(episodes, config, seed)))
-    with tqdm(total=len(todo), desc="houses on Ray", unit="house", disable=not progress) as bar:
+    with lock_houses(root, seeds, config.scene_id):  # as a local build does
+        cache = SceneCache(capacity=1)
+        try:
+            by_house = prepare_episodes(root, config, seeds, cache, progress)
+        finally:
+            cache.close()
+        todo = [seed for seed in seeds if not _finished(root, config.scene_id(seed))]
+        task = remote_function(build_house_files, max_retries)
+        config_ref = ray.put(config)
+        refs = []
+        for seed in todo:
+            episodes = by_house.get(config.scene_id(seed), [])
+            refs.append(task.remote(config_ref, seed, choose_episodes(episodes, config, seed)))
+        with tqdm(total=len(todo), desc="houses on Ray", unit="house", disable=not progress) as bar:
 
-        def commit(_: int, files: dict[str, bytes]) -> None:
-            last = [name for name in files if name.split("/", 2)[-1] in _LAST]
-            for name in [n for n in files if n not in last] + sorted(last, key=_last_order):
-                write_bytes_atomic(root / name, files[name])
-            bar.update(1)
+            def commit(_: int, files: dict[str, bytes]) -> None:
+                last = [name for name in files if name.split("/", 2)[-1] in _LAST]
+                for name in [n for n in files if n not in last] + sorted(last, key=_last_order):
+                    write_bytes_atomic(root / name, files[name])
+                bar.update(1)
 
-        collect_in_order(refs, commit)
+            collect_in_order(refs, commit)
     return root
 
 

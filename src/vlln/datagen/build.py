@@ -11,8 +11,9 @@
 several storeys end in ``_2f``/``_3f``); a one-storey build records no ``floors`` setting, so
 its ``build.json`` is what it was before houses had storeys.
 
-Houses are the unit of sharding (``--shard i/n`` takes every n-th house) and of completion (a
-finished house has ``meta/info.json``); within a house the journal makes a killed build resume
+Houses are the unit of sharding (``--shard i/n`` takes every n-th house), of locking (a build
+holds its houses, :mod:`.house_locks`, so two builds never write one house) and of completion
+(a finished house has ``meta/info.json``); within a house the journal makes a killed build resume
 at the next untried episode. Each trajectory draws its randomness from (seed, episode id) only,
 so a resumed, sharded or uninterrupted build writes the same dataset.
 """
@@ -32,6 +33,7 @@ from vlln import __version__
 from vlln.datagen.collector.collect import CollectorConfig, collect_trajectory
 from vlln.datagen.collector.visibility import DOWN_TILT
 from vlln.datagen.filtering import FilterConfig, rejection_reason
+from vlln.datagen.house_locks import lock_houses
 from vlln.datagen.layout import FORMAT_VERSION, house_dir_name
 from vlln.datagen.reader import HouseDataset, house_folders
 from vlln.datagen.trajectory import Trajectory
@@ -102,15 +104,16 @@ def build_dataset(
     root = Path(out)
     check_settings(root, config)
     mine = (shard or Shard(0, 1)).take(house_seeds(config.split, config.houses))
-    cache = SceneCache(capacity=1)
-    try:
-        by_house = prepare_episodes(root, config, mine, cache, progress)
-        for seed in tqdm(mine, desc="trajectories", unit="house", disable=not progress):
-            scene_id = config.scene_id(seed)
-            chosen = choose_episodes(by_house.get(scene_id, []), config, seed)
-            build_house(root, cache.get(scene_id), chosen, config, progress)
-    finally:
-        cache.close()
+    with lock_houses(root, mine, config.scene_id):
+        cache = SceneCache(capacity=1)
+        try:
+            by_house = prepare_episodes(root, config, mine, cache, progress)
+            for seed in tqdm(mine, desc="trajectories", unit="house", disable=not progress):
+                scene_id = config.scene_id(seed)
+                chosen = choose_episodes(by_house.get(scene_id, []), config, seed)
+                build_house(root, cache.get(scene_id), chosen, config, progress)
+        finally:
+            cache.close()
     return root
 
 

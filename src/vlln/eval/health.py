@@ -27,6 +27,9 @@ FAILURE_KINDS: dict[str, FailureCounter] = {
     "failed actions": lambda record: record.failed_actions,
     "unreadable model replies": lambda record: record.failures.get("parse", 0),
     "model server failures": lambda record: record.failures.get("server", 0),
+    "truncated model outputs": lambda record: sum(
+        call.truncated_chars > 0 for call in record.model_calls
+    ),
 }
 """Failure kind -> how many times one episode record shows it."""
 

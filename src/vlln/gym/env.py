@@ -27,6 +27,10 @@ Datasheet
 * **Reset options**: ``episode_index`` (default: drawn with the reset's seed), and ``split``,
   ``houses``, ``episode_file`` or ``oracle`` to switch the episode source or the oracle.
 * **Render**: ``render_mode="rgb_array"`` returns the first-person RGB frame.
+* **Processes**: an environment made in a process forked after OpenGL was used there (an
+  ``AsyncVectorEnv`` worker forked after an environment had stepped) runs in a fresh
+  interpreter of its own (:mod:`vlln.gym.remote`), so ``make_vec(..., "async")`` works with the
+  default start method; with ``context="spawn"`` the workers render themselves.
 """
 
 from __future__ import annotations
@@ -39,10 +43,12 @@ import numpy as np
 
 from vlln.errors import ConfigError
 from vlln.eval.runner import default_cache_dir
+from vlln.gym.remote import RemoteEnv
 from vlln.gym.spaces import action_space, from_space, observation_space, to_space
 from vlln.oracle.protocol import Oracle
 from vlln.oracle.rule_oracle import RuleOracle
 from vlln.sim.camera import CameraSpec
+from vlln.sim.gl_context import forked_after_gl
 from vlln.sim.simulator import SimulatorConfig
 from vlln.tasks.env import NavigationEnv
 from vlln.tasks.episode import Episode, read_episodes
@@ -75,6 +81,25 @@ class VllnEnv(gymnasium.Env[dict[str, Any], dict[str, Any]]):
         cache_dir: str | None = None,
         render_mode: str | None = None,
     ) -> None:
+        self._remote: RemoteEnv | None = None
+        if forked_after_gl():  # this process cannot render: play in a fresh one
+            self._remote = RemoteEnv(
+                {
+                    "task": task,
+                    "split": split,
+                    "houses": houses,
+                    "episode_file": episode_file,
+                    "oracle": oracle,
+                    "oracle_seed": oracle_seed,
+                    "dialog_budget": dialog_budget,
+                    "max_steps": max_steps,
+                    "privileged": privileged,
+                    "width": width,
+                    "height": height,
+                    "cache_dir": cache_dir,
+                    "render_mode": render_mode,
+                }
+            )
         kind = TaskType.parse(task)
         if dialog_budget is None:
             dialog_budget = 5 if kind == TaskType.IIGN else 0
@@ -132,6 +157,10 @@ class VllnEnv(gymnasium.Env[dict[str, Any], dict[str, Any]]):
         self, *, seed: int | None = None, options: dict[str, Any] | None = None
     ) -> tuple[dict[str, Any], dict[str, Any]]:
         super().reset(seed=seed)
+        if self._remote is not None:
+            observation, info = self._remote.call("reset", seed=seed, options=options)
+            self._rgb = observation["rgb"]
+            return observation, info
         options = dict(options or {})
         changed = [key for key in _SOURCE_OPTIONS if key in options]
         for key in changed:
@@ -154,6 +183,10 @@ class VllnEnv(gymnasium.Env[dict[str, Any], dict[str, Any]]):
         return to_space(observation, self.privileged), info
 
     def step(self, action: Any) -> tuple[dict[str, Any], float, bool, bool, dict[str, Any]]:
+        if self._remote is not None:
+            stepped = self._remote.call("step", action)
+            self._rgb = stepped[0]["rgb"]
+            return stepped
         if self._env is None:
             raise ConfigError("call reset() before step()")
         observation, reward, terminated, truncated, info = self._env.step(from_space(action))
@@ -166,5 +199,7 @@ class VllnEnv(gymnasium.Env[dict[str, Any], dict[str, Any]]):
         return self._rgb if self.render_mode == "rgb_array" else None
 
     def close(self) -> None:
+        if self._remote is not None:
+            self._remote.close()
         self._scenes.close()
         self._env = None

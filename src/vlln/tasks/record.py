@@ -50,17 +50,25 @@ class DialogTurn:
     fallback: bool = False  # offline logic stood in for a failed model call
 
 
+MAX_STORED_OUTPUT_CHARS = 2048  # of a model's raw output, per call
+
+
 @dataclass(frozen=True)
 class ModelCall:
-    """One call of a model agent's model: its raw output (or why there is none) and cost."""
+    """One call of a model agent's model: its raw output (or why there is none) and cost.
+
+    The output is stored up to :data:`MAX_STORED_OUTPUT_CHARS` (a valid one is a few hundred
+    characters); what a server that ignores ``max_tokens`` sent beyond that is cut, and
+    ``truncated_chars`` says how much, so run health can count it."""
 
     step: int  # counted steps taken before the call
-    text: str | None  # the raw output, None when the call failed
+    text: str | None  # the raw output (its first MAX_STORED_OUTPUT_CHARS), None when it failed
     error: str | None = None  # why the server gave no output
     look_down: bool = False  # the call showed the look-down image (a pixel goal may follow)
     latency_ms: float = 0.0
     prompt_tokens: int = 0
     completion_tokens: int = 0
+    truncated_chars: int = 0  # characters of the output cut before storing
 
 
 @dataclass(frozen=True)
@@ -124,6 +132,9 @@ class EpisodeRecord:
         for name in _OMITTED_WHEN_NONE:
             if data[name] is None:
                 del data[name]
+        for call in data["model_calls"]:  # written only when something was cut
+            if not call["truncated_chars"]:
+                del call["truncated_chars"]
         return data
 
     @staticmethod

@@ -84,7 +84,17 @@ def create_app(config: WebConfig, source: str = "", opened: SessionStore | None 
     )
     _add_error_handlers(app)
     app.add_middleware(RequestGate, token=None, max_body_bytes=config.max_body_bytes)
-    app.add_middleware(RateLimit, rate=config.requests_per_second, burst=config.request_burst)
+
+    def known_code(code: str) -> bool:
+        opened_store = holder.get("store")
+        return opened_store is not None and opened_store.find(code) is not None
+
+    app.add_middleware(
+        RateLimit,
+        rate=config.requests_per_second,
+        burst=config.request_burst,
+        known_code=known_code,
+    )
     app.mount("/static", StaticFiles(directory=STATIC), name="static")
 
     for route, page in (

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
@@ -43,15 +44,27 @@ class TokenBucket:
 
 
 class RateLimit:
-    """ASGI middleware: a token bucket per client address and page (its session code; 429
-    when it runs dry), so participants behind one address do not share a bucket, and the
-    security headers on every response. Buckets of the least recently seen clients are
-    dropped beyond ``max_clients``, so the table stays bounded."""
+    """ASGI middleware: a token bucket per client address and page (429 when it runs dry),
+    and the security headers on every response.
 
-    def __init__(self, app: ASGIApp, rate: float, burst: int, max_clients: int = 4096) -> None:
+    A page is told by its session code, so participants behind one address do not share a
+    bucket; but only a code that ``known_code`` accepts (one the server issued) gets a bucket
+    of its own. Any other code, like no code, shares the address's bucket, so a client cannot
+    mint fresh buckets by sending made-up codes. Buckets of the least recently seen clients
+    are dropped beyond ``max_clients``, so the table stays bounded."""
+
+    def __init__(
+        self,
+        app: ASGIApp,
+        rate: float,
+        burst: int,
+        known_code: Callable[[str], bool] = lambda code: False,
+        max_clients: int = 4096,
+    ) -> None:
         self.app = app
         self.rate = rate
         self.burst = burst
+        self.known_code = known_code
         self.max_clients = max_clients
         self._buckets: dict[str, TokenBucket] = {}
 
@@ -66,8 +79,9 @@ class RateLimit:
             await send(message)
 
         client = scope.get("client")
-        code = dict(scope["headers"]).get(b"x-session-code", b"")[:64]
-        address = f"{client[0] if client else '?'} {code.decode('latin-1')}"  # per page
+        code = dict(scope["headers"]).get(b"x-session-code", b"")[:64].decode("latin-1")
+        page = code if code and self.known_code(code) else ""
+        address = f"{client[0] if client else '?'} {page}"
         bucket = self._buckets.pop(address, None) or TokenBucket(self.rate, self.burst)
         self._buckets[address] = bucket  # most recently seen last
         while len(self._buckets) > self.max_clients:

@@ -16,12 +16,15 @@ LIFETIME_S = 30.0  # the server shuts itself down after this, whatever the test 
 
 @dataclass(frozen=True)
 class Scripted:
-    """One response: status, body (a dict is sent as JSON), headers, and a delay before it."""
+    """One response: status, body (a dict is sent as JSON), headers, and a delay before it.
+    With ``trickle_s`` the whole response, status line first, goes out one byte at a time
+    with that pause before each byte, as a stalled or hostile server might send it."""
 
     status: int = 200
     body: dict[str, Any] | str = ""
     headers: dict[str, str] = field(default_factory=dict)
     delay_s: float = 0.0
+    trickle_s: float = 0.0
 
 
 def completion(text: str, prompt_tokens: int = 7, completion_tokens: int = 3) -> Scripted:
@@ -72,6 +75,9 @@ def _handler(server: ChatServer) -> type[BaseHTTPRequestHandler]:
             time.sleep(reply.delay_s)
             body = reply.body if isinstance(reply.body, str) else json.dumps(reply.body)
             data = body.encode("utf-8")
+            if reply.trickle_s:
+                self._trickle(reply, data)
+                return
             try:
                 self.send_response(reply.status)
                 for name, value in reply.headers.items():
@@ -81,6 +87,19 @@ def _handler(server: ChatServer) -> type[BaseHTTPRequestHandler]:
                 self.wfile.write(data)
             except OSError:  # the client gave up (a timeout test); nothing to answer
                 pass
+
+        def _trickle(self, reply: Scripted, data: bytes) -> None:
+            lines = [f"HTTP/1.1 {reply.status} OK", f"Content-Length: {len(data)}"]
+            lines += [f"{name}: {value}" for name, value in reply.headers.items()]
+            raw = ("\r\n".join(lines) + "\r\n\r\n").encode("latin-1") + data
+            self.close_connection = True
+            for index in range(len(raw)):
+                time.sleep(reply.trickle_s)
+                try:
+                    self.wfile.write(raw[index : index + 1])
+                    self.wfile.flush()
+                except OSError:  # the client gave up
+                    return
 
         def log_message(self, format: str, *args: Any) -> None:
             """Silence the per-request log lines."""

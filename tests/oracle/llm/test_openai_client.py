@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import logging
 import math
 import re
@@ -15,7 +16,7 @@ import pytest
 from tests.oracle.llm.chat_server import Scripted, chat_server, completion
 from vlln.errors import ConfigError
 from vlln.oracle.llm.accounting import Pricing
-from vlln.oracle.llm.openai_client import OpenAIChatClient, OpenAISettings
+from vlln.oracle.llm.openai_client import MAX_REPLY_BYTES, OpenAIChatClient, OpenAISettings
 from vlln.oracle.llm.protocol import (
     LanguageModelReplyError,
     LanguageModelRequestError,
@@ -243,3 +244,32 @@ def test_invalid_settings_and_arguments_raise_config_errors() -> None:
     with pytest.raises(ConfigError, match="temperature"):
         client.complete(MESSAGES, max_tokens=5, temperature=3.0)
     client.close()
+
+
+def test_a_trickling_server_is_cut_off_at_the_requests_deadline() -> None:
+    # One byte every 50 ms never trips a per-read timeout; the whole reply would take over 10 s.
+    reply = Scripted(200, completion("Turn left.").body, trickle_s=0.05)
+    with (
+        chat_server([reply]) as server,
+        client_for(server.base_url, timeout_s=0.5, max_retries=0) as client,
+    ):
+        with pytest.raises(LanguageModelUnavailableError, match=r"0\.5 s deadline") as caught:
+            ask(client)
+        assert client.ledger.failed_requests == 1 and client.ledger.requests == 0
+    assert len(json.dumps(reply.body)) * 0.05 > 10.0
+    assert caught.value.latency_ms < 5000.0  # cut off long before the reply could end
+
+
+def test_a_reply_longer_than_the_cap_is_refused_unread() -> None:
+    huge = completion("x" * (MAX_REPLY_BYTES + 1))
+    with (
+        chat_server([huge]) as server,
+        client_for(server.base_url) as client,
+        pytest.raises(LanguageModelReplyError, match="ignore max_tokens"),
+    ):
+        ask(client)
+    with (
+        chat_server([huge, completion("Turn left.")]) as server,
+        client_for(server.base_url, retry_bad_replies=True) as client,
+    ):
+        assert ask(client) == "Turn left."

@@ -15,6 +15,7 @@ from vlln.oracle.rule_oracle import RuleOracle
 from vlln.oracle.service.app import create_app
 from vlln.oracle.service.config import ServiceConfig
 from vlln.oracle.service.schemas import MAX_QUESTION_CHARS
+from vlln.oracle.service.sessions import REFUSED_TURNS_KEPT
 from vlln.sim.agent import AgentState
 from vlln.tasks.spec import REFUSAL_MESSAGE
 from vlln.world.frame import yaw_of
@@ -93,6 +94,22 @@ def test_full_session_answers_then_refuses_past_the_budget(
 
     assert client.delete(f"/v1/sessions/{sid}").status_code == 204
     _assert_error(client.get(f"/v1/sessions/{sid}"), 404)
+
+
+def test_questions_past_the_budget_are_counted_but_keep_the_dialog_bounded(
+    client: TestClient, world: World
+) -> None:
+    sid = _create(client, world, dialog_budget=1)["session_id"]
+    pose = world.poses[0]
+    asked = 1 + 3 * REFUSED_TURNS_KEPT
+    replies = [_ask(client, sid, f"Is it number {i}?", pose).json() for i in range(asked)]
+    assert [reply["answered"] for reply in replies] == [True] + [False] * (asked - 1)
+    shown = client.get(f"/v1/sessions/{sid}").json()
+    assert shown["refused_questions"] == asked - 1
+    assert [turn["question"] for turn in shown["dialog"]] == [
+        f"Is it number {i}?" for i in range(1 + REFUSED_TURNS_KEPT)
+    ]
+    assert client.delete(f"/v1/sessions/{sid}").status_code == 204
 
 
 def test_default_budget_is_five(client: TestClient, world: World) -> None:

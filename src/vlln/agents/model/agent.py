@@ -15,7 +15,8 @@ reply (:func:`vlln.prompt.read_output`) and turns it into environment actions:
 * An unreadable reply -> ``FailedOutput("parse")``; no reply -> ``FailedOutput("server")``.
   Both waste one step and the environment levels the camera; neither is ever a move or a STOP.
 
-Every call's raw output is kept (:meth:`ModelAgent.model_calls`) for the episode record.
+Every call's raw output is kept (:meth:`ModelAgent.model_calls`) for the episode record, up to
+:data:`~vlln.tasks.record.MAX_STORED_OUTPUT_CHARS` characters (the cut is counted in the call).
 """
 
 from __future__ import annotations
@@ -42,7 +43,7 @@ from vlln.prompt import (
 )
 from vlln.sim.agent import Action
 from vlln.tasks.env import EpisodeInfo, Observation
-from vlln.tasks.record import ModelCall
+from vlln.tasks.record import MAX_STORED_OUTPUT_CHARS, ModelCall
 from vlln.tasks.spec import AgentOutput, FailedOutput, PixelGoal, Talk
 
 MAX_FOLLOW_STEPS = 8  # follower steps toward a pixel goal before the model is asked again
@@ -174,15 +175,18 @@ class ModelAgent:
         return [Action.MOVE_FORWARD if isinstance(output, ForwardOutput) else Action.STOP]
 
     def _record(self, reply: ModelReply, look_down: bool) -> None:
+        text = reply.text
+        cut = 0 if text is None else max(0, len(text) - MAX_STORED_OUTPUT_CHARS)
         self._calls.append(
             ModelCall(
                 step=self._steps,
-                text=reply.text,
+                text=None if text is None else text[:MAX_STORED_OUTPUT_CHARS],
                 error=reply.error,
                 look_down=look_down,
                 latency_ms=round(reply.latency_ms, 3),
                 prompt_tokens=reply.prompt_tokens,
                 completion_tokens=reply.completion_tokens,
+                truncated_chars=cut,
             )
         )
 

@@ -23,7 +23,7 @@ OPENAI_VLM_OPTIONS: dict[str, str] = {
     "base_url": "the server's OpenAI-compatible URL, e.g. http://localhost:8000/v1",
     "model": "the served model's name",
     "api_key_env": "environment variable holding the API key (default OPENAI_API_KEY)",
-    "timeout_s": "seconds per request (default 60)",
+    "timeout_s": "deadline of each request, from connect to last byte (default 60 s)",
     "max_retries": "retries after a failed request (default 4)",
     "backoff_s": "first back-off in seconds, doubling per retry (default 0.5)",
     "max_tokens": f"longest reply in tokens (default {DEFAULT_MAX_TOKENS})",

@@ -6,6 +6,9 @@ environment variable (its name is a setting) and travels only as a Bearer header
 plain HTTP is accepted for loopback hosts alone (a local vLLM or Ollama), so a key never
 crosses a network in clear. The key is never logged and is masked in error messages.
 
+``timeout_s`` is a deadline for each request as a whole (:mod:`.deadline`), so a server that
+trickles its reply is cut off like one that says nothing; a reply body is read up to
+:data:`MAX_REPLY_BYTES`, so a server that ignores ``max_tokens`` cannot fill the memory.
 Timeouts, connection errors, 429 and 5xx answers are retried with exponential back-off and
 jitter drawn from the caller's generator; a 429's ``Retry-After`` is waited out (up to the
 back-off cap, so a server cannot stall a run). Other 4xx answers are not retried. Replies
@@ -18,6 +21,7 @@ from __future__ import annotations
 
 import email.utils
 import ipaddress
+import json
 import logging
 import math
 import os
@@ -26,12 +30,14 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+import httpcore
 import httpx
 import numpy as np
 
 from vlln.errors import ConfigError
 from vlln.oracle.llm.accounting import Pricing, UsageLedger
 from vlln.oracle.llm.cache import ResponseCache, cache_key
+from vlln.oracle.llm.deadline import DeadlineBackend, deadline
 from vlln.oracle.llm.protocol import (
     Completion,
     LanguageModelError,
@@ -46,6 +52,8 @@ logger = logging.getLogger(__name__)
 
 _LOOPBACK_NAMES = ("localhost",)
 _ERROR_EXCERPT = 300  # characters of a server's error body quoted in an exception
+MAX_REPLY_BYTES = 1 << 20  # a completion of a few hundred tokens is a few kilobytes
+_TRANSPORT_ERRORS = (httpcore.TimeoutException, httpcore.NetworkError, httpcore.RemoteProtocolError)
 
 
 @dataclass(frozen=True)
@@ -55,7 +63,7 @@ class OpenAISettings:
     model: str
     base_url: str = "https://api.openai.com/v1"
     api_key_env: str = "OPENAI_API_KEY"  # unset or empty: no Authorization header
-    timeout_s: float = 30.0
+    timeout_s: float = 30.0  # deadline of each request (attempt), from connect to last byte
     max_retries: int = 4  # retries after the first attempt
     backoff_base_s: float = 0.5  # first back-off; doubles on each retry
     backoff_max_s: float = 30.0  # cap of one wait, Retry-After included
@@ -132,7 +140,10 @@ class OpenAIChatClient:
         headers = {"Content-Type": "application/json"}
         if self._api_key:
             headers["Authorization"] = f"Bearer {self._api_key}"
-        self._http = httpx.Client(headers=headers, timeout=settings.timeout_s)
+        self._headers = list(headers.items())
+        self._http = httpcore.ConnectionPool(
+            ssl_context=httpx.create_ssl_context(), network_backend=DeadlineBackend()
+        )
 
     def __repr__(self) -> str:
         key = "set" if self._api_key else "not set"
@@ -185,10 +196,22 @@ class OpenAIChatClient:
             if attempt:
                 self._wait(attempt - 1, retry_after, problem)
             try:
-                response = self._http.post(self._url, json=body)
-            except httpx.TransportError as error:  # timeouts and connection errors
+                response = self._post(body)
+            except httpcore.TimeoutException as error:
+                problem = (
+                    f"no complete reply within the {self.settings.timeout_s:g} s deadline "
+                    f"({type(error).__name__}: {self._masked(str(error))})"
+                )
+                retry_after = None
+                continue
+            except _TRANSPORT_ERRORS as error:  # connection errors
                 problem = f"{type(error).__name__}: {self._masked(str(error))}"
                 retry_after = None
+                continue
+            except LanguageModelReplyError as error:  # a reply too long to read
+                if not self.settings.retry_bad_replies:
+                    raise
+                problem, retry_after = str(error), None
                 continue
             status = response.status_code
             if status == 429 or status >= 500:
@@ -213,6 +236,33 @@ class OpenAIChatClient:
             f"{self.backend} gave no completion in {attempts} attempts (last: {problem}); check "
             "that the server is up and base_url is right, or raise timeout_s or max_retries"
         )
+
+    def _post(self, body: dict[str, Any]) -> httpx.Response:
+        """One attempt: POST ``body``, the whole exchange bounded by the deadline
+        ``timeout_s`` and the reply body by :data:`MAX_REPLY_BYTES`."""
+        content = json.dumps(body, ensure_ascii=False, allow_nan=False).encode("utf-8")
+        seconds = self.settings.timeout_s
+        limits = {"connect": seconds, "read": seconds, "write": seconds, "pool": seconds}
+        with (
+            deadline(seconds),
+            self._http.stream(
+                "POST",
+                self._url,
+                headers=self._headers,
+                content=content,
+                extensions={"timeout": limits},
+            ) as response,
+        ):
+            data = bytearray()
+            for chunk in response.iter_stream():
+                data += chunk
+                if len(data) > MAX_REPLY_BYTES:
+                    raise LanguageModelReplyError(
+                        f"{self.backend} answered more than {MAX_REPLY_BYTES} bytes; a "
+                        "completion of max_tokens tokens is far shorter (does the server "
+                        "ignore max_tokens?)"
+                    )
+        return httpx.Response(response.status, headers=response.headers, content=bytes(data))
 
     def _wait(self, attempt: int, retry_after: float | None, problem: str) -> None:
         settings = self.settings

@@ -4,7 +4,7 @@ Clients send only a pose; the current view that the disambiguation rule needs is
 from that pose, so a client in any language (or a robot whose camera differs from ours) gets the
 same answer as an agent inside :class:`vlln.tasks.env.NavigationEnv`. The dialog budget works
 as in the environment: the first ``dialog_budget`` questions are answered, later ones get
-:data:`vlln.tasks.spec.REFUSAL_MESSAGE`.
+:data:`vlln.tasks.spec.REFUSAL_MESSAGE` (counted; the first few are kept in the dialog).
 
 Houses with several storeys work like one: goals and poses carry their height ``y`` (a
 pose on the stairs stands at the tread's height), and route answers on or near a flight say
@@ -37,7 +37,7 @@ from vlln.oracle.service.schemas import (
     SessionView,
 )
 from vlln.oracle.service.schemas import QuestionType as WireQuestionType
-from vlln.oracle.service.sessions import ServiceError, Session, SessionStore
+from vlln.oracle.service.sessions import REFUSED_TURNS_KEPT, ServiceError, Session, SessionStore
 from vlln.sim.agent import AgentState
 from vlln.sim.renderer import Frame
 from vlln.sim.simulator import Simulator
@@ -135,7 +135,10 @@ class HostedOracle:
             answered=answered,
             pose=request.pose,
         )
-        session.dialog.append(turn)
+        if answered or session.refused < REFUSED_TURNS_KEPT:
+            session.dialog.append(turn)
+        if not answered:
+            session.refused += 1
         return AskResponse(
             answer=answer,
             question_type=turn.question_type,
@@ -152,6 +155,7 @@ class HostedOracle:
             target_category=session.target.category,
             dialog_budget=session.dialog_budget,
             questions_left=session.questions_left,
+            refused_questions=session.refused,
             dialog=list(session.dialog),
         )
 

@@ -97,6 +97,7 @@ class SessionView(_Response):
     target_category: str
     dialog_budget: int
     questions_left: int
+    refused_questions: int  # asked past the budget; the dialog keeps only the first few
     dialog: list[DialogTurnView]
 
 

@@ -7,6 +7,9 @@ the next question (replaying the answered turns, so the wording stays that of th
 memory is bounded by the scene cache, not by the number of sessions. The store keeps at
 most ``capacity`` sessions and drops the least recently used one when a new one would exceed
 it, so a client that never deletes its sessions cannot grow the server's memory without bound.
+A session's dialog keeps every answered turn (at most the budget) and the first
+:data:`REFUSED_TURNS_KEPT` refused ones; later refusals are only counted, so a client asking
+on past its budget cannot grow a session, or the reply that shows it, without bound.
 Session ids are unguessable (:func:`secrets.token_urlsafe`) because they are the only handle
 on a dialog; they name a session and never influence an answer, so determinism is unaffected.
 """
@@ -37,6 +40,9 @@ class ServiceError(VllnError):
         self.detail = detail
 
 
+REFUSED_TURNS_KEPT = 8
+
+
 def new_session_id() -> str:
     """128 random bits, URL-safe."""
     return secrets.token_urlsafe(16)
@@ -57,6 +63,7 @@ class Session:
     simulator: Simulator | None = None
     dialog: list[DialogTurnView] = field(default_factory=list)
     answered: int = 0
+    refused: int = 0  # questions asked past the budget, kept or not
 
     @property
     def questions_left(self) -> int:
