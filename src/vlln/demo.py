@@ -1,9 +1,9 @@
 """`make demo`: the main job on the built-in houses.
 
 It shows a house, builds test episodes on a few built-in houses of the ``small`` preset (the
-benchmark's ``mp3d`` houses take minutes per run, see ``vlln bench fidelity``), runs the frontier agent on
-IIGN at every dialog budget from 0 (no dialog) to 5, prints the metric table with SR per
-budget and MSP, and writes the evaluation report. Rerunning resumes where it stopped.
+benchmark's ``mp3d`` houses take minutes per run, see ``vlln bench fidelity``), runs the
+frontier agent on IIGN at every dialog budget from 0 (no dialog) to 5, prints the metric table
+with SR per budget and MSP, and writes the evaluation report. Rerunning resumes where it stopped.
 """
 
 from __future__ import annotations
