@@ -40,10 +40,14 @@ class RunHealth:
     failures: dict[str, int]  # FAILURE_KINDS name -> count, every kind present
     backends: list[str]  # oracle backends that answered turns
     examples: list[str]  # the first skipped lines, described (file:line: reason)
+    missing_shards: tuple[str, ...] = ()  # shards ("i/n") of the run(s) that were not read
 
     @property
     def complete(self) -> bool:
-        return self.planned is not None and self.finished >= self.planned
+        """Every planned line is there (only planned lines are counted as finished)."""
+        return (
+            self.planned is not None and self.finished >= self.planned and not self.missing_shards
+        )
 
     @property
     def clean(self) -> bool:
@@ -59,6 +63,8 @@ class RunHealth:
             state = f"complete, {self.finished} of {self.planned} episode lines"
         else:
             state = f"INCOMPLETE, {self.finished} of {self.planned} episode lines"
+        if self.missing_shards:
+            state += f" (shards {', '.join(self.missing_shards)} not given)"
         parts = [f"run health: {state}"]
         if self.skipped:
             counts = ", ".join(f"{kind} {count}" for kind, count in self.skipped.items())
@@ -78,6 +84,7 @@ class RunHealth:
             "complete": self.complete,
             "finished": self.finished,
             "planned": self.planned,
+            "missing_shards": list(self.missing_shards),
             "skipped_lines": dict(self.skipped),
             "failures": dict(self.failures),
             "oracle_backends": list(self.backends),
@@ -86,13 +93,16 @@ class RunHealth:
 
 def run_health(contents: RunContents) -> RunHealth:
     """The health of what :func:`vlln.eval.results.load_runs` read."""
-    return health_of(contents.records, contents.planned, contents.skipped_kinds())
+    return health_of(
+        contents.records, contents.planned, contents.skipped_kinds(), contents.missing_shards
+    )
 
 
 def health_of(
     records: Sequence[EpisodeRecord],
     planned: int | None,
     skipped: Sequence[tuple[str, str]] = (),
+    missing_shards: Sequence[str] = (),
 ) -> RunHealth:
     """Health of ``records``; ``skipped`` holds (kind, description) per line not counted."""
     skipped_counts: dict[str, int] = {}
@@ -109,4 +119,5 @@ def health_of(
         failures=failures,
         backends=[backend for backend in backends if backend != "none"],
         examples=[text for _, text in skipped if text][:_EXAMPLES],
+        missing_shards=tuple(missing_shards),
     )
