@@ -2,7 +2,8 @@
 with Hugging Face's Trainer.
 
 The out folder holds ``checkpoint-N/`` folders while training (a rerun with the same out
-folder resumes from the newest one), then the final model with its tokenizer, image
+folder resumes from the newest one, its weights included; a rerun of a finished run changes
+nothing), then the final model with its tokenizer, image
 processor and chat template, loadable by ``vlln eval --agent vlln --model OUT``, and
 ``training.json`` with the settings and the loss curve. LoRA adapters are merged into the
 final model. Under ``accelerate launch`` or ``torchrun`` every process trains on its share of
