@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 import math
+import socket
 from pathlib import Path
 from typing import Any
 
@@ -380,3 +381,39 @@ def test_an_endless_output_is_stored_cut_and_the_cut_counted(
     assert len(line.encode()) < 4 * MAX_STORED_OUTPUT_CHARS + 10_000
     summary = json.loads((tmp_path / "run" / "summary.json").read_text())
     assert summary["health"]["failures"]["truncated model outputs"] == 1
+
+
+def test_a_server_that_does_not_answer_is_refused_before_any_episode(
+    split_cache: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    with socket.socket() as taken:  # a loopback port nothing listens on once it is closed
+        taken.bind(("127.0.0.1", 0))
+        port = taken.getsockname()[1]
+    source = episode_file(tmp_path, split_episodes(split_cache)[0])
+    args = ["eval", "--agent", "openai-vlm", "--task", "iign", "--budget", "0", "--quiet"]
+    args += ["--episode-file", source, "--model", "m", "--out", str(tmp_path / "run")]
+    assert main([*args, "--base-url", f"http://127.0.0.1:{port}/v1"]) == 2
+    error = capsys.readouterr().err
+    assert error.count("\n") == 1
+    assert error.startswith(f"error: the model server at http://127.0.0.1:{port}/v1 does not")
+    assert not (tmp_path / "run" / "episodes.jsonl").exists()
+
+
+def test_a_run_whose_every_model_call_failed_ends_non_zero(
+    split_cache: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """The server answers, but refuses every chat call: the episodes are kept, and the
+    command says that they measure the server and exits non-zero."""
+    source = episode_file(tmp_path, split_episodes(split_cache)[0])
+    args = ["eval", "--agent", "openai-vlm", "--task", "iign", "--budget", "0", "--quiet"]
+    args += ["--episode-file", source, "--model", "m", "--out", str(tmp_path / "run")]
+    args += ["--model-retries", "0", "--max-steps", "6"]
+    refusal = Scripted(404, {"error": {"message": "The model `m` does not exist."}})
+    with chat_server([refusal]) as server:
+        assert main([*args, "--base-url", server.base_url]) == 1
+        calls = len(server.requests)
+    error = capsys.readouterr().err.splitlines()[-1]
+    assert error.startswith(f"error: all {calls} model calls failed (the first: ")
+    assert "404" in error and "rerun with a new --out" in error
+    (record,) = (json.loads(line) for line in (tmp_path / "run" / "episodes.jsonl").open())
+    assert record["failures"] == {"server": calls} and calls == 6

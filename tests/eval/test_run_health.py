@@ -4,9 +4,10 @@ command states incomplete runs, skipped lines and failed or fallback turns."""
 
 from __future__ import annotations
 
+import gzip
 import json
 import shutil
-from dataclasses import asdict
+from dataclasses import asdict, replace
 from pathlib import Path
 
 import pytest
@@ -16,6 +17,7 @@ from tests.eval.test_cli import eval_args
 from vlln.cli import main
 from vlln.eval.results import SKIPPED_FILE
 from vlln.tasks.episode import write_episodes
+from vlln.tasks.generation import load_or_build_split
 from vlln.tasks.record import DialogTurn
 from vlln.tasks.scenes import SceneCache
 
@@ -54,6 +56,32 @@ def test_wrong_types_neither_crash_resume_and_score_nor_duplicate(
     assert (run / SKIPPED_FILE).read_text().strip() == json.dumps(broken)
     assert main(["score", str(run)]) == 0
     assert f"set aside in {SKIPPED_FILE} 1" in capsys.readouterr().err
+
+
+def test_lines_outside_the_plan_do_not_stand_in_for_planned_episodes(
+    full_run: Path, tmp_path: Path, split_cache: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Two planned lines replaced by an episode and a budget the run does not plan: still
+    8 lines, but 6 of the 8 planned; a resume plays the two and sets the others aside."""
+    run = copy_run(full_run, tmp_path / "run")
+    original = lines(run)
+    stranger = json.loads(original[0]) | {"episode_id": "not-in-the-plan"}
+    other_budget = json.loads(original[1]) | {"budget": 5}
+    foreign = [json.dumps(stranger), json.dumps(other_budget)]
+    (run / "episodes.jsonl").write_text("\n".join([*foreign, *original[2:]]) + "\n")
+    assert main(["score", str(run), "--json"]) == 0
+    captured = capsys.readouterr()
+    assert "INCOMPLETE, 6 of 8" in captured.err and "unplanned 2" in captured.err
+    assert "episode not-in-the-plan" in captured.err
+    health = json.loads(captured.out)["health"]
+    assert health["complete"] is False and health["finished"] == 6
+    assert main(eval_args(run, split_cache)) == 0
+    err = capsys.readouterr().err
+    assert "played 2" in err and "8 of 8 episodes" in err and "complete, 8 of 8" in err
+    assert sorted(lines(run)) == sorted(original)
+    assert (run / SKIPPED_FILE).read_text().splitlines() == foreign
+    assert main(["score", str(run)]) == 0
+    assert "complete, 8 of 8" in capsys.readouterr().err
 
 
 def test_torn_last_line_is_stated_and_a_line_missing_its_newline_is_kept(
@@ -126,6 +154,25 @@ def test_an_empty_episode_file_is_an_error(
     assert main([*args, "--out", str(tmp_path / "run")]) == 2
     error = capsys.readouterr().err
     assert "holds no episodes" in error and error.count("\n") == 1
+
+
+def test_an_episode_file_with_a_repeated_id_is_refused_at_load(
+    split_cache: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Two episodes under one id would both be played and one set aside, so the run could
+    never complete; the file is refused in one line before anything is played."""
+    episodes = load_or_build_split("test", "iign", 1, split_cache, progress=False)[:3]
+    repeated = tmp_path / "repeated.json.gz"
+    items = [
+        e.to_json() for e in (*episodes, replace(episodes[2], episode_id=episodes[0].episode_id))
+    ]
+    repeated.write_bytes(gzip.compress(json.dumps({"episodes": items}).encode()))
+    args = ["eval", "--agent", "random", "--task", "iign", "--episode-file", str(repeated)]
+    assert main([*args, "--out", str(tmp_path / "run")]) == 2
+    error = capsys.readouterr().err
+    assert error.count("\n") == 1
+    assert f"episodes 0 and 3 share episode_id {episodes[0].episode_id!r}" in error
+    assert not (tmp_path / "run" / "episodes.jsonl").exists()
 
 
 @pytest.mark.parametrize(

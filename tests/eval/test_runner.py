@@ -90,6 +90,23 @@ def test_two_shards_equal_one_full_run(
     assert set(keys(shards[0])).isdisjoint(keys(shards[1]))
 
 
+def test_shards_left_out_make_the_merge_incomplete(
+    full_run: Path, tmp_path: Path, split_cache: Path, scenes: SceneCache
+) -> None:
+    """Two shards of three hold 6 of the run's 8 lines; the merge says which shard is
+    missing, and is complete only with all three."""
+    shards = [tmp_path / str(index) for index in range(3)]
+    for index, out in enumerate(shards):
+        outcome = evaluate(out, split_cache, scenes, shard=Shard(index, 3))
+        assert outcome.complete  # each shard is complete on its own
+    partial = run_health(load_runs(shards[:2]))
+    assert (partial.finished, partial.planned, partial.complete) == (6, 8, False)
+    assert partial.missing_shards == ("2/3",)
+    assert "INCOMPLETE, 6 of 8 episode lines (shards 2/3 not given)" in partial.line()
+    whole = run_health(load_runs(shards))
+    assert (whole.finished, whole.planned, whole.complete) == (8, 8, True)
+
+
 def test_same_seed_gives_identical_lines_and_another_seed_other_agent_seeds(
     full_run: Path, tmp_path: Path, split_cache: Path, scenes: SceneCache
 ) -> None:

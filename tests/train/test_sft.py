@@ -46,6 +46,47 @@ def test_loss_falls_and_a_rerun_resumes_from_the_newest_checkpoint(
     assert [entry["step"] for entry in second["losses"]] == [2, 4, 6, 8, 10]
 
 
+def _same_weights(first: Path, second: Path) -> bool:
+    one, other = load_file(first / "model.safetensors"), load_file(second / "model.safetensors")
+    return set(one) == set(other) and all(torch.equal(one[name], other[name]) for name in one)
+
+
+def test_a_resumed_run_goes_on_from_the_checkpoints_weights(
+    sft_export: Path, tiny_model: Path, tmp_path: Path
+) -> None:
+    straight, resumed = tmp_path / "straight", tmp_path / "resumed"
+    first = _train(sft_export, tiny_model, straight, "--max-steps", "8", "--save-steps", "4")
+    checkpoint = straight / "checkpoint-4"
+    second = _train(
+        sft_export, tiny_model, resumed, "--max-steps", "8", "--resume", str(checkpoint)
+    )
+    assert second["resumed_from"] == str(checkpoint)
+    # Steps 5..8 from the checkpoint's weights, optimizer and data order: the same run.
+    assert second["losses"] == first["losses"]
+    assert _same_weights(straight, resumed)
+    assert not _same_weights(tiny_model, resumed)
+
+
+def test_a_finished_run_rerun_changes_nothing(
+    sft_export: Path, tiny_model: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    out = tmp_path / "run"
+    _train(sft_export, tiny_model, out, "--max-steps", "4", "--save-steps", "2")
+    files = {path: path.read_bytes() for path in out.rglob("*") if path.is_file()}
+    capsys.readouterr()
+    _train(sft_export, tiny_model, out, "--max-steps", "4", "--save-steps", "2")
+    assert "already trained to step 4; nothing to do" in capsys.readouterr().out
+    assert {path: path.read_bytes() for path in out.rglob("*") if path.is_file()} == files
+    # Stopped after the last checkpoint, before the final model: the rerun writes the
+    # checkpoint's weights, without another step.
+    (out / "model.safetensors").unlink()
+    (out / "training.json").unlink()
+    summary = _train(sft_export, tiny_model, out, "--max-steps", "4", "--save-steps", "2")
+    assert summary["steps"] == 4
+    assert _same_weights(out, out / "checkpoint-4")
+    assert {p.name for p in out.glob("checkpoint-*")} == {"checkpoint-2", "checkpoint-4"}
+
+
 def test_lora_adapters_are_merged_into_the_saved_model(
     sft_export: Path, tiny_model: Path, tmp_path: Path
 ) -> None:

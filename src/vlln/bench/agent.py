@@ -20,7 +20,6 @@ from collections.abc import Callable
 import numpy as np
 from numpy.typing import NDArray
 
-from vlln.agents.model.images import down_image, level_image
 from vlln.agents.model.openai_vlm import chat_messages
 from vlln.bench.figures import Figure, emit, median_seconds
 from vlln.errors import ConfigError
@@ -31,6 +30,7 @@ from vlln.prompt import (
     connective_for,
     read_output,
 )
+from vlln.prompt.images import model_image
 from vlln.sim.agent import AgentState
 from vlln.sim.simulator import Simulator
 from vlln.world.generator import generate_house
@@ -89,9 +89,9 @@ def run_agent_benchmark(seed: int = 0, repeats: int = 200, as_json: bool = False
     record("prompt_build_dialogs_ms", per_call_ms(lambda: build(dialogs), 1), "ms")
 
     level, down = _rendered_frames(seed)
-    record("level_image_ms", median_seconds(lambda: level_image(level), 21) * 1e3, "ms")
-    record("down_image_ms", median_seconds(lambda: down_image(down), 21) * 1e3, "ms")
-    pictures = [level_image(level)] * len(conversation.images)
+    record("level_image_ms", median_seconds(lambda: model_image(level, "level"), 21) * 1e3, "ms")
+    record("down_image_ms", median_seconds(lambda: model_image(down, "down"), 21) * 1e3, "ms")
+    pictures = [model_image(level, "level")] * len(conversation.images)
     record("level_image_kb", len(pictures[0]) / 1024.0, "kB")
 
     def request_body() -> str:

@@ -38,9 +38,9 @@ def run_model_benchmark(
     import torch
 
     from vlln.agents.local.backend import ChatRequest, TransformersBackend
-    from vlln.agents.model.images import level_image
     from vlln.bench.agent import DIALOG_FRAMES, FRAME, _rendered_frames
     from vlln.prompt import DialogExchange, build_conversation, connective_for
+    from vlln.prompt.images import model_image
     from vlln.train.tiny import build_tiny_model
 
     figures: list[Figure] = []
@@ -56,7 +56,7 @@ def run_model_benchmark(
         "Search for the chair.", FRAME, dialogs, connective=connective
     )
     level, _ = _rendered_frames(seed)
-    picture = level_image(level)
+    picture = model_image(level, "level")
     with tempfile.TemporaryDirectory(prefix="vlln-bench-model-") as folder:
         backend = TransformersBackend(
             build_tiny_model(folder, seed=seed), max_new_tokens=max_new_tokens

@@ -96,6 +96,16 @@ def _eval(args: argparse.Namespace) -> int:
     print(outcome.health.line(), file=sys.stderr)
     if outcome.summary is not None:
         print((Path(args.out) / "summary.md").read_text(encoding="utf-8"), end="")
+    calls = [call for record in outcome.records for call in record.model_calls]
+    if calls and all(call.text is None for call in calls):
+        first = " ".join(str(calls[0].error).split())[:200]
+        print(
+            f"error: all {len(calls)} model calls failed (the first: {first}); the "
+            f"episodes in {args.out} measure the server, not the model: fix the server and "
+            "rerun with a new --out",
+            file=sys.stderr,
+        )
+        return 1
     return 0
 
 

@@ -33,6 +33,9 @@ def _train_sft(args: argparse.Namespace) -> int:
         resume=None if args.resume is None else Path(args.resume),
     )
     outcome = train_sft(config)
+    if outcome.unchanged:
+        print(f"already trained to step {outcome.steps}; nothing to do (model in {args.out})")
+        return 0
     resumed = f", resumed from {outcome.resumed_from}" if outcome.resumed_from else ""
     curve = " -> ".join(f"{loss:.3f}" for _, loss in outcome.losses) or "no new steps"
     print(

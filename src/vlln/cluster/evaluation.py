@@ -44,6 +44,7 @@ from vlln.eval.runner import (
     default_provenance,
     finish_run,
     load_episodes,
+    plan_of,
     plan_work,
     play_items,
 )
@@ -108,14 +109,16 @@ def run_ray_evaluation(
     if model is None:
         make_agent(config.agent, config.seed, config.detector, config.agent_options)
     ray = connect(address)  # an unreachable cluster fails early too
-    items = plan_work(load_episodes(config, cache_dir, progress), config)
+    episodes = load_episodes(config, cache_dir, progress)
+    items = plan_work(episodes, config)
+    plan = plan_of(items, episodes, config)
     run_dir = RunDirectory(out)
     run_dir.check_is_directory()
-    run_dir.prepare(config, len(items), default_provenance(config, RuleOracle))
+    run_dir.prepare(config, provenance=default_provenance(config, RuleOracle), plan=plan)
     task = remote_function(play_eval_chunk, max_retries, retry_on=(ModelServerLost,))
     played = 0
     started = time.perf_counter()
-    with run_dir.writing() as writer:
+    with run_dir.writing(plan) as writer:
         repaired = list(writer.skipped)
         done = {record_key(record) for record in writer.records}
         remaining = [item for item in items if item.key(config) not in done]

@@ -20,14 +20,13 @@ to frame ``i`` (``action[0]`` is the placeholder -1; the STOP at the last frame 
 down, z forward) in a z-up world: world ``(x, y, z)`` = habitat ``(x, -z, y)``.
 ``goal.125cm_30deg`` is the pixel ``[col, row]`` of the frame's look-down image under which
 the agent stands ``relative_goal_frame_id.125cm_30deg`` frames later (``[-1, -1]`` and -1 where
-the frame has no pixel goal; see :mod:`vlln.datagen.goals`). Frames are JPEG, as the
-reference writes them (see JPEG_QTABLES); depth is only used during the build and not
-stored.
+the frame has no pixel goal; see :mod:`vlln.datagen.goals`). Frames are JPEG, stored by
+:func:`vlln.prompt.images.stored_frame` (the contract the export and the model agents share);
+depth is only used during the build and not stored.
 """
 
 from __future__ import annotations
 
-import io
 import math
 from collections.abc import Sequence
 from typing import Any
@@ -36,7 +35,6 @@ import numpy as np
 import pyarrow as pa
 import pyarrow.parquet as pq
 from numpy.typing import NDArray
-from PIL import Image
 
 from vlln.datagen.collector.visibility import DOWN_TILT_DEG
 from vlln.datagen.goals import Goal
@@ -47,14 +45,6 @@ from vlln.tasks.episode import scene_name
 
 FORMAT_VERSION = "vlln-trajectories/2.0"
 CHUNK_SIZE = 1000
-# The reference saves its frames with PIL's default quality (75). Our renders' fine floor
-# textures are noise a JPEG cannot compress, so a kept trajectory of the data benchmark takes
-# 11.4 MB at 75 and 7.2 MB at 50 (about 0.9 MB of it the 4 KB disk blocks of its ~460 small
-# files). Pillow's "web_low" tables quantise the low frequencies a little more and the highest
-# ones much less than the standard tables do, which on these frames gives smaller files at a
-# higher PSNR than quality 33 (the standard setting of the same size, which blurs the floor
-# texture and blotches the colour of plain walls); see docs/data-pipeline.md for the figures.
-JPEG_QTABLES = "web_low"
 NO_ACTION = -1  # action[0]: no action led to the first frame
 CAMERAS = ("level", "down")
 _PITCH_DEG = {"level": 0.0, "down": -DOWN_TILT_DEG}
@@ -96,12 +86,6 @@ def reference_pose(
     pose[:3, :3] = _HABITAT_TO_Z_UP @ rendered[:3, :3] @ _OPENCV_TO_OPENGL
     pose[:3, 3] = _HABITAT_TO_Z_UP @ rendered[:3, 3]
     return pose
-
-
-def rgb_to_jpeg(rgb: NDArray[np.uint8]) -> bytes:
-    buffer = io.BytesIO()
-    Image.fromarray(rgb).save(buffer, "JPEG", qtables=JPEG_QTABLES, optimize=True)
-    return buffer.getvalue()
 
 
 def frame_columns(spec: CameraSpec) -> dict[str, tuple[str, list[int]]]:

@@ -25,11 +25,11 @@ from vlln.datagen.layout import (
     frame_table,
     house_dir_name,
     info_document,
-    rgb_to_jpeg,
 )
 from vlln.datagen.trajectory import Trajectory
 from vlln.errors import DataFormatError
 from vlln.files import remove_leftover_temp_files, write_text_atomic
+from vlln.prompt.images import stored_frame
 from vlln.sim.camera import CameraSpec
 from vlln.sim.renderer import Frame
 
@@ -70,8 +70,8 @@ class HouseWriter:
         finder = GoalFinder(self.camera, trajectory)
         goals = []
         for frame_index, (level_frame, down_frame) in enumerate(frames):
-            self._write(frame_image_path(level, index, frame_index), rgb_to_jpeg(level_frame.rgb))
-            self._write(frame_image_path(down, index, frame_index), rgb_to_jpeg(down_frame.rgb))
+            self._write(frame_image_path(level, index, frame_index), stored_frame(level_frame.rgb))
+            self._write(frame_image_path(down, index, frame_index), stored_frame(down_frame.rgb))
             goals.append(finder.at(frame_index, down_frame.depth))
         self._write(data_path(index), frame_table(self.camera, trajectory, index, goals))
         row = episode_row(trajectory, index)

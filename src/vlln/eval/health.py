@@ -48,10 +48,17 @@ class RunHealth:
     examples: list[str]  # the first skipped lines, described (file:line: reason)
     refused: int = 0  # planned episode lines refused as unplayable in their scene
     refused_episodes: list[str] = field(default_factory=list)  # "<episode> (<scene>): reason"
+    missing_shards: tuple[str, ...] = ()  # shards ("i/n") of the run(s) that were not read
 
     @property
     def complete(self) -> bool:
-        return self.planned is not None and self.finished + self.refused >= self.planned
+        """Every planned line is there or refused (only planned lines count as finished), and
+        no shard of the run is missing."""
+        return (
+            self.planned is not None
+            and self.finished + self.refused >= self.planned
+            and not self.missing_shards
+        )
 
     @property
     def clean(self) -> bool:
@@ -74,6 +81,8 @@ class RunHealth:
             state = f"INCOMPLETE, {self.finished} of {self.planned} episode lines"
         if self.refused:
             state += f" and {self.refused} refused"
+        if self.missing_shards:
+            state += f" (shards {', '.join(self.missing_shards)} not given)"
         parts = [f"run health: {state}"]
         if self.refused:
             named = "; ".join(self.refused_episodes[:_EXAMPLES])
@@ -98,6 +107,7 @@ class RunHealth:
             "complete": self.complete,
             "finished": self.finished,
             "planned": self.planned,
+            "missing_shards": list(self.missing_shards),
             "skipped_lines": dict(self.skipped),
             "failures": dict(self.failures),
             "oracle_backends": list(self.backends),
@@ -108,7 +118,13 @@ class RunHealth:
 
 def run_health(contents: RunContents) -> RunHealth:
     """The health of what :func:`vlln.eval.results.load_runs` read."""
-    return health_of(contents.records, contents.planned, contents.skipped_kinds(), contents.refused)
+    return health_of(
+        contents.records,
+        contents.planned,
+        contents.skipped_kinds(),
+        contents.refused,
+        contents.missing_shards,
+    )
 
 
 def health_of(
@@ -116,6 +132,7 @@ def health_of(
     planned: int | None,
     skipped: Sequence[tuple[str, str]] = (),
     refused: Sequence[Refusal] = (),
+    missing_shards: Sequence[str] = (),
 ) -> RunHealth:
     """Health of ``records``; ``skipped`` holds (kind, description) per line not counted,
     ``refused`` the refusals of the run."""
@@ -135,4 +152,5 @@ def health_of(
         examples=[text for _, text in skipped if text][:_EXAMPLES],
         refused=len(refused),
         refused_episodes=list(dict.fromkeys(refusal.describe() for refusal in refused)),
+        missing_shards=tuple(missing_shards),
     )

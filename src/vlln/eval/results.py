@@ -8,7 +8,7 @@ Layout::
     DIR/summary.md      the same as Markdown tables
     DIR/.lock           held while a process writes here, so two runs cannot interleave
 
-    DIR/episodes.skipped.jsonl  lines a resume set aside: invalid or repeated (see below)
+    DIR/episodes.skipped.jsonl  lines a resume set aside: invalid, repeated or unplanned
     DIR/episodes.refused.jsonl  episodes refused as unplayable in their scene (vlln.eval.refusals)
 
 Each record is appended with one write, flushed and fsynced, so a kill loses at most the
@@ -17,7 +17,9 @@ off (only when it is not a valid record: one that lacks just its newline is kept
 runner plays the episode again. Reading never fails on a line's content: a line that is not a
 valid record (wrong JSON, a field of the wrong type or range) or repeats an episode is skipped
 and named (file, line, field), and a resume moves it to ``episodes.skipped.jsonl``, so the
-episode is played again and the results file keeps exactly one line per episode.
+episode is played again and the results file keeps exactly one line per episode. A valid
+line for an episode or budget outside the run's plan (:mod:`vlln.eval.plan`) is not counted
+either, and a resume sets it aside too.
 """
 
 from __future__ import annotations
@@ -33,6 +35,7 @@ from typing import IO, Any
 
 from vlln.errors import ConfigError, DataFormatError
 from vlln.eval.config import EvalConfig, describe_differences
+from vlln.eval.plan import PLAN_FACT, RunPlan, missing_shards
 from vlln.eval.refusals import Refusal, read_refusals
 from vlln.files import write_bytes_atomic, write_text_atomic
 from vlln.tasks.record import EpisodeRecord
@@ -40,7 +43,8 @@ from vlln.tasks.record import EpisodeRecord
 RUN_FILE = "run.json"
 EPISODES_FILE = "episodes.jsonl"
 SKIPPED_FILE = "episodes.skipped.jsonl"
-RUN_FACTS = ("planned_episodes", "provenance")  # in run.json, but not arguments of the run
+# in run.json, but not arguments of the run
+RUN_FACTS = ("planned_episodes", PLAN_FACT, "provenance")
 SUMMARY_JSON = "summary.json"
 SUMMARY_MD = "summary.md"
 LOCK_FILE = ".lock"
@@ -59,7 +63,8 @@ class SkippedLine:
     """A line of a results file that holds no record to count, and why.
 
     ``kind``: ``invalid`` (not JSON, or a field of the wrong type or range), ``duplicate``
-    (an episode already read from an earlier line) or ``torn`` (a last line cut off by a kill).
+    (an episode already read from an earlier line), ``unplanned`` (an episode or budget the
+    run does not plan) or ``torn`` (a last line cut off by a kill).
     """
 
     file: Path
@@ -79,6 +84,7 @@ class RecordScan:
     records: list[EpisodeRecord] = field(default_factory=list)
     skipped: list[SkippedLine] = field(default_factory=list)
     lines: list[bytes] = field(default_factory=list)  # the records' lines, without newlines
+    numbers: list[int] = field(default_factory=list)  # the records' line numbers
     skipped_lines: list[bytes] = field(default_factory=list)  # complete skipped lines
     newline_missing: bool = False
 
@@ -119,8 +125,25 @@ def scan_records(path: Path) -> RecordScan:
         seen[key] = number
         scan.records.append(record)
         scan.lines.append(text)
+        scan.numbers.append(number)
         scan.newline_missing = last
     return scan
+
+
+def drop_unplanned(scan: RecordScan, plan: RunPlan, path: Path) -> None:
+    """Move ``scan``'s records outside ``plan`` to its skipped lines (kind ``unplanned``)."""
+    kept = [i for i, record in enumerate(scan.records) if plan.holds(record)]
+    for index in sorted(set(range(len(scan.records))) - set(kept)):
+        record = scan.records[index]
+        reason = (
+            f"episode {record.episode_id} ({record.scene_id}, budget {record.budget}) is not "
+            "in the run's plan; not counted"
+        )
+        scan.skipped.append(SkippedLine(path, scan.numbers[index], "unplanned", reason))
+        scan.skipped_lines.append(scan.lines[index])
+    scan.records = [scan.records[i] for i in kept]
+    scan.lines = [scan.lines[i] for i in kept]
+    scan.numbers = [scan.numbers[i] for i in kept]
 
 
 def read_records(path: Path, repair: bool = False) -> list[EpisodeRecord]:
@@ -243,19 +266,34 @@ class RunDirectory:
         planned = (self.stored_run() or {}).get("planned_episodes")
         return planned if isinstance(planned, int) and not isinstance(planned, bool) else None
 
+    def stored_plan(self) -> RunPlan | None:
+        """The (episode, budget) pairs the run plans (None when its run.json predates it)."""
+        config = self.stored_config()
+        if config is None:
+            return None
+        return RunPlan.from_json((self.stored_run() or {}).get(PLAN_FACT), config)
+
     def prepare(
         self,
         config: EvalConfig,
         planned: int | None = None,
         provenance: dict[str, str | None] | None = None,
+        plan: RunPlan | None = None,
     ) -> None:
         """Create the directory for ``config`` or check that it was started with it.
 
-        ``run.json`` also records facts that are not arguments: ``planned_episodes`` (so a
-        reader can tell an incomplete run) and ``provenance`` (agent, oracle, backend, model).
+        ``run.json`` also records facts that are not arguments: ``planned_episodes`` and
+        ``plan`` (so a reader can tell an incomplete run and the lines that belong to it) and
+        ``provenance`` (agent, oracle, backend, model).
         """
         self.check_is_directory()
-        facts = {"planned_episodes": planned, "provenance": provenance}
+        if plan is not None:
+            planned = plan.lines
+        facts = {
+            "planned_episodes": planned,
+            PLAN_FACT: None if plan is None else plan.to_json(),
+            "provenance": provenance,
+        }
         stored = self.stored_config()
         if stored is not None:
             differences = describe_differences(stored, config)
@@ -286,8 +324,9 @@ class RunDirectory:
         write_text_atomic(self.run_path, json.dumps(data, indent=2) + "\n")
 
     @contextmanager
-    def writing(self) -> Iterator[RecordWriter]:
-        """Hold the directory's lock, cut a partial last line and append to the episode file."""
+    def writing(self, plan: RunPlan | None = None) -> Iterator[RecordWriter]:
+        """Hold the directory's lock, cut a partial last line, set aside the lines outside
+        ``plan`` (when given) and append to the episode file."""
         with (self.path / LOCK_FILE).open("w") as lock:
             try:
                 fcntl.flock(lock.fileno(), fcntl.LOCK_EX | fcntl.LOCK_NB)
@@ -297,6 +336,8 @@ class RunDirectory:
                     "use another --out"
                 ) from None
             scan = scan_records(self.episodes_path)
+            if plan is not None:
+                drop_unplanned(scan, plan, self.episodes_path)
             repair_file(self.episodes_path, scan)
             with self.episodes_path.open("ab") as handle:
                 yield RecordWriter(handle, scan.records, scan.skipped)
@@ -314,14 +355,16 @@ class RunDirectory:
 @dataclass
 class RunContents:
     """The records of one or more run directories and what reading them found: lines skipped,
-    lines set aside by a resume, the episode lines the runs planned (None if unknown) and the
-    episodes they refused (:mod:`vlln.eval.refusals`)."""
+    lines set aside by a resume, the episode lines the runs planned (None if unknown), those
+    of shards not read included, which shards those are, and the episodes they refused
+    (:mod:`vlln.eval.refusals`)."""
 
     records: list[EpisodeRecord] = field(default_factory=list)
     skipped: list[SkippedLine] = field(default_factory=list)
     set_aside: int = 0
     planned: int | None = 0
     refused: list[Refusal] = field(default_factory=list)
+    missing_shards: list[str] = field(default_factory=list)
 
     def skipped_kinds(self) -> list[tuple[str, str]]:
         """(kind, description) of every line not counted, set-aside lines included."""
@@ -329,13 +372,17 @@ class RunContents:
         return found + [(f"set aside in {SKIPPED_FILE}", "")] * self.set_aside
 
 
-def load_runs(paths: Iterable[Path]) -> RunContents:
+def load_runs(paths: Iterable[Path], whole: bool = True) -> RunContents:
     """Everything in several run directories (or JSONL files), e.g. the shards of one run.
 
-    The same episode in two places is an error: merging would count it twice.
+    The same episode in two places is an error: merging would count it twice. Lines outside
+    a run's plan are skipped (kind ``unplanned``). With ``whole`` (reading results, rather
+    than one shard reading itself) shards of a run that were not passed are named, and their
+    planned lines counted as not finished.
     """
     contents = RunContents()
     origin: dict[RecordKey, Path] = {}
+    runs: list[tuple[EvalConfig, RunPlan | None]] = []
     for path in paths:
         if path.exists() and not path.is_dir() and path.suffix != ".jsonl":
             raise ConfigError(f"{path} is a file; pass a run directory of vlln eval")
@@ -343,6 +390,11 @@ def load_runs(paths: Iterable[Path]) -> RunContents:
         if not file.exists():
             raise ConfigError(f"{path} holds no {EPISODES_FILE}; pass a run directory of vlln eval")
         scan = scan_records(file)
+        run = RunDirectory(path) if path.is_dir() else None
+        config = None if run is None else run.stored_config()
+        plan = None if run is None else run.stored_plan()
+        if plan is not None:
+            drop_unplanned(scan, plan, file)
         for record in scan.records:
             key = record_key(record)
             if key in origin:
@@ -358,11 +410,19 @@ def load_runs(paths: Iterable[Path]) -> RunContents:
             contents.set_aside += aside.read_bytes().count(b"\n")
         if path.is_dir():
             contents.refused += read_refusals(path)
-        planned = RunDirectory(path).stored_planned() if path.is_dir() else None
+        planned = plan.lines if plan is not None else None if run is None else run.stored_planned()
         if planned is None or contents.planned is None:
             contents.planned = None
         else:
             contents.planned += planned
+        if config is not None and whole:
+            runs.append((config, plan))
+    contents.missing_shards, absent_lines = missing_shards(runs)
+    if contents.missing_shards:
+        if absent_lines is None or contents.planned is None:
+            contents.planned = None
+        else:
+            contents.planned += absent_lines
     return contents
 
 

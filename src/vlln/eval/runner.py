@@ -44,6 +44,7 @@ from vlln.errors import ConfigError, EpisodeRefusedError
 from vlln.eval.config import EvalConfig
 from vlln.eval.cost import eval_cost_line
 from vlln.eval.health import RunHealth, run_health
+from vlln.eval.plan import RunPlan
 from vlln.eval.refusals import Refusal, append_refusals, read_refusals
 from vlln.eval.results import RecordKey, RunDirectory, SkippedLine, load_runs, record_key
 from vlln.eval.summary import GroupSummary, summarize_run, summary_json, summary_markdown
@@ -146,6 +147,13 @@ def plan_work(episodes: Sequence[Episode], config: EvalConfig) -> list[WorkItem]
     ]
 
 
+def plan_of(items: Sequence[WorkItem], episodes: Sequence[Episode], config: EvalConfig) -> RunPlan:
+    """The plan of ``items`` (this shard's), knowing the lines of every shard of the run."""
+    chosen = len(episodes) if config.episodes is None else config.episodes
+    pairs = ((item.episode.scene_id, item.episode.episode_id) for item in items)
+    return RunPlan.of(pairs, config, chosen * len(config.budgets))
+
+
 def derive_seed(seed: int, role: str, scene_id: str, episode_id: str) -> int:
     """A 63-bit seed for ``role`` (agent, oracle) in one episode, the same at every budget:
     budgets differ only by their refusals (common random numbers for the MSP's differences,
@@ -238,16 +246,20 @@ def run_evaluation(
     if agent_factory is None:
         agent_factory = partial(make_agent, options=config.agent_options)
     agent_factory(config.agent, config.seed, config.detector)  # fail before any work
-    items = plan_work(load_episodes(config, cache_dir, progress), config)
+    episodes = load_episodes(config, cache_dir, progress)
+    items = plan_work(episodes, config)
+    plan = plan_of(items, episodes, config)
     run_dir = RunDirectory(out)
-    run_dir.prepare(config, len(items), provenance or default_provenance(config, oracle_factory))
+    run_dir.prepare(
+        config, provenance=provenance or default_provenance(config, oracle_factory), plan=plan
+    )
     task = TaskType.parse(config.task)
     own_scenes = scenes is None
     cache = scenes if scenes is not None else SceneCache(scenes_dir=config.scenes)
     played = 0
     started = time.perf_counter()
     try:
-        with run_dir.writing() as writer:
+        with run_dir.writing(plan) as writer:
             _check_same_agent(writer.records, config, out)
             repaired = list(writer.skipped)
             done = {record_key(record) for record in writer.records}
@@ -302,7 +314,7 @@ def finish_run(
     repaired: list[SkippedLine],
 ) -> RunOutcome:
     """Write the summary files of the run in ``out`` (with its health) and say what it holds."""
-    health = run_health(load_runs([out]))
+    health = run_health(load_runs([out], whole=False))  # this shard's own health
     summary = summarize_run(records) if records else None
     if summary is not None:
         RunDirectory(out).write_summary(

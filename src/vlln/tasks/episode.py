@@ -44,7 +44,7 @@ import json
 import math
 import re
 import zlib
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -254,7 +254,21 @@ def _parse_file(data: Any, source: str) -> list[Episode]:
         episodes.append(
             Episode.from_json(item, f"{source}: episode {index} (episode_id {episode_id!r})")
         )
+    _check_unique_ids(episodes, source)
     return episodes
+
+
+def _check_unique_ids(episodes: Sequence[Episode], source: str) -> None:
+    """An episode id names one episode of a file (the reference evaluator keys on it, and a
+    run's results on scene and id): a repeat would be played twice and counted once."""
+    first: dict[str, int] = {}
+    for index, episode in enumerate(episodes):
+        earlier = first.setdefault(episode.episode_id, index)
+        if earlier != index:
+            raise DataFormatError(
+                f"{source}: episodes {earlier} and {index} share episode_id "
+                f"{episode.episode_id!r}; give each episode of the file its own id"
+            )
 
 
 def _check_keys(

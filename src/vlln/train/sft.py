@@ -2,7 +2,8 @@
 with Hugging Face's Trainer.
 
 The out folder holds ``checkpoint-N/`` folders while training (a rerun with the same out
-folder resumes from the newest one), then the final model with its tokenizer, image
+folder resumes from the newest one, its weights included; a rerun of a finished run changes
+nothing), then the final model with its tokenizer, image
 processor and chat template, loadable by ``vlln eval --agent vlln --model OUT``, and
 ``training.json`` with the settings and the loss curve. LoRA adapters are merged into the
 final model. Under ``accelerate launch`` or ``torchrun`` every process trains on its share of
@@ -23,6 +24,8 @@ from vlln.files import write_text_atomic
 from vlln.train.config import TrainConfig
 
 SUMMARY_FILE = "training.json"
+_STATE_FILE = "trainer_state.json"
+_WEIGHT_FILES = ("model.safetensors", "model.safetensors.index.json")
 LORA_TARGETS = r".*language_model.*\.(q_proj|k_proj|v_proj|o_proj|gate_proj|up_proj|down_proj)"
 
 
@@ -34,16 +37,17 @@ class TrainOutcome:
     seconds: float
     losses: list[tuple[int, float]] = field(default_factory=list)  # (step, training loss)
     resumed_from: str | None = None
+    unchanged: bool = False  # the run had finished before: nothing trained, nothing written
 
 
 def train_sft(config: TrainConfig) -> TrainOutcome:
     """Fine-tune ``config.model`` on ``config.data_dir`` into ``config.out_dir``."""
     require_model_extra((*MODEL_PACKAGES, "peft") if config.lora else MODEL_PACKAGES)
     import torch
-    from transformers import AutoModelForImageTextToText, Trainer, TrainerCallback
+    from transformers import Trainer, TrainerCallback, TrainerState
     from transformers.trainer_utils import get_last_checkpoint
 
-    from vlln.agents.local.encoding import ChatEncoder, model_loading
+    from vlln.agents.local.encoding import ChatEncoder
     from vlln.train.data import SftCollator, read_export
     from vlln.train.optim import parameter_groups
 
@@ -52,10 +56,7 @@ def train_sft(config: TrainConfig) -> TrainOutcome:
     resume = _resume_point(config, get_last_checkpoint)
     encoder = ChatEncoder.load(config.model, max_pixels=config.max_pixels)
     on_gpu = torch.cuda.is_available()
-    with model_loading(config.model):
-        model = AutoModelForImageTextToText.from_pretrained(config.model, dtype=torch.float32)
-    if config.lora:
-        model = _with_lora(model, config.lora_rank)
+    model, weights_from = _load_model(config, resume)
     arguments = _training_arguments(config, on_gpu)
 
     class SftTrainer(Trainer):
@@ -68,6 +69,13 @@ def train_sft(config: TrainConfig) -> TrainOutcome:
                 )
                 self.optimizer = optimizer_class(groups, **options)
             return self.optimizer
+
+        def _load_from_checkpoint(self, resume_from_checkpoint: str, model: Any = None) -> None:
+            # The Trainer's own loader reads the checkpoint's keys as saved, in the original
+            # layout (``visual.*``), not the model's (``model.visual.*``), and so loads nothing
+            # (huggingface/transformers#43701); the weights came through from_pretrained above.
+            if resume_from_checkpoint != weights_from or self.is_fsdp_enabled:
+                super()._load_from_checkpoint(resume_from_checkpoint, model)
 
     class SaveEncoder(TrainerCallback):
         """Each checkpoint also gets the tokenizer, image processor and template."""
@@ -83,8 +91,15 @@ def train_sft(config: TrainConfig) -> TrainOutcome:
         data_collator=SftCollator(encoder),
         callbacks=[SaveEncoder()],
     )
+    planned = trainer.set_initial_training_values(arguments, trainer.get_train_dataloader())[-1]
     started = time.perf_counter()
-    trainer.train(resume_from_checkpoint=resume)
+    finished = False
+    if resume is not None and _steps_done(resume) >= planned:
+        # Finished already; the Trainer would take one step more before it checks the end.
+        finished = True
+        trainer.state = TrainerState.load_from_json(str(Path(resume) / _STATE_FILE))
+    else:
+        trainer.train(resume_from_checkpoint=resume)
     seconds = time.perf_counter() - started
     losses = [
         (int(entry["step"]), float(entry["loss"]))
@@ -94,6 +109,9 @@ def train_sft(config: TrainConfig) -> TrainOutcome:
     outcome = TrainOutcome(
         config.out_dir, len(samples), trainer.state.global_step, seconds, losses, resume
     )
+    if finished and _final_is_saved(config, outcome.steps):
+        outcome.unchanged = True
+        return outcome
     _save_final(trainer, encoder, config)
     if trainer.is_world_process_zero():
         _write_summary(config, outcome)
@@ -102,7 +120,7 @@ def train_sft(config: TrainConfig) -> TrainOutcome:
 
 def _resume_point(config: TrainConfig, last_checkpoint: Any) -> str | None:
     if config.resume is not None:
-        if not (config.resume / "trainer_state.json").is_file():
+        if not (config.resume / _STATE_FILE).is_file():
             raise ConfigError(
                 f"{config.resume} is not a training checkpoint (no trainer_state.json); "
                 f"pass one of the checkpoint-N folders in {config.out_dir}"
@@ -112,13 +130,48 @@ def _resume_point(config: TrainConfig, last_checkpoint: Any) -> str | None:
     return None if found is None else str(found)
 
 
-def _with_lora(model: Any, rank: int) -> Any:
-    from peft import LoraConfig, get_peft_model
+def _load_model(config: TrainConfig, resume: str | None) -> tuple[Any, str]:
+    """The model to train and the folder its trained weights came from: the checkpoint when
+    resuming (through from_pretrained, which maps the saved key layout onto the model's),
+    else ``config.model``. With LoRA the base model is ``config.model`` and the adapters come
+    from the checkpoint."""
+    import torch
+    from transformers import AutoModelForImageTextToText
 
+    from vlln.agents.local.encoding import model_loading
+
+    names = ("adapter_config.json",) if config.lora else _WEIGHT_FILES
+    saved = resume is not None and any((Path(resume) / name).is_file() for name in names)
+    source = config.model if config.lora or not saved else str(resume)
+    with model_loading(source):
+        model = AutoModelForImageTextToText.from_pretrained(source, dtype=torch.float32)
+    if not config.lora:
+        return model, source
+    from peft import LoraConfig, PeftModel, get_peft_model
+
+    if saved:
+        return PeftModel.from_pretrained(model, str(resume), is_trainable=True), str(resume)
+    rank = config.lora_rank
     settings = LoraConfig(
         r=rank, lora_alpha=2 * rank, lora_dropout=0.05, target_modules=LORA_TARGETS
     )
-    return get_peft_model(model, settings)
+    return get_peft_model(model, settings), source
+
+
+def _steps_done(checkpoint: str) -> int:
+    document = json.loads((Path(checkpoint) / _STATE_FILE).read_text())
+    return int(document.get("global_step", 0))
+
+
+def _final_is_saved(config: TrainConfig, steps: int) -> bool:
+    """Whether ``out_dir`` already holds the final model of a run of ``steps`` steps."""
+    summary = config.out_dir / SUMMARY_FILE
+    if not summary.is_file() or not any((config.out_dir / n).is_file() for n in _WEIGHT_FILES):
+        return False
+    try:
+        return int(json.loads(summary.read_text()).get("steps", -1)) == steps
+    except (ValueError, TypeError, AttributeError):
+        return False
 
 
 def _training_arguments(config: TrainConfig, on_gpu: bool) -> Any:

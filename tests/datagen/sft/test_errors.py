@@ -96,7 +96,6 @@ def test_the_output_folder_must_be_new_empty_or_an_export(
         {"max_answers": -1},
         {"history_frames": 2.5},
         {"max_turn_run": 5},
-        {"jpeg_quality": 100},
     ],
 )
 def test_invalid_settings_are_config_errors(settings: dict[str, Any]) -> None:

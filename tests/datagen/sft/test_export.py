@@ -3,6 +3,7 @@ that are exactly what vlln.prompt builds for the same states, the images, and th
 
 from __future__ import annotations
 
+import base64
 import json
 import math
 import shutil
@@ -13,9 +14,12 @@ from typing import Any
 import numpy as np
 import pytest
 from PIL import Image
-from tests.datagen.sft.conftest import HandDataset
+from tests.datagen.sft.conftest import CATEGORY, HandDataset
 from tests.datagen.sft.samples import episode_samples, read_samples, sample_key
+from tests.oracle.llm.chat_server import chat_server, completion
 
+from vlln.agents.model.options import openai_vlm_agent
+from vlln.datagen.layout import DOWN_TILT_DEG
 from vlln.datagen.reader import HouseDataset
 from vlln.datagen.sft import SftConfig, export_sft
 from vlln.prompt import (
@@ -34,6 +38,9 @@ from vlln.prompt import (
 )
 from vlln.sim.agent import Action, AgentState
 from vlln.sim.camera import CameraSpec
+from vlln.sim.simulator import Simulator
+from vlln.tasks.env import EpisodeInfo
+from vlln.tasks.spec import PixelGoal, TaskType
 
 SEED = 0
 DOWN = "125cm_30deg"
@@ -271,3 +278,49 @@ def test_a_folder_in_the_reference_layout_without_info_json_exports_the_same(
     assert (tmp_path / "out" / "sft.jsonl").read_bytes() == (
         default_export / "sft.jsonl"
     ).read_bytes()
+
+
+def _sent_images(request: dict[str, Any]) -> list[bytes]:
+    """The JPEGs of one chat request, in the order its messages show them."""
+    prefix = "data:image/jpeg;base64,"
+    return [
+        base64.b64decode(part["image_url"]["url"].removeprefix(prefix))
+        for message in request["json"]["messages"]
+        if isinstance(message["content"], list)
+        for part in message["content"]
+        if part.get("type") == "image_url"
+    ]
+
+
+def test_the_model_agent_is_shown_the_exported_images_byte_for_byte(
+    hand_dataset: HandDataset, default_export: Path, sim: Simulator
+) -> None:
+    """The openai-vlm agent, standing where a trajectory began, sends its server the very
+    bytes training shows for that state: the exported level frame, and the look-down frame as
+    stored (the export copies it as it is)."""
+    episode = 0
+    prefix = f"images/{hand_dataset.house}/episode_{episode:06d}"
+    assert any(f"{prefix}/level_000000.jpg" in s["images"] for s in read_samples(default_export))
+    start = hand_dataset.states[episode][0]
+    tilt = math.radians(DOWN_TILT_DEG)  # pitched down, as the data set renders it
+    views = [
+        {"rgb": sim.render(AgentState(start.position, start.yaw, pitch)).rgb, "tilt": pitch}
+        for pitch in (0.0, tilt)
+    ]
+    info = EpisodeInfo(
+        "golden", TaskType.IIGN, "Search for the bathtub.", CATEGORY,
+        sim.config.camera, sim.config.motion, dialog_budget=0, max_steps=50,
+    )  # fmt: skip
+    script = [completion("<move>↓"), completion("<move>320 240")]
+    with chat_server(script) as server:
+        options = {"base_url": server.base_url, "model": "images-test", "max_retries": "0"}
+        agent = openai_vlm_agent(0, options)
+        agent.reset(info)
+        assert agent.act(views[0]) == Action.LOOK_DOWN
+        assert isinstance(agent.act(views[1]), PixelGoal)
+        requests = list(server.requests)
+    level = (default_export / prefix / "level_000000.jpg").read_bytes()
+    house = HouseDataset(hand_dataset.root / "trajectories" / hand_dataset.house)
+    down = house.image_file("down", episode, 0).read_bytes()
+    assert _sent_images(requests[0]) == [level]
+    assert _sent_images(requests[1]) == [level, down]

@@ -24,7 +24,6 @@ from __future__ import annotations
 from collections import deque
 
 from vlln.agents.model.backend import ModelReply, VisionLanguageModel
-from vlln.agents.model.images import down_image, level_image
 from vlln.prompt import (
     Conversation,
     DialogExchange,
@@ -41,6 +40,7 @@ from vlln.prompt import (
     with_look_down,
     with_reply,
 )
+from vlln.prompt.images import model_image
 from vlln.sim.agent import Action
 from vlln.tasks.env import EpisodeInfo, Observation
 from vlln.tasks.record import MAX_STORED_OUTPUT_CHARS, ModelCall
@@ -97,7 +97,7 @@ class ModelAgent:
             self._question = None
             return self._decide(self._conversation(), observation)
         if self._looking_down is not None:
-            self._down = down_image(observation["rgb"])
+            self._down = model_image(observation["rgb"], "down")
             episode = self._require_episode()
             connective = connective_for(self.seed, episode.episode_id, self._frame, look_down=True)
             shown = with_look_down(self._looking_down, self._frame, connective=connective)
@@ -116,7 +116,7 @@ class ModelAgent:
         """Keep a new level frame: the first one, and each after a move."""
         first = not self._frames
         if _level(observation) and (first or self._last in _MOVES):
-            self._frames.append(level_image(observation["rgb"]))
+            self._frames.append(model_image(observation["rgb"], "level"))
             self._down = None
 
     @property

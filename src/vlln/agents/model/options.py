@@ -3,7 +3,9 @@
 Options arrive as strings (they are stored in ``run.json``) and are checked here, each error
 naming the option and how to fix it. The API key itself is never an option: only the name of
 the environment variable that holds it. One client per distinct set of options serves every
-episode of a process, so its connection pool, cache and usage ledger are shared.
+episode of a process, so its connection pool, cache and usage ledger are shared. The server
+must answer before any episode is played: an unreachable one would otherwise turn every step
+into a failed call and the run into a complete one with SR 0.
 """
 
 from __future__ import annotations
@@ -12,6 +14,7 @@ from collections.abc import Mapping
 from functools import lru_cache
 from pathlib import Path
 
+import httpx
 import numpy as np
 
 from vlln.agents.model.agent import ModelAgent
@@ -19,6 +22,7 @@ from vlln.agents.model.openai_vlm import DEFAULT_MAX_TOKENS, OpenAIVisionModel
 from vlln.errors import ConfigError
 from vlln.oracle.llm.openai_client import OpenAIChatClient, OpenAISettings
 
+PROBE_TIMEOUT_S = 10.0  # the most the up-front check waits for the server's first answer
 OPENAI_VLM_OPTIONS: dict[str, str] = {
     "base_url": "the server's OpenAI-compatible URL, e.g. http://localhost:8000/v1",
     "model": "the served model's name",
@@ -59,12 +63,27 @@ def _shared_model(options: tuple[tuple[str, str], ...]) -> OpenAIVisionModel:
         cache_dir=Path(values["cache_dir"]) if values.get("cache_dir") else None,
         retry_bad_replies=True,
     )
+    check_server_answers(settings)
     client = OpenAIChatClient(settings, rng=np.random.default_rng(0))
     return OpenAIVisionModel(
         client,
         max_tokens=_int(values, "max_tokens", DEFAULT_MAX_TOKENS),
         temperature=_float(values, "temperature", 0.0),
     )
+
+
+def check_server_answers(settings: OpenAISettings) -> None:
+    """Raise :class:`ConfigError` unless something answers HTTP at ``settings.base_url``
+    (any status will do: a server without ``GET /models`` still answers)."""
+    url = settings.base_url.rstrip("/") + "/models"
+    try:
+        httpx.get(url, timeout=min(settings.timeout_s, PROBE_TIMEOUT_S))
+    except httpx.HTTPError as error:
+        raise ConfigError(
+            f"the model server at {settings.base_url} does not answer "
+            f"({type(error).__name__}: {str(error)[:120] or 'no reply'}); start it, or fix "
+            "--base-url"
+        ) from None
 
 
 def _float(values: Mapping[str, str], name: str, default: float) -> float:

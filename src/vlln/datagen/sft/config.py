@@ -24,7 +24,6 @@ class SftConfig:
     max_answers: int = 6
     history_frames: int = DEFAULT_HISTORY_COUNT
     max_turn_run: int = MAX_TURN_RUN
-    jpeg_quality: int = 90
 
     def __post_init__(self) -> None:
         _check_whole("seed", self.seed, 0)
@@ -33,13 +32,10 @@ class SftConfig:
         _check_whole("max_answers", self.max_answers, 0)
         _check_whole("history_frames", self.history_frames, 1)
         _check_whole("max_turn_run", self.max_turn_run, 1)
-        _check_whole("jpeg_quality", self.jpeg_quality, 1)
         if self.max_turn_run > MAX_TURN_RUN:
             raise ConfigError(
                 f"max_turn_run must be at most {MAX_TURN_RUN}, got {self.max_turn_run}"
             )
-        if self.jpeg_quality > 95:
-            raise ConfigError(f"jpeg_quality must be in [1, 95], got {self.jpeg_quality}")
 
     def settings(self) -> dict[str, Any]:
         return asdict(self)

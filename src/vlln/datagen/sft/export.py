@@ -92,7 +92,7 @@ def export_sft(
     houses = open_houses(dataset_root)
     out = Path(out_dir)
     _prepare_out(out)
-    store = ImageStore(out, config.jpeg_quality)
+    store = ImageStore(out)
     summary = SftSummary(out)
     bar = tqdm(
         total=sum(len(house.episodes) for house in houses),

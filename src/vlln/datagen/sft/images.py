@@ -1,20 +1,18 @@
 """The exported images: each written once, at the size the prompt shows it.
 
-Level (history and current) views are resized to ``LEVEL_IMAGE_SIZE`` (384x384) and
-re-encoded; look-down views are ``DOWN_IMAGE_SIZE`` (640x480), their bytes copied when the
-dataset's camera already has that size. Paths are relative to the export folder, as
+Each is :func:`vlln.prompt.images.shown_image` of the stored frame, the function the model
+agents use at evaluation: level (history and current) views resized to 384x384 and
+re-encoded, look-down views copied as stored (640x480). Paths are relative to the export folder, as
 LLaVA/Qwen-VL fine-tuning scripts expect (``image_folder`` + path).
 """
 
 from __future__ import annotations
 
-import io
 from pathlib import Path
 
-from PIL import Image
-
 from vlln.datagen.reader import HouseDataset
-from vlln.prompt import DOWN_IMAGE_SIZE, LEVEL_IMAGE_SIZE, ImageRef
+from vlln.prompt import ImageRef
+from vlln.prompt.images import shown_image
 
 IMAGES_DIR = "images"
 
@@ -26,9 +24,8 @@ def image_name(house: str, episode_index: int, ref: ImageRef) -> str:
 class ImageStore:
     """Writes the images samples refer to into ``out``, skipping those already written."""
 
-    def __init__(self, out: Path, quality: int) -> None:
+    def __init__(self, out: Path) -> None:
         self.out = out
-        self.quality = quality
         self.written: set[str] = set()
 
     def add(self, house: HouseDataset, episode_index: int, ref: ImageRef) -> str:
@@ -36,18 +33,8 @@ class ImageStore:
         name = image_name(house.root.name, episode_index, ref)
         if name not in self.written:
             source = house.image_file(ref.camera, episode_index, ref.frame)
-            size = LEVEL_IMAGE_SIZE if ref.camera == "level" else DOWN_IMAGE_SIZE
             path = self.out / name
             path.parent.mkdir(parents=True, exist_ok=True)
-            path.write_bytes(self._sized(source, size))
+            path.write_bytes(shown_image(source.read_bytes(), ref.camera))
             self.written.add(name)
         return name
-
-    def _sized(self, source: Path, size: tuple[int, int]) -> bytes:
-        with Image.open(source) as image:
-            if image.size == size and image.format == "JPEG":
-                return source.read_bytes()
-            resized = image.convert("RGB").resize(size, Image.Resampling.BICUBIC)
-        buffer = io.BytesIO()
-        resized.save(buffer, "JPEG", quality=self.quality)
-        return buffer.getvalue()
