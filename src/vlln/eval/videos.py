@@ -7,7 +7,6 @@ at the largest budget, so a video shows the dialog when there is one.
 
 from __future__ import annotations
 
-import json
 import re
 from collections.abc import Sequence
 from pathlib import Path
@@ -15,6 +14,7 @@ from pathlib import Path
 from vlln.errors import ConfigError, DataFormatError
 from vlln.eval.results import load_run_records
 from vlln.eval.video import VideoConfig, write_episode_video
+from vlln.files import parse_json
 from vlln.sim.simulator import Simulator
 from vlln.tasks.record import EpisodeRecord
 from vlln.tasks.scenes import procedural_house, procedural_seed
@@ -26,8 +26,8 @@ def read_video_source(path: Path) -> list[EpisodeRecord]:
     """The records of a run directory, a JSON Lines results file or a single JSON record."""
     if path.suffix == ".json" and path.is_file():
         try:
-            return [EpisodeRecord.from_json(json.loads(path.read_text(encoding="utf-8")))]
-        except json.JSONDecodeError as error:
+            return [EpisodeRecord.from_json(parse_json(path.read_bytes()))]
+        except DataFormatError as error:
             raise DataFormatError(f"{path} is not a JSON episode record: {error}") from None
     if not path.exists():
         raise ConfigError(f"{path} does not exist; give a run directory or a results file")
