@@ -9,11 +9,14 @@ from pathlib import Path
 
 import pytest
 
+from tests.eval.runs import evaluate, lines
+from tests.eval.test_cli import eval_args
 from tests.tasks.test_metrics import make_record
 from vlln.cli import main
 from vlln.eval.config import EvalConfig
 from vlln.eval.results import SKIPPED_FILE, RunDirectory, load_runs, scan_records
 from vlln.tasks.record import EpisodeRecord
+from vlln.tasks.scenes import SceneCache
 
 
 def line(record: EpisodeRecord) -> str:
@@ -114,3 +117,27 @@ def test_a_resume_sets_the_hostile_lines_aside_and_keeps_every_valid_one(tmp_pat
     assert scan_records(root / "episodes.jsonl").records == good
     aside = (root / SKIPPED_FILE).read_text().splitlines()
     assert aside == list(HOSTILE.values())
+
+
+def test_the_commands_resume_a_real_run_past_hostile_lines(
+    tmp_path: Path, split_cache: Path, scenes: SceneCache, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """The reproduction: a 5,000-digit integer and a forged step count in two lines of a
+    finished run; score and report go on, the same eval command plays both episodes again."""
+    run = tmp_path / "run"
+    assert evaluate(run, split_cache, scenes).complete
+    original = lines(run)
+    hostile = [
+        original[2].replace('"steps":', '"steps":' + "9" * 5000 + ',"_":', 1),
+        json.dumps(json.loads(original[4]) | {"steps": 9999, "geodesic_trace": []}),
+    ]
+    changed = [*original[:2], hostile[0], original[3], hostile[1], *original[5:]]
+    (run / "episodes.jsonl").write_text("\n".join(changed) + "\n")
+    assert main(["score", str(run)]) == 0
+    err = capsys.readouterr().err
+    assert "INCOMPLETE, 6 of 8" in err and "invalid 2" in err and "episodes.jsonl:3" in err
+    assert main(["report", str(run), "--out", str(tmp_path / "report")]) == 0
+    assert main(eval_args(run, split_cache)) == 0
+    assert "complete, 8 of 8" in capsys.readouterr().err
+    assert sorted(lines(run)) == sorted(original)
+    assert (run / SKIPPED_FILE).read_text().splitlines() == hostile
