@@ -137,11 +137,16 @@ def _parse_int(text: str) -> int:
 
 
 def _check_depth(value: Any) -> None:
-    """Walk containers without recursion; refuse nesting deeper than MAX_JSON_DEPTH."""
-    stack = [(value, 1)] if isinstance(value, dict | list) else []
-    while stack:
-        item, depth = stack.pop()
-        children = item.values() if isinstance(item, dict) else item
-        if depth > MAX_JSON_DEPTH:
-            raise DataFormatError(f"JSON nested deeper than {MAX_JSON_DEPTH} levels")
-        stack.extend((child, depth + 1) for child in children if isinstance(child, dict | list))
+    """Refuse nesting deeper than MAX_JSON_DEPTH, level by level, without recursion (what
+    json.loads returns holds only exact lists and dicts as containers)."""
+    level = [value] if type(value) is list or type(value) is dict else []
+    for _ in range(MAX_JSON_DEPTH):
+        if not level:
+            return
+        deeper: list[Any] = []
+        for item in level:
+            children = item.values() if type(item) is dict else item
+            deeper += [child for child in children if type(child) is list or type(child) is dict]
+        level = deeper
+    if level:
+        raise DataFormatError(f"JSON nested deeper than {MAX_JSON_DEPTH} levels")

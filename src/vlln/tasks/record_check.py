@@ -128,20 +128,16 @@ def _check_scalar(hint: Any, value: Any, name: str, rules: _Rules) -> None:
     elif hint is float:
         if isinstance(value, bool) or not isinstance(value, int | float):
             raise DataFormatError(f"field '{name}' must be a number, got {value!r:.60}")
-        if not _finite(value):
+        try:
+            finite = math.isfinite(value)
+        except OverflowError:  # an integer too large for a float (300+ digits)
+            finite = False
+        if not finite:
             raise DataFormatError(f"field '{name}' must be finite, got {_size(value)}")
     else:
         raise DataFormatError(f"field '{name}' has a type this reader cannot check: {hint!r}")
     if not rules.signed and value < 0:
         raise DataFormatError(f"field '{name}' must be >= 0, got {value!r}")
-
-
-def _finite(value: float) -> bool:
-    """Finite as a float: an integer too large for one (300+ digits) is not."""
-    try:
-        return math.isfinite(value)
-    except OverflowError:
-        return False
 
 
 def _size(value: float) -> str:
