@@ -1,10 +1,14 @@
-"""The project's one file writer: atomic writes, and the leftovers of a killed one removed."""
+"""The project's one file writer: atomic writes, the leftovers of a killed one removed, and
+output folders checked before any work."""
 
 from __future__ import annotations
 
 from pathlib import Path
 
-from vlln.files import remove_leftover_temp_files, write_text_atomic
+import pytest
+
+from vlln.errors import ConfigError
+from vlln.files import check_output_folder, remove_leftover_temp_files, write_text_atomic
 
 
 def test_an_atomic_write_leaves_only_the_file(tmp_path: Path) -> None:
@@ -26,3 +30,12 @@ def test_leftovers_of_a_killed_write_are_removed_and_nothing_else(tmp_path: Path
     remove_leftover_temp_files(tmp_path / "house_00001")
     assert sorted(p.name for p in meta.iterdir()) == [".hidden", "episodes.jsonl", "notes.tmp"]
     remove_leftover_temp_files(tmp_path / "missing")  # a house not started yet
+
+
+def test_a_writable_folder_passes_and_the_probe_leaves_nothing(tmp_path: Path) -> None:
+    check_output_folder(tmp_path / "new" / "deeper")
+    check_output_folder(tmp_path)
+    assert list(tmp_path.iterdir()) == []
+    (tmp_path / "file").write_text("x")
+    with pytest.raises(ConfigError, match="is a file, not a folder"):
+        check_output_folder(tmp_path / "file")

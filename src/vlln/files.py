@@ -1,15 +1,17 @@
-"""Writing files so that a kill never leaves a half-written one behind."""
+"""Files: written so that a kill never leaves a half-written one behind, output folders
+checked before any work, and JSON read from untrusted bytes without a traceback."""
 
 from __future__ import annotations
 
+import json
 import os
 import shutil
 import tempfile
 from collections.abc import Callable
 from pathlib import Path
-from typing import TypeVar
+from typing import Any, TypeVar
 
-from vlln.errors import ConfigError
+from vlln.errors import ConfigError, DataFormatError
 
 T = TypeVar("T")
 
@@ -55,10 +57,7 @@ def replace_folder(out: Path, write: Callable[[Path], T], owned: Callable[[Path]
     folder whose every entry ``owned`` accepts (files the command itself writes) is
     replaced; a file, or a folder holding anything else, is refused before any work.
     """
-    if out.exists() and not out.is_dir():
-        raise ConfigError(
-            f"--out {out} is a file, not a folder; give a new or earlier output folder"
-        )
+    check_output_folder(out)
     if out.is_dir():
         foreign = [entry.name for entry in out.iterdir() if not owned(entry)]
         if foreign:
@@ -82,3 +81,72 @@ def replace_folder(out: Path, write: Callable[[Path], T], owned: Callable[[Path]
         shutil.rmtree(fresh, ignore_errors=True)
         raise
     return result
+
+
+def check_output_folder(out: Path, option: str = "--out") -> None:
+    """Refuse, before any work, an output folder that cannot be written: a file, a path under a
+    file, or a place where no file may be made (permissions, a read-only file system). Probes
+    by making and removing a temporary folder in ``out`` or its nearest existing parent, so it
+    leaves nothing behind."""
+    existing = out
+    while not os.path.exists(existing) and existing.parent != existing:
+        existing = existing.parent
+    if not os.path.isdir(existing):
+        where = "is a file" if existing == out else f"is under the file {existing}"
+        raise ConfigError(f"{option} {out} {where}, not a folder; give a folder path")
+    try:
+        tempfile.TemporaryDirectory(dir=existing, prefix=".vlln-probe-").cleanup()
+    except OSError as error:
+        raise ConfigError(
+            f"{option} {out}: cannot write in {existing} ({error.strerror}); "
+            "give a folder you can write to"
+        ) from None
+
+
+# JSON nested deeper than this is refused: no file vlln reads nests more than a few levels,
+# and a deeper value would only overflow the stack of whatever walks it next.
+MAX_JSON_DEPTH = 64
+# An integer with more digits does not fit in a float (and Python refuses to read 4,300+).
+MAX_INTEGER_DIGITS = 308
+
+
+def parse_json(data: bytes | str) -> Any:
+    """The JSON value of untrusted bytes or text. Anything that is not plain UTF-8 JSON (a
+    binary file, a torn write, an integer of hundreds of digits, nesting deeper than
+    :data:`MAX_JSON_DEPTH`) is a :class:`DataFormatError` with a short reason, never a
+    ``ValueError``, ``OverflowError`` or ``RecursionError``; callers add the file's name."""
+    try:
+        text = data.decode("utf-8") if isinstance(data, bytes) else data
+        value = json.loads(text, parse_int=_parse_int)
+    except UnicodeDecodeError as error:
+        raise DataFormatError(f"not UTF-8 text (byte {error.start})") from None
+    except RecursionError:
+        raise DataFormatError(f"JSON nested deeper than {MAX_JSON_DEPTH} levels") from None
+    except json.JSONDecodeError as error:
+        raise DataFormatError(f"not JSON ({error})") from None
+    _check_depth(value)
+    return value
+
+
+def _parse_int(text: str) -> int:
+    if len(text.lstrip("-")) > MAX_INTEGER_DIGITS:
+        raise DataFormatError(
+            f"an integer of {len(text.lstrip('-'))} digits (at most {MAX_INTEGER_DIGITS})"
+        )
+    return int(text)
+
+
+def _check_depth(value: Any) -> None:
+    """Refuse nesting deeper than MAX_JSON_DEPTH, level by level, without recursion (what
+    json.loads returns holds only exact lists and dicts as containers)."""
+    level = [value] if type(value) is list or type(value) is dict else []
+    for _ in range(MAX_JSON_DEPTH):
+        if not level:
+            return
+        deeper: list[Any] = []
+        for item in level:
+            children = item.values() if type(item) is dict else item
+            deeper += [child for child in children if type(child) is list or type(child) is dict]
+        level = deeper
+    if level:
+        raise DataFormatError(f"JSON nested deeper than {MAX_JSON_DEPTH} levels")

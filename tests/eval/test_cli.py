@@ -75,6 +75,9 @@ def test_eval_command_writes_the_run_and_prints_the_summary(
         (["--task", "pointnav"], "iign, ign, objectnav"),
         (["--shard", "2/2"], "shard 2/2 does not exist"),
         (["--budgets", "3-1"], "backwards"),
+        (["--budgets", "0-7"], "dialog budgets run from 0 to 5, the paper's range"),
+        (["--budgets", "0,9"], "dialog budgets run from 0 to 5, the paper's range"),
+        (["--budgets", "0-99999999999999"], "got 0-99999999999999; use e.g. --budgets 0-5"),
         (
             ["--agent", "frontier", "--detector", "yolo"],
             "detector 'yolo'; choose one of: truth, noisy",

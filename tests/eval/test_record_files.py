@@ -111,7 +111,7 @@ def test_fuzzed_files_never_crash_lose_or_double_a_valid_record(tmp_path: Path) 
     rng = random.Random(15)
     path = tmp_path / "episodes.jsonl"
     for trial in range(40):
-        valid = [make_record(episode_id=f"t{trial}e{i}", steps=i) for i in range(6)]
+        valid = [make_record(episode_id=f"t{trial}e{i}", path_length=5.0 + i) for i in range(6)]
         chunks: list[bytes] = []
         for record in valid:
             chunks.append(line(record))

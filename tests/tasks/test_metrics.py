@@ -21,7 +21,8 @@ INF = math.inf
 
 
 def make_record(**overrides: Any) -> EpisodeRecord:
-    """A successful IIGN episode (start 4 m away, travelled 5 m, stopped 0.1 m from the goal)."""
+    """A successful IIGN episode (start 4 m away, travelled 5 m, stopped 0.1 m from the goal);
+    one counted step per distance of the trace unless ``steps`` is given."""
     values: dict[str, Any] = {
         "episode_id": "0",
         "scene_id": "house_0",
@@ -31,7 +32,6 @@ def make_record(**overrides: Any) -> EpisodeRecord:
         "object_category": "chair",
         "target_ids": [7],
         "end_reason": EndReason.STOP.value,
-        "steps": 20,
         "geodesic_start": 4.0,
         "geodesic_trace": [3.0, 2.0, 1.0, 0.1],
         "path_length": 5.0,
@@ -40,6 +40,7 @@ def make_record(**overrides: Any) -> EpisodeRecord:
         "target_seen_step": 2,
     }
     values.update(overrides)
+    values.setdefault("steps", len(values["geodesic_trace"]))
     return EpisodeRecord(**values)
 
 
@@ -134,7 +135,10 @@ def test_msp_needs_two_rates(rates: list[float]) -> None:
 
 def test_record_round_trip_keeps_metrics() -> None:
     record = make_record(
-        geodesic_start=INF, geodesic_trace=[INF, 2.0, 0.2], dialog=[ask(1), ask(3, False)]
+        geodesic_start=INF,
+        geodesic_trace=[INF, 2.0, 0.2],
+        budget=1,
+        dialog=[ask(1), ask(3, False)],
     )
     restored = EpisodeRecord.from_json(record.to_json())
     assert success(restored) == success(record)

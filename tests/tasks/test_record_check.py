@@ -14,7 +14,9 @@ from vlln.tasks.record import EpisodeRecord
 
 
 def valid() -> dict[str, Any]:
-    return make_record(dialog=[ask(3)], positions=[[0.0, 1.0, 0.5]], actions=["forward"]).to_json()
+    return make_record(
+        budget=1, dialog=[ask(3)], positions=[[0.0, 1.0, 0.5]], actions=["forward"]
+    ).to_json()
 
 
 def test_valid_record_round_trips() -> None:
@@ -23,7 +25,8 @@ def test_valid_record_round_trips() -> None:
 
 
 def test_a_model_agents_failures_and_calls_round_trip() -> None:
-    data = valid() | {"failures": {"parse": 2, "server": 1}, "detector": "noisy"}
+    data = valid() | {"failures": {"parse": 2, "server": 1}, "failed_actions": 3}
+    data["detector"] = "noisy"
     data["model_calls"] = [
         {
             "step": 0,
@@ -85,7 +88,7 @@ def test_missing_and_unknown_fields_are_named() -> None:
 
 def test_unreachable_distance_reads_as_null_and_optional_fields_default() -> None:
     data = valid()
-    data["geodesic_trace"] = [2.0, None]
+    data["geodesic_trace"], data["steps"] = [2.0, None], 2
     del data["positions"], data["dialog"]
     record = EpisodeRecord.from_json(data)
     assert record.geodesic_trace == [2.0, math.inf]

@@ -39,6 +39,9 @@ def _bench_eval(args: argparse.Namespace) -> int:
 
 
 def _bench_oracle(args: argparse.Namespace) -> int:
+    from vlln.extras import SERVICE_BENCH_PACKAGES, require_extra
+
+    require_extra("serve", "vlln bench oracle (its service figures)", SERVICE_BENCH_PACKAGES)
     from vlln.bench.oracle import run_oracle_benchmark
 
     run_oracle_benchmark(

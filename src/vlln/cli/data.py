@@ -14,6 +14,7 @@ def _data_build(args: argparse.Namespace) -> int:
     from vlln.datagen.build import BuildConfig, build_dataset, summarize
     from vlln.datagen.cost import build_cost
     from vlln.eval.sharding import Shard
+    from vlln.files import check_output_folder
 
     config = BuildConfig(
         houses=args.houses,
@@ -22,8 +23,7 @@ def _data_build(args: argparse.Namespace) -> int:
         per_house=args.per_house,
         floors=args.floors,
     )
-    if Path(args.out).exists() and not Path(args.out).is_dir():
-        raise ConfigError(f"--out {args.out} is a file, not a folder; give a dataset folder")
+    check_output_folder(Path(args.out))
     shard = Shard.parse(args.shard) if args.shard else None
     houses = -(-config.houses // shard.count) if shard else config.houses
     cost = build_cost(houses, config.per_house)

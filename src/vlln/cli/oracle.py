@@ -6,9 +6,11 @@ import argparse
 from pathlib import Path
 
 from vlln.cli.options import Commands
+from vlln.extras import SERVE_PACKAGES, require_extra
 
 
 def _oracle_serve(args: argparse.Namespace) -> int:
+    require_extra("serve", "vlln oracle serve", SERVE_PACKAGES)
     from vlln.oracle.service.server import serve, token_from_environment
 
     token = token_from_environment(args.token_env)

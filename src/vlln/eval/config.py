@@ -16,7 +16,7 @@ from typing import Any
 from vlln.agents.registry import resolve_detector
 from vlln.errors import ConfigError, DataFormatError
 from vlln.eval.sharding import Shard
-from vlln.tasks.spec import TaskType
+from vlln.tasks.spec import MAX_DIALOG_BUDGET, TaskType
 from vlln.tasks.splits import SPLIT_SIZES, SPLITS
 from vlln.tasks.test_protocol import TEST_PROTOCOL_EPISODES, TEST_PROTOCOL_SPLIT, source_split
 from vlln.world.generator.presets import DEFAULT_PRESET, SMALL, preset
@@ -93,6 +93,8 @@ class EvalConfig:
             raise ConfigError("give at least one dialog budget")
         if any(budget < 0 for budget in self.budgets):
             raise ConfigError(f"dialog budgets must be >= 0, got {list(self.budgets)}")
+        if any(budget > MAX_DIALOG_BUDGET for budget in self.budgets):
+            raise ConfigError(_budget_range_error(", ".join(map(str, self.budgets))))
         if len(set(self.budgets)) != len(self.budgets):
             raise ConfigError(f"dialog budgets repeat: {list(self.budgets)}")
         if not task.has_dialog and any(budget > 0 for budget in self.budgets):
@@ -139,6 +141,8 @@ def parse_budgets(text: str) -> tuple[int, ...]:
         low, high = int(match.group(1)), int(match.group(2))
         if high < low:
             raise ConfigError(f"budget range {text!r} runs backwards; write it low-high, e.g. 0-5")
+        if high > MAX_DIALOG_BUDGET:
+            raise ConfigError(_budget_range_error(text))
         return tuple(range(low, high + 1))
     try:
         return tuple(int(part) for part in text.split(","))
@@ -146,6 +150,14 @@ def parse_budgets(text: str) -> tuple[int, ...]:
         raise ConfigError(
             f"cannot read dialog budgets {text!r}; write a range (0-5) or a list (0,2,5)"
         ) from None
+
+
+def _budget_range_error(given: str) -> str:
+    """Why a budget above :data:`MAX_DIALOG_BUDGET` is refused, in one line."""
+    return (
+        f"dialog budgets run from 0 to {MAX_DIALOG_BUDGET}, the paper's range (its budget 5 "
+        f"already lets an agent ask all it wants), got {given}; use e.g. --budgets 0-5"
+    )
 
 
 def describe_differences(stored: EvalConfig, wanted: EvalConfig) -> list[str]:

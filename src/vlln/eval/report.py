@@ -31,7 +31,7 @@ from vlln.eval.health import RunHealth, run_health
 from vlln.eval.pairings import people_section
 from vlln.eval.results import RunDirectory, load_runs
 from vlln.eval.summary import GroupSummary, budget_table, failed_actions_line, summarize_run
-from vlln.files import replace_folder, write_text_atomic
+from vlln.files import check_output_folder, replace_folder, write_text_atomic
 from vlln.tasks.aggregate import BudgetSweep, MetricSummary, format_table
 from vlln.tasks.metrics import ORACLE_SUCCESS_RADIUS, SUCCESS_RADIUS
 from vlln.tasks.record import EpisodeRecord
@@ -72,8 +72,7 @@ def write_report(
     is the folder of scanned scenes (default: each run's own ``--scenes``)."""
     if not run_dirs:
         raise ConfigError("give at least one run directory to report on")
-    if out.exists() and not out.is_dir():
-        raise ConfigError(f"--out {out} is a file, not a directory; give a directory")
+    check_output_folder(out)
     labels = _labels(run_dirs)
     runs = []
     for label, path in zip(labels, run_dirs, strict=True):

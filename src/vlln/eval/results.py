@@ -37,7 +37,7 @@ from vlln.errors import ConfigError, DataFormatError
 from vlln.eval.config import EvalConfig, describe_differences
 from vlln.eval.plan import PLAN_FACT, RunPlan, missing_shards
 from vlln.eval.refusals import Refusal, read_refusals
-from vlln.files import write_bytes_atomic, write_text_atomic
+from vlln.files import check_output_folder, parse_json, write_bytes_atomic, write_text_atomic
 from vlln.tasks.record import EpisodeRecord
 
 RUN_FILE = "run.json"
@@ -89,8 +89,9 @@ class RecordScan:
     newline_missing: bool = False
 
 
-def scan_records(path: Path) -> RecordScan:
-    """Read every line of a results file; never raises on its content (module doc)."""
+def scan_records(path: Path, max_steps: int | None = None) -> RecordScan:
+    """Read every line of a results file; never raises on its content (module doc).
+    ``max_steps``: the run's step cap, which no record may exceed (None: unknown)."""
     scan = RecordScan()
     try:
         data = path.read_bytes()
@@ -104,7 +105,7 @@ def scan_records(path: Path) -> RecordScan:
         if not text.strip():
             continue
         try:
-            record = _parse_line(text)
+            record = _parse_line(text, max_steps)
         except DataFormatError as error:
             if last:
                 reason = "partial last line (cut off by a stop); its episode is played again"
@@ -180,14 +181,19 @@ def repair_file(path: Path, scan: RecordScan) -> None:
             os.fsync(handle.fileno())
 
 
-def _parse_line(line: bytes) -> EpisodeRecord:
+def _parse_line(line: bytes, max_steps: int | None) -> EpisodeRecord:
     try:
-        data = json.loads(line.decode("utf-8"))
-    except (UnicodeDecodeError, json.JSONDecodeError, RecursionError) as error:
+        data = parse_json(line)
+    except DataFormatError as error:
         raise DataFormatError(f"not a JSON episode record ({str(error)[:120]})") from None
     if not isinstance(data, dict):
         raise DataFormatError(f"expected a JSON object, got {type(data).__name__}")
-    return EpisodeRecord.from_json(data)
+    record = EpisodeRecord.from_json(data)
+    if max_steps is not None and record.steps > max_steps:
+        raise DataFormatError(
+            f"field 'steps' is {record.steps}, over the run's step cap of {max_steps}"
+        )
+    return record
 
 
 class RecordWriter:
@@ -219,9 +225,9 @@ class RunDirectory:
         self.path = path
 
     def check_is_directory(self) -> None:
-        """A run directory given as an existing file is a one-line error, not a traceback."""
-        if self.path.exists() and not self.path.is_dir():
-            raise ConfigError(f"--out {self.path} is a file, not a directory; give a directory")
+        """A run directory that is a file, is under one or cannot be written is a one-line
+        error before any work, not a traceback after it."""
+        check_output_folder(self.path)
 
     @property
     def episodes_path(self) -> Path:
@@ -238,9 +244,11 @@ class RunDirectory:
         except FileNotFoundError:
             return None
         try:
-            data = json.loads(text)
-        except json.JSONDecodeError as error:
-            raise DataFormatError(f"{self.run_path} is not JSON ({error})") from None
+            data = parse_json(text)
+        except DataFormatError as error:
+            raise DataFormatError(
+                f"{self.run_path}: {error}; restore it, or evaluate into another --out"
+            ) from None
         if not isinstance(data, dict):
             raise DataFormatError(f"{self.run_path}: expected a JSON object of run arguments")
         return data
@@ -263,8 +271,11 @@ class RunDirectory:
 
     def stored_planned(self) -> int | None:
         """Episode lines the run plans (None when its run.json predates the count)."""
-        planned = (self.stored_run() or {}).get("planned_episodes")
-        return planned if isinstance(planned, int) and not isinstance(planned, bool) else None
+        return _stored_count(self.stored_run(), "planned_episodes")
+
+    def stored_max_steps(self) -> int | None:
+        """The run's step cap (None for a folder without run.json, e.g. a web study)."""
+        return _stored_count(self.stored_run(), "max_steps")
 
     def stored_plan(self) -> RunPlan | None:
         """The (episode, budget) pairs the run plans (None when its run.json predates it)."""
@@ -335,7 +346,7 @@ class RunDirectory:
                     f"another evaluation is writing to {self.path}; wait for it to end or "
                     "use another --out"
                 ) from None
-            scan = scan_records(self.episodes_path)
+            scan = scan_records(self.episodes_path, self.stored_max_steps())
             if plan is not None:
                 drop_unplanned(scan, plan, self.episodes_path)
             repair_file(self.episodes_path, scan)
@@ -389,8 +400,8 @@ def load_runs(paths: Iterable[Path], whole: bool = True) -> RunContents:
         file = path / EPISODES_FILE if path.is_dir() else path
         if not file.exists():
             raise ConfigError(f"{path} holds no {EPISODES_FILE}; pass a run directory of vlln eval")
-        scan = scan_records(file)
         run = RunDirectory(path) if path.is_dir() else None
+        scan = scan_records(file, None if run is None else run.stored_max_steps())
         config = None if run is None else run.stored_config()
         plan = None if run is None else run.stored_plan()
         if plan is not None:
@@ -424,6 +435,11 @@ def load_runs(paths: Iterable[Path], whole: bool = True) -> RunContents:
         else:
             contents.planned += absent_lines
     return contents
+
+
+def _stored_count(run: dict[str, Any] | None, name: str) -> int | None:
+    value = (run or {}).get(name)
+    return value if isinstance(value, int) and not isinstance(value, bool) else None
 
 
 def load_run_records(paths: Iterable[Path]) -> list[EpisodeRecord]:

@@ -9,7 +9,6 @@ given.
 
 from __future__ import annotations
 
-import json
 import re
 from collections.abc import Sequence
 from pathlib import Path
@@ -17,6 +16,7 @@ from pathlib import Path
 from vlln.errors import ConfigError, DataFormatError
 from vlln.eval.results import RunDirectory, load_run_records
 from vlln.eval.video import VideoConfig, write_episode_video
+from vlln.files import parse_json
 from vlln.sim.simulator import Simulator
 from vlln.tasks.episode import scene_name
 from vlln.tasks.record import EpisodeRecord
@@ -29,8 +29,8 @@ def read_video_source(path: Path) -> list[EpisodeRecord]:
     """The records of a run directory, a JSON Lines results file or a single JSON record."""
     if path.suffix == ".json" and path.is_file():
         try:
-            return [EpisodeRecord.from_json(json.loads(path.read_text(encoding="utf-8")))]
-        except json.JSONDecodeError as error:
+            return [EpisodeRecord.from_json(parse_json(path.read_bytes()))]
+        except DataFormatError as error:
             raise DataFormatError(f"{path} is not a JSON episode record: {error}") from None
     if not path.exists():
         raise ConfigError(f"{path} does not exist; give a run directory or a results file")

@@ -50,7 +50,7 @@ from pathlib import Path
 from typing import Any
 
 from vlln.errors import DataFormatError
-from vlln.files import write_bytes_atomic
+from vlln.files import parse_json, write_bytes_atomic
 from vlln.world.catalogue.aliases import canonical_category
 from vlln.world.model import Point3
 
@@ -173,9 +173,11 @@ def read_episodes(path: str | Path) -> list[Episode]:
             f"{path} is not a gzip file ({err}); episode files are gzip-compressed JSON"
         ) from None
     try:
-        data = json.loads(raw.decode("utf-8"))
-    except (UnicodeDecodeError, json.JSONDecodeError) as err:
-        raise DataFormatError(f"{path} does not hold UTF-8 JSON: {err}") from None
+        data = parse_json(raw)
+    except DataFormatError as err:
+        raise DataFormatError(
+            f"{path} does not hold UTF-8 JSON: {err}; give a released episode file"
+        ) from None
     return _parse_file(data, str(path))
 
 

@@ -140,7 +140,8 @@ class EpisodeRecord:
     @staticmethod
     def from_json(data: dict[str, Any]) -> EpisodeRecord:
         """Build a record from its JSON object, every field checked for type and range first
-        (:mod:`vlln.tasks.record_check`); a bad one raises :class:`DataFormatError` naming it."""
+        (:mod:`vlln.tasks.record_check`) and every counter against the steps it counts (see
+        :func:`_check_counts`); a bad one raises :class:`DataFormatError` naming it."""
         check_object(
             EpisodeRecord,
             data,
@@ -167,12 +168,63 @@ class EpisodeRecord:
                 f"field 'heights' has {len(heights)} values for "
                 f"{len(data.get('positions', []))} positions; give one height per position"
             )
+        _check_counts(data)
         values = dict(data)
         values["dialog"] = [DialogTurn(**turn) for turn in values.get("dialog", [])]
         values["model_calls"] = [ModelCall(**call) for call in values.get("model_calls", [])]
         values["geodesic_trace"] = [_none_to_inf(d) for d in values["geodesic_trace"]]
         values["geodesic_start"] = _none_to_inf(values["geodesic_start"])
         return EpisodeRecord(**values)
+
+
+def _check_counts(data: dict[str, Any]) -> None:
+    """Tie the counters to the trace, as the environment writes them: one distance per counted
+    step, a failed action is a counted step, the failures by kind add up to the failed
+    actions, and nothing happens after the last step. A line that breaks one was edited or
+    forged, and its numbers would reach the metrics unbounded."""
+    steps = data["steps"]
+    trace = len(data["geodesic_trace"])
+    if steps != trace:
+        raise DataFormatError(
+            f"field 'steps' is {steps} but 'geodesic_trace' holds {trace} distances; "
+            "a record has one distance per counted step"
+        )
+    failed = data.get("failed_actions", 0)
+    if failed > steps:
+        raise DataFormatError(
+            f"field 'failed_actions' is {failed}, more than the {steps} counted steps; "
+            "every failed action is a counted step"
+        )
+    by_kind = data.get("failures", {})
+    if by_kind and sum(by_kind.values()) != failed:
+        raise DataFormatError(
+            f"field 'failures' counts {sum(by_kind.values())} failed actions by kind but "
+            f"'failed_actions' is {failed}; the kinds add up to the total"
+        )
+    positions = len(data.get("positions", []))
+    if positions > steps + 1:
+        raise DataFormatError(
+            f"field 'positions' holds {positions} positions for {steps} counted steps; "
+            "a record has the start and one position per move"
+        )
+    seen = data["target_seen_step"]
+    if seen is not None and seen > steps:
+        raise DataFormatError(
+            f"field 'target_seen_step' is {seen}, after the last of {steps} counted steps"
+        )
+    for name in ("dialog", "model_calls"):
+        for index, item in enumerate(data.get(name, [])):
+            if item["step"] > steps:
+                raise DataFormatError(
+                    f"field '{name}[{index}].step' is {item['step']}, after the last of "
+                    f"{steps} counted steps"
+                )
+    answered = sum(1 for turn in data.get("dialog", []) if turn["answered"])
+    if answered > data["budget"]:
+        raise DataFormatError(
+            f"field 'dialog' holds {answered} answered questions, more than the budget of "
+            f"{data['budget']}"
+        )
 
 
 _IDENTITY_FIELDS = ("episode_id", "scene_id", "task", "agent", "object_category")

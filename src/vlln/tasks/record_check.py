@@ -4,8 +4,9 @@ A results line that is valid JSON can still say ``"steps": "lots"`` or ``"budget
 value must be reported where it is (the field, and by the caller the file and line), never
 reach the metrics as a ``TypeError``. The checks follow the dataclass's own type hints, so a
 field added to a record later is checked without touching this module. Ranges: every integer
-and every number is >= 0 and finite, except in ``signed`` fields (positions); ``None`` stands
-for an unreachable distance where the hint allows it.
+and every number is >= 0 and finite, except in ``signed`` fields (positions); an integer is at
+most :data:`MAX_INTEGER` (a count or an id, exact in a float, so no metric overflows);
+``None`` stands for an unreachable distance where the hint allows it.
 """
 
 from __future__ import annotations
@@ -18,6 +19,8 @@ from collections.abc import Collection
 from typing import Any
 
 from vlln.errors import DataFormatError
+
+MAX_INTEGER = 2**53 - 1
 
 
 def check_object(
@@ -118,12 +121,27 @@ def _check_scalar(hint: Any, value: Any, name: str, rules: _Rules) -> None:
     if hint is int:
         if isinstance(value, bool) or not isinstance(value, int):
             raise DataFormatError(f"field '{name}' must be an integer, got {value!r:.60}")
+        if abs(value) > MAX_INTEGER:
+            raise DataFormatError(
+                f"field '{name}' must be at most {MAX_INTEGER}, got {_size(value)}"
+            )
     elif hint is float:
         if isinstance(value, bool) or not isinstance(value, int | float):
             raise DataFormatError(f"field '{name}' must be a number, got {value!r:.60}")
-        if not math.isfinite(value):
-            raise DataFormatError(f"field '{name}' must be finite, got {value!r}")
+        try:
+            finite = math.isfinite(value)
+        except OverflowError:  # an integer too large for a float (300+ digits)
+            finite = False
+        if not finite:
+            raise DataFormatError(f"field '{name}' must be finite, got {_size(value)}")
     else:
         raise DataFormatError(f"field '{name}' has a type this reader cannot check: {hint!r}")
     if not rules.signed and value < 0:
         raise DataFormatError(f"field '{name}' must be >= 0, got {value!r}")
+
+
+def _size(value: float) -> str:
+    """A number short enough for a message, even one of thousands of digits."""
+    if isinstance(value, int) and abs(value) > MAX_INTEGER:
+        return f"about 10^{int(abs(value).bit_length() * math.log10(2))}"
+    return repr(value)

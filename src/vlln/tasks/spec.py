@@ -12,6 +12,11 @@ from vlln.sim.agent import Action
 TASK_DEFAULT = -1
 """A dialog budget that stands for the task's default (5 on IIGN, 0 elsewhere)."""
 
+MAX_DIALOG_BUDGET = 5
+"""The largest dialog budget. The paper's budgets run 0..5 (its MSP averages budgets 1..5) and
+its dialog-turn ablation lists 5 as "∞ (5)": agents ask under two questions even then, and an
+episode may talk at most ``max_talk_actions`` (20) times, so a larger budget only repeats 5."""
+
 REFUSAL_MESSAGE = "Sorry, you have reached the question limit. No further answers are available."
 
 
@@ -102,8 +107,11 @@ class TaskConfig:
         for name in ("max_steps", "max_look_actions", "max_talk_actions", "max_failed_actions"):
             if getattr(self, name) < 1:
                 raise ConfigError(f"{name} must be at least 1, got {getattr(self, name)}")
-        if self.dialog_budget < 0:
-            raise ConfigError(f"dialog_budget must be >= 0, got {self.dialog_budget}")
+        if not 0 <= self.dialog_budget <= MAX_DIALOG_BUDGET:
+            raise ConfigError(
+                f"dialog_budget must be 0 to {MAX_DIALOG_BUDGET} (the paper's budgets), "
+                f"got {self.dialog_budget}"
+            )
         if not self.success_radius > 0:
             raise ConfigError(f"success_radius must be positive, got {self.success_radius}")
 

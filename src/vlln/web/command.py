@@ -11,6 +11,9 @@ Commands = argparse._SubParsersAction
 
 
 def _serve_web(args: argparse.Namespace) -> int:
+    from vlln.extras import SERVE_PACKAGES, require_extra
+
+    require_extra("serve", "vlln serve web", SERVE_PACKAGES)
     from vlln.errors import ConfigError
     from vlln.eval.runner import default_cache_dir, order_by_scene, spread_over_scenes
     from vlln.oracle.llm.openai_client import OpenAISettings

@@ -13,7 +13,7 @@ from vlln.agents.registry import AGENTS, CONFIGURED_AGENTS
 from vlln.errors import ConfigError
 from vlln.oracle.llm.openai_client import OpenAISettings
 from vlln.tasks.episode import Episode
-from vlln.tasks.spec import TaskType
+from vlln.tasks.spec import MAX_DIALOG_BUDGET, TaskType
 
 PARTICIPANT_PATTERN = re.compile(r"^[A-Za-z0-9_.-]{1,32}$")
 HUMAN_PREFIX = "human"
@@ -65,10 +65,12 @@ class WebConfig:
                 "the token must be at least 16 characters without surrounding whitespace; "
                 "make one with: python -c 'import secrets; print(secrets.token_urlsafe(24))'"
             )
-        if self.dialog_budget < 0 or (self.task != TaskType.IIGN and self.dialog_budget > 0):
+        if not 0 <= self.dialog_budget <= MAX_DIALOG_BUDGET or (
+            self.task != TaskType.IIGN and self.dialog_budget > 0
+        ):
             raise ConfigError(
                 f"dialog budget {self.dialog_budget} does not fit task {self.task.value}: "
-                "IIGN takes a budget >= 0, the other tasks 0"
+                f"IIGN takes a budget of 0 to {MAX_DIALOG_BUDGET} (the paper's), the other tasks 0"
             )
         for name in ("answer_time_limit_s", "idle_limit_s", "requests_per_second"):
             value = getattr(self, name)

@@ -17,11 +17,12 @@ import secrets
 import threading
 from contextlib import ExitStack
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
-from vlln.errors import ConfigError
+from vlln.errors import ConfigError, DataFormatError
 from vlln.eval.results import RecordKey, RecordWriter, RunDirectory, record_key
-from vlln.files import write_text_atomic
+from vlln.files import parse_json, write_text_atomic
 from vlln.tasks.episode import Episode
 from vlln.tasks.record import EpisodeRecord
 from vlln.web.changes import ChangeSignal
@@ -278,7 +279,7 @@ class SessionStore:
         }
         path = config.out / SETTINGS_FILE
         if path.exists():
-            stored = json.loads(path.read_text(encoding="utf-8"))
+            stored = _stored_settings(path)
             changed = [
                 f"{k}: {stored.get(k)!r} there, {v!r} now"
                 for k, v in wanted.items()
@@ -296,3 +297,18 @@ class SessionStore:
             )
         else:
             write_text_atomic(path, json.dumps(wanted, indent=2) + "\n")
+
+
+def _stored_settings(path: Path) -> dict[str, Any]:
+    """``web.json`` as stored; a damaged one is one line (the study's records stay readable
+    by ``vlln score`` and ``vlln report``, whatever this file holds)."""
+    try:
+        stored = parse_json(path.read_bytes())
+        if not isinstance(stored, dict):
+            raise DataFormatError(f"a JSON {type(stored).__name__}, not an object")
+    except DataFormatError as error:
+        raise DataFormatError(
+            f"{path} is damaged ({error}); restore the study's settings, or serve into "
+            "another --out"
+        ) from None
+    return stored

@@ -54,6 +54,11 @@ def import_scene(scene_dir: str | Path) -> tuple[House, ImportReport]:
     started = time.perf_counter()
     importer = import_mp3d if scene_style(scene_dir) == "mp3d" else import_hm3d
     house, report = importer(scene_dir)
+    if not house.rooms:
+        raise DataFormatError(
+            f"{scene_dir} yields no rooms (Matterport3D: regions with floor polygons; HM3D: "
+            "'floor' objects with a region), so nothing could be navigated; give a complete scan"
+        )
     for flight, problem in report.flights_left_out.items():
         logger.warning(
             "%s: the stairs %d cannot be climbed (%s); they are kept as walls, so the storeys "

@@ -23,6 +23,7 @@ from vlln.errors import DataFormatError
 from vlln.files import write_text_atomic
 from vlln.world.model import House, Room, StructureId
 from vlln.world.scans.build import ImportReport, ScanObject, build_house
+from vlln.world.scans.checks import semantic_text
 from vlln.world.scans.gltf import read_glb, write_glb
 
 TITLE = "HM3D Semantic Annotations"
@@ -56,7 +57,7 @@ def read_semantic_txt(path: Path) -> tuple[list[ScanObject], dict[int, int]]:
         raise DataFormatError(f"{path} does not exist; an HM3D scene needs its semantic.txt")
     objects: list[ScanObject] = []
     by_colour: dict[int, int] = {}
-    lines = path.read_text(encoding="utf-8").splitlines()
+    lines = semantic_text(path).splitlines()
     for number, row in enumerate(csv.reader(lines[1:]), 2):
         if not row:
             continue

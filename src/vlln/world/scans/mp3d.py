@@ -33,6 +33,7 @@ from vlln.world.mesh import Mesh
 from vlln.world.model import Door, House, Room, StructureId
 from vlln.world.scans.build import ImportReport, ScanObject, build_house
 from vlln.world.scans.categories import NO_CATEGORY, mpcat40_group, mpcat40_of
+from vlln.world.scans.checks import house_text
 from vlln.world.scans.gltf import from_scan_frame, read_glb, to_scan_frame, write_glb
 
 # Our room type -> Matterport3D region letter; the other letters are read as the nearest type.
@@ -76,7 +77,7 @@ def read_house_file(path: Path) -> tuple[list[Room], list[ScanObject]]:
     polygons: dict[int, list[tuple[float, float]]] = {}
     categories: dict[int, tuple[str, str | None]] = {}  # index -> raw word, mpcat40 group
     raw_objects: list[list[str]] = []
-    for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
+    for number, line in enumerate(house_text(path).splitlines(), 1):
         fields = line.split()
         if not fields:
             continue
