@@ -22,6 +22,10 @@ def test_build_cost_scales_with_houses_and_trajectories() -> None:
 def test_eval_states_what_is_left(capsys: pytest.CaptureFixture[str]) -> None:
     line = eval_cost_line(600, 100)
     assert "500 to play" in line and "12 min" in line and "MB of memory" in line
+    assert "(frontier agent, small houses)" in line
+    expert = eval_cost_line(600, 100, "expert", "mp3d")
+    assert "(expert agent, mp3d houses)" in expert and "frontier" not in expert
+    assert "time not estimated for agent openai-vlm" in eval_cost_line(10, 0, "openai-vlm")
 
 
 def test_a_large_interactive_build_asks_and_can_be_declined(

@@ -66,10 +66,10 @@ class FidelityRun:
         )
 
 
-RUNS: tuple[FidelityRun, ...] = (
-    FidelityRun("frontier", "noisy", "objectnav", (0,)),
-    FidelityRun("frontier", "noisy", "ign", (0,)),
+RUNS: tuple[FidelityRun, ...] = (  # the longest first, so parallel workers end together
     FidelityRun("frontier", "noisy", "iign", (0, 5)),
+    FidelityRun("frontier", "noisy", "ign", (0,)),
+    FidelityRun("frontier", "noisy", "objectnav", (0,)),
     FidelityRun("expert", None, "objectnav", (0,)),
     FidelityRun("expert", None, "ign", (0,)),
     FidelityRun("expert", None, "iign", (0,)),

@@ -1,16 +1,24 @@
 """What an evaluation will cost, said before it starts.
 
-The figures are the README's, measured on the 2-core development machine: the frontier
-agent with dialog plays an episode line in about 1.5 s on one core (`vlln bench eval`), a
-line takes about 3 kB, and a run peaks at about 800 MB (one house's simulator, the agent's
-map, the oracle). Other agents differ; the estimate says which basis it uses.
+The figures are the README's, measured on the 2-core development machine, per agent and house
+preset: seconds per episode line on one core (`vlln bench eval`, `vlln bench fidelity`), about
+3 kB of results a line, and the run's peak memory. Agents without a measured figure (model
+agents, whose time is the model server's, and agents of your own) get no time estimate; the
+line says which basis it uses.
 """
 
 from __future__ import annotations
 
-SECONDS_PER_LINE = 1.5
+SECONDS_PER_LINE: dict[tuple[str, str], float] = {
+    ("frontier", "small"): 1.5,
+    ("expert", "small"): 0.4,
+    ("random", "small"): 2.5,
+    ("frontier", "mp3d"): 6.0,
+    ("expert", "mp3d"): 1.0,
+    ("random", "mp3d"): 3.5,
+}
 BYTES_PER_LINE = 3_000
-PEAK_MEMORY_MB = 800
+PEAK_MEMORY_MB = {"small": 500, "mp3d": 800}
 
 
 def describe_duration(seconds: float) -> str:
@@ -22,14 +30,20 @@ def describe_duration(seconds: float) -> str:
     return f"about {seconds / 3600:.1f} h"
 
 
-def eval_cost_line(planned: int, done: int) -> str:
+def eval_cost_line(planned: int, done: int, agent: str = "frontier", preset: str = "small") -> str:
     """One line: what is left to play and what it costs in time, disk and memory."""
     left = planned - done
-    seconds = left * SECONDS_PER_LINE
     megabytes = planned * BYTES_PER_LINE / 1e6
+    per_line = SECONDS_PER_LINE.get((agent, preset))
+    if per_line is None:
+        time = f"time not estimated for agent {agent}"
+    else:
+        time = (
+            f"{describe_duration(left * per_line)} on one core at ~{per_line} s a line "
+            f"({agent} agent, {preset} houses)"
+        )
     return (
-        f"plan: {planned} episode lines, {done} already done; {left} to play, "
-        f"{describe_duration(seconds)} on one core at ~{SECONDS_PER_LINE} s a line (frontier "
-        f"agent with dialog), ~{max(megabytes, 0.1):.1f} MB of results, "
-        f"~{PEAK_MEMORY_MB} MB of memory at peak"
+        f"plan: {planned} episode lines, {done} already done; {left} to play, {time}, "
+        f"~{max(megabytes, 0.1):.1f} MB of results, "
+        f"~{PEAK_MEMORY_MB.get(preset, max(PEAK_MEMORY_MB.values()))} MB of memory at peak"
     )

@@ -267,7 +267,10 @@ def run_evaluation(
             remaining = [item for item in items if item.key(config) not in done]
             todo = remaining if stop_after is None else remaining[:stop_after]
             if progress:
-                print(eval_cost_line(len(items), len(items) - len(remaining)), file=sys.stderr)
+                done_lines = len(items) - len(remaining)
+                basis = config.preset if config.episode_file is None else "small"
+                line = eval_cost_line(len(items), done_lines, config.agent, basis)
+                print(line, file=sys.stderr)
             bar = tqdm(
                 total=len(items),
                 initial=len(items) - len(remaining),

@@ -68,10 +68,10 @@ SMALL = HousePreset(
 MP3D = HousePreset(
     name="mp3d",
     summary="calibrated to Matterport3D as VL-LN uses it (docs/world-statistics.md)",
-    base=HouseParameters(clutter=0.72, category_variety=0.42),
-    floor_weights=(0.1, 0.3, 0.6),
+    base=HouseParameters(clutter=0.66, category_variety=0.5),
+    floor_weights=(0.1, 0.2, 0.7),
     rooms_per_storey=(8, 13),
-    area_per_room=(23.0, 32.0),
+    area_per_room=(20.0, 28.0),
 )
 PRESETS: dict[str, HousePreset] = {preset.name: preset for preset in (SMALL, MP3D)}
 DEFAULT_PRESET = MP3D.name
