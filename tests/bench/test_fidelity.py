@@ -80,3 +80,25 @@ def test_the_test_protocol_is_500_episodes_on_the_14_test_houses() -> None:
         EvalConfig(agent="random", task="iign", split="test500", houses=3)
     with pytest.raises(ConfigError, match="test500 is 500 episodes"):
         EvalConfig(agent="random", task="iign", split="test500", episodes=501)
+
+
+def test_the_benchmark_plays_every_run_and_resumes(tmp_path: Any, capsys: Any) -> None:
+    """Two protocol episodes of the small houses per run: every run folder is written, the
+    rows cover every task, and a second call plays nothing new."""
+    from pathlib import Path
+
+    from vlln.bench.fidelity import run_fidelity_benchmark
+    from vlln.eval.results import RunDirectory
+
+    out, cache = Path(tmp_path) / "fid", Path(tmp_path) / "cache"
+    rows = run_fidelity_benchmark(out, episodes=2, preset="small", cache_dir=cache, as_json=True)
+    assert {row["task"] for row in rows} == {"iign", "ign", "objectnav"}
+    assert sum("dialog_gain_pp" in row for row in rows) == 1
+    for run in RUNS:
+        records = RunDirectory(out / run.folder).records()
+        assert len(records) == 2 * len(run.budgets)
+    before = {run.folder: (out / run.folder / "episodes.jsonl").read_bytes() for run in RUNS}
+    assert run_fidelity_benchmark(out, 2, "small", cache_dir=cache, as_json=True) == rows
+    after = {run.folder: (out / run.folder / "episodes.jsonl").read_bytes() for run in RUNS}
+    assert after == before
+    assert capsys.readouterr().out.count("\n") == 2 * len(rows)

@@ -159,7 +159,11 @@ def run_fidelity_benchmark(
     # Every task's episodes are built once, before the workers share the cache.
     for task in sorted({run.task for run in RUNS}):
         config = RUNS[0].config(episodes, preset)
-        load_episodes(replace(config, task=task), cache_dir or default_cache_dir(), progress=False)
+        load_episodes(
+            replace(config, task=task, budgets=(0,)),
+            cache_dir or default_cache_dir(),
+            progress=False,
+        )
     if workers == 1:
         done = [_play(job) for job in jobs]
     else:  # spawned, not forked: a forked child would share the parent's GL state

@@ -32,6 +32,7 @@ class HouseFigures:
     instances_per_category: float
     episodes: int
     with_distractor: int  # episodes whose target shares its category with another instance
+    distractors: int  # same-category others of the targets, summed over the episodes
     start_distance_sum: float
     start_poses: int  # distinct start positions among the episodes
 
@@ -51,6 +52,7 @@ def house_figures(preset: str, seed: int, scenes: SceneCache) -> HouseFigures:
         instances_per_category=statistics.mean(counts.values()) if counts else 0.0,
         episodes=len(made.iign),
         with_distractor=sum(1 for ep in made.objectnav if len(ep.goals) > 1),
+        distractors=sum(len(ep.goals) - 1 for ep in made.objectnav),
         start_distance_sum=sum(float(ep.info["geodesic_distance"]) for ep in made.iign),
         start_poses=len({tuple(ep.start_position) for ep in made.iign}),
     )
@@ -72,6 +74,7 @@ def preset_statistics(preset: str, houses: int | None = None) -> dict[str, float
         "instances_per_scene": statistics.mean(r.instances for r in rows),
         "instances_per_category": statistics.mean(r.instances_per_category for r in rows),
         "distractor_share": sum(r.with_distractor for r in rows) / max(episodes, 1),
+        "distractors_per_target": sum(r.distractors for r in rows) / max(episodes, 1),
         "start_to_target_geodesic_m": sum(r.start_distance_sum for r in rows) / max(episodes, 1),
         "start_poses_per_scene": statistics.mean(r.start_poses for r in rows),
         "test_episodes": float(min(TEST_PROTOCOL_EPISODES, episodes)),
