@@ -167,7 +167,8 @@ def run_fidelity_benchmark(
     if workers == 1:
         done = [_play(job) for job in jobs]
     else:  # spawned, not forked: a forked child would share the parent's GL state
-        with multiprocessing.get_context("spawn").Pool(workers) as pool:
+        # One process per run (maxtasksperchild): each run's memory is its own.
+        with multiprocessing.get_context("spawn").Pool(workers, maxtasksperchild=1) as pool:
             done = pool.map(_play, jobs, chunksize=1)
     for line in done:
         print(f"fidelity: {line}", file=sys.stderr)

@@ -40,6 +40,7 @@ ARRANGEMENTS: dict[str, tuple[str, str]] = {
 COVERING_PHASE = 3.5  # rugs go down after the furniture that may not stand on them
 STYLE_REUSE = 0.6  # chance that an instance takes its room's style for the category
 EXPECTED_MEAN = 0.9  # a category this common in a room type appears at least once there
+MANY_PER_ROOM = 1.5  # a category this common somewhere comes in numbers (chairs, pictures)
 FLAT_HEIGHT = 0.05  # m; lower objects (rugs) are walked over and lie under furniture
 
 
@@ -73,12 +74,19 @@ def placement_phases(requests: list[PlacementRequest]) -> list[float]:
 
 
 def draw_requests(
-    room: Room, catalogue: Catalogue, clutter: float, rng: np.random.Generator
+    room: Room,
+    catalogue: Catalogue,
+    clutter: float,
+    rng: np.random.Generator,
+    repeats: float = 1.0,
 ) -> list[PlacementRequest]:
-    """The objects a room gets, with built models, in catalogue order."""
+    """The objects a room gets, with built models, in catalogue order; ``repeats`` multiplies
+    the mean of categories that come in numbers (:data:`MANY_PER_ROOM`)."""
     requests = []
     for category in catalogue.for_room(room.type):
         mean = category.rooms[room.type] * clutter
+        if max(category.rooms.values()) >= MANY_PER_ROOM:
+            mean *= repeats
         if mean >= EXPECTED_MEAN:  # one for sure, more around the same mean
             count = 1 + int(rng.poisson(max(mean - 1.0, 0.0)))
         else:

@@ -103,7 +103,7 @@ def furnish(
         space = RoomSpace.of_room(
             rect, room.ceiling_height, params.wall_thickness, plan.doors, room.id
         )
-        requests = draw_requests(room, catalogue, params.clutter, rng)
+        requests = draw_requests(room, catalogue, params.clutter, rng, params.repeats)
         phases = placement_phases(requests)
         order = sorted(
             range(len(requests)), key=lambda i: (phases[i], -requests[i].footprint_area, i)

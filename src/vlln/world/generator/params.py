@@ -40,6 +40,13 @@ class HouseParameters:
         default=1.0, metadata={"help": "multiplies the mean number of objects per room"}
     )
     floors: int = field(default=1, metadata={"help": "storeys joined by stairs (1 to 3)"})
+    repeats: float = field(
+        default=1.0,
+        metadata={
+            "help": "multiplies the mean number of objects that come in numbers (categories "
+            "with >= 1.5 per room on average: chairs, books, pictures, pillows, ...)"
+        },
+    )
     category_variety: float = field(
         default=1.0,
         metadata={
@@ -94,6 +101,7 @@ class HouseParameters:
         _check_number("clutter", self.clutter, 0.0, 3.0)
         _check_int("floors", self.floors, 1, 3)
         _check_number("category_variety", self.category_variety, 0.1, 1.0)
+        _check_number("repeats", self.repeats, 0.0, 4.0)
 
 
 @dataclass(frozen=True)

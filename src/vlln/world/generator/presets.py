@@ -68,7 +68,7 @@ SMALL = HousePreset(
 MP3D = HousePreset(
     name="mp3d",
     summary="calibrated to Matterport3D as VL-LN uses it (docs/world-statistics.md)",
-    base=HouseParameters(clutter=0.66, category_variety=0.5),
+    base=HouseParameters(clutter=0.5, category_variety=0.62, repeats=2.0),
     floor_weights=(0.1, 0.2, 0.7),
     rooms_per_storey=(8, 13),
     area_per_room=(20.0, 28.0),
