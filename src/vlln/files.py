@@ -110,14 +110,17 @@ MAX_JSON_DEPTH = 64
 MAX_INTEGER_DIGITS = 308
 
 
-def parse_json(data: bytes | str) -> Any:
+def parse_json(
+    data: bytes | str, object_hook: Callable[[dict[str, Any]], Any] | None = None
+) -> Any:
     """The JSON value of untrusted bytes or text. Anything that is not plain UTF-8 JSON (a
     binary file, a torn write, an integer of hundreds of digits, nesting deeper than
     :data:`MAX_JSON_DEPTH`) is a :class:`DataFormatError` with a short reason, never a
-    ``ValueError``, ``OverflowError`` or ``RecursionError``; callers add the file's name."""
+    ``ValueError``, ``OverflowError`` or ``RecursionError``; callers add the file's name.
+    ``object_hook`` sees every object as it is decoded, innermost first (``json.loads``)."""
     try:
         text = data.decode("utf-8") if isinstance(data, bytes) else data
-        value = json.loads(text, parse_int=_parse_int)
+        value = json.loads(text, parse_int=_parse_int, object_hook=object_hook)
     except UnicodeDecodeError as error:
         raise DataFormatError(f"not UTF-8 text (byte {error.start})") from None
     except RecursionError:

@@ -70,3 +70,18 @@ def test_unknown_presets_and_variety_are_refused_with_the_choices() -> None:
         preset("hm3d")
     with pytest.raises(HouseParametersError, match="category_variety"):
         HouseParameters(category_variety=0.0).validate()
+
+
+def test_repeats_multiply_only_what_comes_in_numbers() -> None:
+    def counts(repeats: float) -> dict[str, int]:
+        house = generate_house(8, HouseParameters(repeats=repeats))
+        found: dict[str, int] = {}
+        for inst in house.instances:
+            found[inst.category] = found.get(inst.category, 0) + 1
+        return found
+
+    plain, doubled = counts(1.0), counts(2.5)
+    many = ("chair", "book", "picture", "pillow", "towel")
+    assert sum(doubled.get(c, 0) for c in many) > 1.5 * sum(plain.get(c, 0) for c in many)
+    beds = (plain.get("bed", 0), doubled.get("bed", 0))
+    assert beds[0] == beds[1]  # one bed a bedroom, whatever the repeats

@@ -78,13 +78,18 @@ RUNS: tuple[FidelityRun, ...] = (  # the longest first, so parallel workers end 
 
 @dataclass(frozen=True)
 class Interval:
+    """A figure and its 95 % interval."""
+
     value: float
     low: float
     high: float
 
     def to_json(self) -> dict[str, float]:
-        return {k: round(v, 2) for k, v in (("value", self.value), ("low", self.low),
-                                             ("high", self.high))}  # fmt: skip
+        return {
+            "value": round(self.value, 2),
+            "low": round(self.low, 2),
+            "high": round(self.high, 2),
+        }
 
 
 def success_interval(successes: int, n: int) -> Interval:
@@ -187,18 +192,26 @@ def fidelity_rows(run: FidelityRun, records: Sequence[EpisodeRecord]) -> list[di
     for budget in run.budgets:
         group = [r for r in records if r.budget == budget]
         if group:
-            rows.append({"agent": label, "task": run.task, "budget": budget,
-                         **group_figures(group)})  # fmt: skip
+            rows.append(
+                {"agent": label, "task": run.task, "budget": budget, **group_figures(group)}
+            )
     if len(run.budgets) > 1:
         gain = dialog_gain(records, min(run.budgets), max(run.budgets))
         if gain is not None:
-            rows.append({"agent": label, "task": run.task,
-                         "dialog_gain_pp": gain.to_json(),
-                         "budgets": [min(run.budgets), max(run.budgets)]})  # fmt: skip
+            budgets = [min(run.budgets), max(run.budgets)]
+            rows.append(
+                {
+                    "agent": label,
+                    "task": run.task,
+                    "dialog_gain_pp": gain.to_json(),
+                    "budgets": budgets,
+                }
+            )
     return rows
 
 
 def _table_line(row: dict[str, object]) -> str:
+    """One row as a line of text (``--json`` prints the row itself)."""
     head = f"{row['agent']:<28} {row['task']:<9}"
     if "dialog_gain_pp" in row:
         gain = row["dialog_gain_pp"]

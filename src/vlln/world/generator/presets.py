@@ -3,9 +3,9 @@
 ``small`` is the generator's default house (one storey, about six rooms): fast to build and
 to play, it drives ``make demo`` and the fast tests. ``mp3d`` is calibrated to the
 Matterport3D buildings that VL-LN Bench uses (docs/world-statistics.md gives each target
-statistic with its source): two storeys in most houses, one or three in some, about twenty
-regions, a few hundred square metres of floor and around 230 annotated instances, many of
-them sharing a category with others in the house. Within ``mp3d`` the number of storeys and
+statistic with its source): three storeys in most houses, one or two in some, about 26
+regions, some 400 m² to walk on and around 240 annotated instances, nine in ten of them
+sharing their category with others in the house. Within ``mp3d`` the number of storeys and
 the room counts are drawn per seed, from the seed alone, so a house is the same wherever and
 whenever it is built.
 """
