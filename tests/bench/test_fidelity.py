@@ -102,3 +102,20 @@ def test_the_benchmark_plays_every_run_and_resumes(tmp_path: Any, capsys: Any) -
     after = {run.folder: (out / run.folder / "episodes.jsonl").read_bytes() for run in RUNS}
     assert after == before
     assert capsys.readouterr().out.count("\n") == 2 * len(rows)
+
+
+def test_msp_interval_is_the_papers_msp_over_paired_episodes() -> None:
+    from vlln.bench.fidelity import msp_interval
+    from vlln.tasks.metrics import msp
+
+    wins = {0: [1, 0, 0, 0], 1: [1, 1, 0, 0], 2: [1, 1, 0, 0], 3: [1, 1, 1, 0]}
+    wins |= {4: [1, 1, 1, 0], 5: [1, 1, 1, 1]}
+    records = [
+        record(str(k), budget, bool(won[k])) for budget, won in wins.items() for k in range(4)
+    ]
+    records.append(record("9", 0, True))  # played at budget 0 only: not paired
+    interval = msp_interval(records, range(6))
+    rates = [100.0 * sum(wins[b]) / 4 for b in range(6)]
+    assert interval is not None and interval.value == pytest.approx(msp(rates))
+    assert interval.low < interval.value < interval.high
+    assert msp_interval(records[:4], [0]) is None

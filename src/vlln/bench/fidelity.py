@@ -3,14 +3,15 @@
 It plays the paper's non-learned baseline, frontier exploration with a detector that sees no
 privileged labels (our ``noisy`` detector), and the privileged shortest-path expert on the
 same episodes of the paper's test protocol (``--split test500``: the 14 test houses of the
-``mp3d`` preset), on ObjectNav, IGN and IIGN (IIGN at dialog budgets 0 and 5). Every run is an
+``mp3d`` preset), on ObjectNav, IGN and IIGN (IIGN at dialog budgets 0 to 5, played by prefix
+sharing, whose records equal independent runs'). Every run is an
 ordinary run directory under ``--out``, so a killed benchmark resumes where it stopped and the
 runs can be scored, reported and filmed like any other.
 
 For each task and budget it prints SR and SPL with 95 % intervals (Wilson's interval for the
 success rate, Student's t for the mean SPL), the failure taxonomy's shares, and for IIGN the
-dialog gain, SR at budget 5 minus SR at budget 0 on the same episodes, with a paired 95 %
-interval (the paper's MSP over budgets 0..5 is the mean of such gains; 0 and 5 bound it).
+paper's MSP over budgets 0..5 and the dialog gain (SR at budget 5 minus SR at budget 0), each
+over the same episodes with a paired 95 % interval.
 """
 
 from __future__ import annotations
@@ -67,7 +68,7 @@ class FidelityRun:
 
 
 RUNS: tuple[FidelityRun, ...] = (  # the longest first, so parallel workers end together
-    FidelityRun("frontier", "noisy", "iign", (0, 5)),
+    FidelityRun("frontier", "noisy", "iign", (0, 1, 2, 3, 4, 5)),
     FidelityRun("frontier", "noisy", "ign", (0,)),
     FidelityRun("frontier", "noisy", "objectnav", (0,)),
     FidelityRun("expert", None, "objectnav", (0,)),
@@ -138,6 +139,26 @@ def dialog_gain(records: Sequence[EpisodeRecord], low: int, high: int) -> Interv
     return mean_interval(gains)
 
 
+def msp_interval(records: Sequence[EpisodeRecord], budgets: Sequence[int]) -> Interval | None:
+    """MSP over ``budgets`` (0..n) with a paired 95 % interval, in percentage points: per
+    episode played at every budget, the mean over i = 1..n of success at i minus success at 0
+    (the paper's MSP is the mean of these over the episodes)."""
+    low, rest = min(budgets), sorted(set(budgets) - {min(budgets)})
+    if not rest:
+        return None
+    by_episode: dict[tuple[str, str], dict[int, bool]] = {}
+    for record in records:
+        by_episode.setdefault((record.scene_id, record.episode_id), {})[record.budget] = success(
+            record
+        )
+    gains = [
+        100.0 * sum(played[b] - played[low] for b in rest) / len(rest)
+        for played in by_episode.values()
+        if all(b in played for b in (low, *rest))
+    ]
+    return mean_interval(gains) if gains else None
+
+
 def _play(job: tuple[FidelityRun, int, str, str, str | None]) -> str:
     run, episodes, preset, out, cache_dir = job
     config = run.config(episodes, preset)
@@ -195,6 +216,10 @@ def fidelity_rows(run: FidelityRun, records: Sequence[EpisodeRecord]) -> list[di
             rows.append(
                 {"agent": label, "task": run.task, "budget": budget, **group_figures(group)}
             )
+    if len(run.budgets) > 2:
+        msp = msp_interval(records, run.budgets)
+        if msp is not None:
+            rows.append({"agent": label, "task": run.task, "msp_pp": msp.to_json()})
     if len(run.budgets) > 1:
         gain = dialog_gain(records, min(run.budgets), max(run.budgets))
         if gain is not None:
@@ -213,6 +238,8 @@ def fidelity_rows(run: FidelityRun, records: Sequence[EpisodeRecord]) -> list[di
 def _table_line(row: dict[str, object]) -> str:
     """One row as a line of text (``--json`` prints the row itself)."""
     head = f"{row['agent']:<28} {row['task']:<9}"
+    if "msp_pp" in row:
+        return f"{head} MSP {row['msp_pp']} pp"
     if "dialog_gain_pp" in row:
         gain = row["dialog_gain_pp"]
         return f"{head} dialog gain {gain} pp (budgets {row['budgets']})"

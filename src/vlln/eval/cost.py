@@ -18,7 +18,7 @@ SECONDS_PER_LINE: dict[tuple[str, str], float] = {
     ("random", "mp3d"): 3.5,
 }
 BYTES_PER_LINE = 3_000
-PEAK_MEMORY_MB = {"small": 500, "mp3d": 800}
+PEAK_MEMORY_MB = {"small": 700, "mp3d": 900}
 
 
 def describe_duration(seconds: float) -> str:
