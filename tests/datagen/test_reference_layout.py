@@ -1,6 +1,6 @@
 """A built dataset read back the way the reference's training code reads it, frame for frame.
 
-The reader below follows the reference's rules (reference-formats §3) and knows nothing of
+The reader below follows the reference's rules (docs/reference-formats.md §3) and knows nothing of
 vlln's writer: scene folders with ``meta/episodes.jsonl``, ``data/chunk-XXX/episode_N.parquet``
 with ``action`` (element 0 a placeholder; the training actions are ``action[1:] + [0]``),
 ``pose.125cm_0deg``/``pose.125cm_30deg``, ``goal.125cm_30deg`` and

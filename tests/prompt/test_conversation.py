@@ -1,4 +1,5 @@
-"""The conversation layout of reference-formats §4, checked against literal reference text."""
+"""The conversation layout of docs/reference-formats.md §4, checked against literal reference
+text."""
 
 from __future__ import annotations
 

@@ -1,5 +1,5 @@
-"""Hand-made files in every variant the reference accepts (reference-formats §1-§2) load, and
-an evaluation runs on them against an imported scan."""
+"""Hand-made files in every variant the reference accepts (docs/reference-formats.md §1-§2)
+load, and an evaluation runs on them against an imported scan."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Which collected trajectories are good enough to train on (reference-facts §5, filtering).
+"""Which collected trajectories are good enough to train on (docs/reference-facts.md §5, filtering).
 
 Dropped, with the first reason that applies: the collector gave up (target never found, step
 limit), any collision, more than ``max_consecutive_turns`` turns in a row, or final frames

@@ -22,7 +22,7 @@ from vlln.tasks.test_protocol import TEST_PROTOCOL_EPISODES, TEST_PROTOCOL_SPLIT
 from vlln.world.generator.presets import DEFAULT_PRESET, SMALL, preset
 
 DEFAULT_DIALOG_BUDGET = TaskType.IIGN.default_budget
-"""Answered questions per IIGN episode (reference-facts §1)."""
+"""Answered questions per IIGN episode (docs/reference-facts.md §1)."""
 
 _BUDGET_RANGE = re.compile(r"^(\d+)-(\d+)$")
 

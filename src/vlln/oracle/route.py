@@ -1,7 +1,7 @@
 """Route answers at three granularities: the heading to the target, the next few metres of
 the way there, and the next action.
 
-The path description follows the reference oracle (reference-facts §4): the shortest path to
+The path description follows the reference oracle (docs/reference-facts.md §4): the shortest path to
 the nearest goal view point (nearest to the agent, by walking distance), its first 4 m,
 waypoints at least 1 m apart, a turn wherever the heading changes by more than 40 degrees,
 anchored to the nearest landmark in the same room, and a room change wherever the path

@@ -1,7 +1,7 @@
 """The default oracle: offline, deterministic, grounded in the house and the agent's state.
 
 It classifies each question with :func:`vlln.oracle.classify.analysed` and answers
-with the logic of its type (paper supplementary, reference-facts §4), without a language
+with the logic of its type (paper supplementary, docs/reference-facts.md §4), without a language
 model, a network or model weights. Everything an answer needs (the geodesic field to the
 target's view points, the shortest-path follower, per-house look-ups) is built in
 :meth:`RuleOracle.start`, so answers are look-ups.

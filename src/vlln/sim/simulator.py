@@ -32,7 +32,7 @@ Field = GeodesicField | StoreyField
 
 @dataclass(frozen=True)
 class NavigationConfig:
-    """How the navigable grid is derived from the geometry (reference-facts §1)."""
+    """How the navigable grid is derived from the geometry (docs/reference-facts.md §1)."""
 
     cell_size: float = 0.05
     agent_radius: float = 0.18

@@ -15,7 +15,7 @@ target. Extra keys of our own go into :attr:`Episode.info`, written as the episo
 key only when it is not empty; the reference loader (a Habitat ``Episode``) accepts ``info``,
 so such files still load there.
 
-Reading accepts every variant the reference accepts (reference-formats §1): top-level extras
+Reading accepts every variant the reference accepts (docs/reference-formats.md §1): top-level extras
 (``category_to_task_category``, ...) are ignored, and so are Habitat's episode extras
 (:data:`IGNORED_EPISODE_KEYS`, InternNav's ``frames``) and Habitat's goal extras
 (``object_id``, ``object_name``, ...); ``episode_id`` may be an integer; a goal may lack

@@ -85,7 +85,7 @@ AgentOutput = Action | Talk | PixelGoal | FailedOutput
 
 @dataclass(frozen=True)
 class TaskConfig:
-    """Caps and budgets (reference-facts §1). STOP, FORWARD and TURN count toward
+    """Caps and budgets (docs/reference-facts.md §1). STOP, FORWARD and TURN count toward
     ``max_steps``; LOOK and TALK do not, so they have caps of their own; outputs that are
     neither an Action nor a Talk are failed actions, recorded, and capped too. A model agent
     looks down once per pixel goal and a goal may be a step or two away, so the look cap

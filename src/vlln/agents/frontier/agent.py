@@ -1,6 +1,6 @@
 """The frontier-exploration baseline with a simulated detector and an optional dialog.
 
-It follows the reference's data-collection policy (reference-facts §5): a 360° scan, then
+It follows the reference's data-collection policy (docs/reference-facts.md §5): a 360° scan, then
 frontier exploration on a map built from depth, and once an instance of the target category
 that fits what is known about the target is seen, a walk up to it and STOP facing it. It never
 reads the expert action or the geodesic field; it sees objects through a detector simulated on

@@ -1,4 +1,4 @@
-"""When the collector asks the oracle, and what (reference-facts §5, dialog triggers).
+"""When the collector asks the oracle, and what (docs/reference-facts.md §5, dialog triggers).
 
 * Attribute, at the first frame: about an attribute the instruction does not state and the
   target has a value for. The answer becomes a *known* attribute.

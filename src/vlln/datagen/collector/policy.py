@@ -1,4 +1,4 @@
-"""The collector's walking policy (reference-facts §5), one action per frame.
+"""The collector's walking policy (docs/reference-facts.md §5), one action per frame.
 
 A 360° scan (12 turns of 30°), then frontier exploration on a 5 cm obstacle map built from
 depth, choosing frontiers with :class:`TargetAwareChooser`. The map decides *where* to go (what

@@ -23,7 +23,7 @@ from vlln.datagen.stats.compute import DatasetStats, IntDistribution
 FIGURE_SIZE = (15.0, 8.6)  # inches
 FIGURE_DPI = 100
 TOP_CATEGORIES = 15
-PAPER_TURNS_PER_TRAJECTORY = 1.9  # reference-facts §5
+PAPER_TURNS_PER_TRAJECTORY = 1.9  # docs/reference-facts.md §5
 _KEPT_COLOR = "#2ca02c"
 _REJECT_COLOR = "#d62728"
 _QUESTION_COLOR = "#1f77b4"

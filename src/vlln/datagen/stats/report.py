@@ -1,7 +1,7 @@
 """``vlln data stats``: stats.json, stats.md and stats.png of a built dataset.
 
-The Markdown puts the headline numbers next to the paper's (reference-facts §5) so a build can
-be judged at a glance: yield and why trajectories were dropped, the question-type mix, dialog
+The Markdown puts the headline numbers next to the paper's (docs/reference-facts.md §5) so a
+build can be judged at a glance: yield and why trajectories were dropped, the question-type mix, dialog
 turns per trajectory and path length.
 """
 
@@ -20,7 +20,7 @@ from vlln.files import write_text_atomic
 STATS_JSON = "stats.json"
 STATS_MD = "stats.md"
 STATS_PNG = "stats.png"
-PAPER_MEAN_PATH_LENGTH_M = 22.5  # reference-facts §5
+PAPER_MEAN_PATH_LENGTH_M = 22.5  # docs/reference-facts.md §5
 PAPER_TRAJECTORIES = 41_891
 PAPER_DIALOG_TURNS = 95_559
 _MD_CATEGORIES = 15

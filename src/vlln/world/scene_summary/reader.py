@@ -1,4 +1,4 @@
-"""Reading a scene summary in every variant the reference reads (reference-formats §2)."""
+"""Reading a scene summary in every variant the reference reads (docs/reference-formats.md §2)."""
 
 from __future__ import annotations
 
@@ -36,7 +36,7 @@ from vlln.world.scene_summary.format import (
 def import_scene_summary(scene_dir: str | Path) -> House:
     """Read a scene-summary directory back into a :class:`House` without geometry.
 
-    Every variant the reference reads is accepted (reference-formats §2): several scopes
+    Every variant the reference reads is accepted (docs/reference-formats.md §2): several scopes
     (one per floor; rooms are then renumbered in scope order and get the scope's index as
     their level), instance ids as integers or strings like ``"3/chair_12"`` (kept in
     :attr:`House.instance_keys`; the trailing number is the instance id, else ids follow the
