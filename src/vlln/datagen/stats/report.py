@@ -1,8 +1,8 @@
 """``vlln data stats``: stats.json, stats.md and stats.png of a built dataset.
 
 The Markdown puts the headline numbers next to the paper's (docs/reference-facts.md §5) so a
-build can be judged at a glance: yield and why trajectories were dropped, the question-type mix, dialog
-turns per trajectory and path length.
+build can be judged at a glance: yield and why trajectories were dropped, the question-type
+mix, dialog turns per trajectory and path length.
 """
 
 from __future__ import annotations
