@@ -18,7 +18,7 @@ from vlln.cluster.evaluation import run_ray_evaluation
 from vlln.datagen.build import BuildConfig, build_dataset
 from vlln.eval.config import EvalConfig
 from vlln.eval.runner import run_evaluation
-from vlln.tasks.generation import load_or_build_split
+from vlln.tasks.split_files import load_or_build_split
 
 TASK_TITLE = "ray::play_eval_chunk"  # the process title of a worker playing a chunk
 

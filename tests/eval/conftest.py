@@ -5,8 +5,8 @@ from pathlib import Path
 
 import pytest
 
-from vlln.tasks.generation import load_or_build_split
 from vlln.tasks.scenes import SceneCache
+from vlln.tasks.split_files import load_or_build_split
 
 
 @pytest.fixture(scope="session")

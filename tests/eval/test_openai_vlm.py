@@ -23,11 +23,11 @@ from vlln.prompt import IMAGE_TAG, DialogExchange, build_conversation, connectiv
 from vlln.sim.agent import AgentState
 from vlln.tasks.env import NavigationEnv
 from vlln.tasks.episode import Episode, write_episodes
-from vlln.tasks.generation import load_or_build_split
 from vlln.tasks.metrics import success
 from vlln.tasks.record import MAX_STORED_OUTPUT_CHARS, EpisodeRecord
 from vlln.tasks.scenes import SceneCache
 from vlln.tasks.spec import TaskConfig, TaskType
+from vlln.tasks.split_files import load_or_build_split
 from vlln.world.frame import heading_vector, quaternion_to_yaw
 
 ARROWS = {"TURN_LEFT": "←", "TURN_RIGHT": "→"}

@@ -17,9 +17,9 @@ from tests.eval.test_cli import eval_args
 from vlln.cli import main
 from vlln.eval.results import SKIPPED_FILE
 from vlln.tasks.episode import write_episodes
-from vlln.tasks.generation import load_or_build_split
 from vlln.tasks.record import DialogTurn
 from vlln.tasks.scenes import SceneCache
+from vlln.tasks.split_files import load_or_build_split
 
 
 @pytest.fixture(scope="module")

@@ -23,7 +23,7 @@ from vlln.errors import ConfigError
 from vlln.gym.remote import RemoteEnv
 from vlln.gym.spaces import TALK
 from vlln.sim.agent import Action
-from vlln.tasks.generation import load_or_build_split
+from vlln.tasks.split_files import load_or_build_split
 
 SMALL = {"houses": 1, "width": 64, "height": 48}
 

@@ -13,18 +13,14 @@ import pytest
 
 from vlln.errors import ConfigError
 from vlln.sim.simulator import Simulator
-from vlln.tasks import generation
+from vlln.tasks import generation, split_files
 from vlln.tasks.episode import Episode, read_episodes
 from vlln.tasks.generation import (
     SKIP_REASONS,
     EpisodeGenConfig,
     HouseEpisodes,
-    build_split,
-    episode_path,
     generate_house_episodes,
     house_rng,
-    load_or_build_split,
-    stats_path,
 )
 from vlln.tasks.instructions import (
     AmbiguousTargetError,
@@ -34,6 +30,7 @@ from vlln.tasks.instructions import (
 )
 from vlln.tasks.scenes import SceneCache, procedural_scene_id, procedural_seed
 from vlln.tasks.spec import TaskType
+from vlln.tasks.split_files import build_split, episode_path, load_or_build_split, stats_path
 from vlln.tasks.splits import house_seeds
 from vlln.world.catalogue import default_catalogue
 from vlln.world.generator import HouseParameters, generate_house
@@ -324,7 +321,7 @@ def test_load_or_build_builds_once(
     def refuse(*args: Any, **kwargs: Any) -> Path:
         raise AssertionError("the cached split was built again")
 
-    monkeypatch.setattr(generation, "build_split", refuse)
+    monkeypatch.setattr(split_files, "build_split", refuse)
     assert load_or_build_split("test", "ign", 1, tmp_path, 0, SPLIT_CONFIG, scenes=scenes) != []
     with pytest.raises(AssertionError, match="built again"):
         load_or_build_split("test", "ign", 2, tmp_path, 0, SPLIT_CONFIG, scenes=scenes)
@@ -343,6 +340,6 @@ def test_a_split_built_from_another_catalogue_is_built_again(
     def refuse(*args: Any, **kwargs: Any) -> Path:
         raise AssertionError("the cached split was built again")
 
-    monkeypatch.setattr(generation, "build_split", refuse)
+    monkeypatch.setattr(split_files, "build_split", refuse)
     with pytest.raises(AssertionError, match="built again"):
         load_or_build_split("test", "ign", 1, tmp_path, 0, SPLIT_CONFIG, scenes=scenes)

@@ -20,9 +20,9 @@ from vlln.eval.runner import derive_seed, order_by_scene, play_episode, spread_o
 from vlln.oracle.rule_oracle import RuleOracle
 from vlln.tasks.env import NavigationEnv
 from vlln.tasks.episode import Episode, read_episodes
-from vlln.tasks.generation import build_split
 from vlln.tasks.scenes import SceneCache
 from vlln.tasks.spec import TaskConfig, TaskType
+from vlln.tasks.split_files import build_split
 from vlln.tasks.taxonomy import classify
 
 

@@ -1,7 +1,7 @@
 """How a preset's test houses and episodes compare with Matterport3D as VL-LN uses it.
 
 The figures are measured on the houses and episodes the benchmark really plays: the test
-split's houses of the preset, with the episodes :func:`~vlln.tasks.generation.build_split`
+split's houses of the preset, with the episodes :func:`~vlln.tasks.split_files.build_split`
 writes for them (same seed, same settings). Each is printed beside its anchor
 (:mod:`vlln.bench.anchors`), so a generator change that drifts away from the paper's scenes
 shows at once.

@@ -75,7 +75,7 @@ def _data_export_sft(args: argparse.Namespace) -> int:
 
 def _data_episodes(args: argparse.Namespace) -> int:
     from vlln.errors import ConfigError
-    from vlln.tasks.generation import build_split
+    from vlln.tasks.split_files import build_split
     from vlln.world.generator.presets import SMALL
 
     if args.floors is not None and args.preset != SMALL.name:

@@ -46,9 +46,10 @@ from vlln.sim.agent import AgentState
 from vlln.sim.renderer import Frame
 from vlln.sim.simulator import Simulator
 from vlln.tasks.episode import Episode, read_episodes
-from vlln.tasks.generation import EpisodeGenConfig, build_split, episode_path
+from vlln.tasks.generation import EpisodeGenConfig
 from vlln.tasks.scenes import SceneCache, procedural_scene_id
 from vlln.tasks.spec import TaskType
+from vlln.tasks.split_files import build_split, episode_path
 from vlln.tasks.splits import house_seeds
 from vlln.world.catalogue import default_catalogue
 from vlln.world.scene_summary import export_scene_summary

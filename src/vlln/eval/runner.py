@@ -53,11 +53,11 @@ from vlln.oracle.protocol import Oracle
 from vlln.oracle.rule_oracle import RuleOracle
 from vlln.tasks.env import NavigationEnv
 from vlln.tasks.episode import Episode, read_episodes
-from vlln.tasks.generation import load_or_build_split
 from vlln.tasks.metrics import success
 from vlln.tasks.record import EpisodeRecord, agent_label
 from vlln.tasks.scenes import SceneCache
 from vlln.tasks.spec import TaskConfig, TaskType
+from vlln.tasks.split_files import load_or_build_split
 from vlln.tasks.test_protocol import source_split
 
 AgentFactory = Callable[[str, int, str | None], Agent]  # (name, seed, detector)

@@ -52,9 +52,9 @@ from vlln.sim.gl_context import forked_after_gl
 from vlln.sim.simulator import SimulatorConfig
 from vlln.tasks.env import NavigationEnv
 from vlln.tasks.episode import Episode, read_episodes
-from vlln.tasks.generation import load_or_build_split
 from vlln.tasks.scenes import SceneCache
 from vlln.tasks.spec import TaskConfig, TaskType
+from vlln.tasks.split_files import load_or_build_split
 from vlln.tasks.splits import SPLIT_SIZES
 
 _SOURCE_OPTIONS = ("split", "houses", "episode_file", "oracle")

@@ -22,21 +22,16 @@ every instance of the category, the target first. Each episode's ``info`` holds 
 
 from __future__ import annotations
 
-import json
 import math
 from collections import Counter
-from dataclasses import asdict, dataclass, field
-from pathlib import Path
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 from scipy.sparse import csgraph
-from tqdm import tqdm
 
-from vlln import __version__
-from vlln.errors import ConfigError, DataFormatError
-from vlln.files import write_text_atomic
+from vlln.errors import ConfigError
 from vlln.sim.simulator import Simulator
 from vlln.sim.storeys import Point3
 from vlln.sim.viewpoints import storey_view_points, view_points
@@ -45,15 +40,10 @@ from vlln.tasks.episode import (
     Goal,
     Instruction,
     ViewPoint,
-    read_episodes,
-    reference_convention_problems,
-    write_episodes,
 )
 from vlln.tasks.instructions import AmbiguousTargetError, InstructionWriter, partial_instruction
-from vlln.tasks.scenes import SceneCache, house_scene_id, procedural_scene_id
+from vlln.tasks.scenes import house_scene_id
 from vlln.tasks.spec import TaskType
-from vlln.tasks.splits import house_seeds
-from vlln.world.catalogue import default_catalogue
 from vlln.world.frame import yaw_to_quaternion
 from vlln.world.generator.presets import SMALL
 from vlln.world.model import ObjectInstance
@@ -84,10 +74,10 @@ class EpisodeGenConfig:
 
     def __post_init__(self) -> None:
         for name in ("starts_per_target", "view_point_stride", "min_view_points"):
-            _check_count(name, getattr(self, name), 1)
-        _check_count("start_pool_size", self.start_pool_size, self.starts_per_target)
+            check_count(name, getattr(self, name), 1)
+        check_count("start_pool_size", self.start_pool_size, self.starts_per_target)
         if self.targets_per_house is not None:
-            _check_count("targets_per_house", self.targets_per_house, 0)
+            check_count("targets_per_house", self.targets_per_house, 0)
         low, high = self.min_start_distance, self.max_start_distance
         if not (math.isfinite(low) and math.isfinite(high) and 0.0 <= low < high):
             raise ConfigError(
@@ -364,145 +354,11 @@ def _id_order(episode_id: str) -> int:
     return int(episode_id)
 
 
-def _check_count(name: str, value: object, low: int) -> None:
+def check_count(name: str, value: object, low: int) -> None:
     if isinstance(value, bool) or not isinstance(value, int) or value < low:
         raise ConfigError(f"{name} must be a whole number >= {low}, got {value!r}")
-
-
-# --- split files ------------------------------------------------------------------------
-
-
-def episode_path(out_dir: str | Path, split: str, task: TaskType | str) -> Path:
-    """``<out_dir>/<split>_<task>.json.gz``."""
-    return Path(out_dir) / f"{split}_{TaskType.parse(str(task)).value}.json.gz"
-
-
-def stats_path(out_dir: str | Path, split: str) -> Path:
-    """``<out_dir>/<split>_stats.json``: per-house statistics, totals and the build settings."""
-    return Path(out_dir) / f"{split}_stats.json"
 
 
 def house_rng(rng_seed: int, house_seed: int) -> np.random.Generator:
     """The generator of one house's episodes: adding houses leaves earlier houses unchanged."""
     return np.random.default_rng(np.random.SeedSequence([rng_seed, house_seed]))
-
-
-def build_split(
-    split: str,
-    houses: int,
-    out_dir: str | Path,
-    rng_seed: int = 0,
-    config: EpisodeGenConfig | None = None,
-    *,
-    scenes: SceneCache | None = None,
-    progress: bool = True,
-    floors: int = 1,
-    preset: str = SMALL.name,
-) -> Path:
-    """Write the episodes of the first ``houses`` houses of ``split`` to ``out_dir``
-    (houses of ``preset``; ``small`` houses of ``floors`` storeys: a target is often on
-    another storey than the start).
-
-    Writes ``<split>_iign.json.gz``, ``<split>_ign.json.gz``, ``<split>_objectnav.json.gz``
-    and, last, ``<split>_stats.json``; the same arguments give byte-identical files. Houses
-    come from ``scenes`` (which the caller closes) or from a cache made and closed here.
-    Returns ``out_dir``.
-    """
-    config = config or episode_config(preset)
-    _check_count("rng_seed", rng_seed, 0)
-    seeds = house_seeds(split, houses)
-    cache = scenes if scenes is not None else SceneCache(capacity=1)
-    episodes: dict[TaskType, list[Episode]] = {task: [] for task in TaskType}
-    per_house: list[HouseStats] = []
-    try:
-        for seed in tqdm(seeds, desc=f"{split} episodes", unit="house", disable=not progress):
-            sim = cache.get(procedural_scene_id(seed, floors, preset))
-            made = generate_house_episodes(sim, house_rng(rng_seed, seed), config)
-            for task in TaskType:
-                episodes[task].extend(made.of_task(task))
-            per_house.append(made.stats)
-    finally:
-        if scenes is None:
-            cache.close()
-    out = Path(out_dir)
-    for task in TaskType:
-        problems = reference_convention_problems(episodes[task])
-        if problems:
-            raise DataFormatError(f"{split} {task.value} episodes: {problems[0]}")
-        write_episodes(episode_path(out, split, task), episodes[task])
-    totals = HouseStats(-1, "", 0)
-    for stats in per_house:
-        totals.add(stats)
-    document = {
-        "build": _build_settings(split, seeds, rng_seed, config, floors, preset),
-        "totals": {"houses": len(per_house), **totals.counts_json()},
-        "houses": [stats.to_json() for stats in per_house],
-    }
-    write_text_atomic(stats_path(out, split), json.dumps(document, indent=2) + "\n")
-    return out
-
-
-def load_or_build_split(
-    split: str,
-    task: TaskType | str,
-    houses: int,
-    cache_dir: str | Path,
-    rng_seed: int = 0,
-    config: EpisodeGenConfig | None = None,
-    *,
-    scenes: SceneCache | None = None,
-    progress: bool = True,
-    preset: str = SMALL.name,
-) -> list[Episode]:
-    """The split's episodes of ``task`` on houses of ``preset``: read from ``cache_dir``
-    (a folder per preset), built there first if needed.
-
-    The cache is rebuilt when its stats file records other houses, seed, settings or vlln
-    version than asked for.
-    """
-    config = config or episode_config(preset)
-    folder = Path(cache_dir) if preset == SMALL.name else Path(cache_dir) / preset
-    path = episode_path(folder, split, task)
-    wanted = _build_settings(split, house_seeds(split, houses), rng_seed, config, 1, preset)
-    if not (path.exists() and _recorded_settings(stats_path(folder, split)) == wanted):
-        build_split(
-            split,
-            houses,
-            folder,
-            rng_seed,
-            config,
-            scenes=scenes,
-            progress=progress,
-            preset=preset,
-        )
-    return read_episodes(path)
-
-
-def _build_settings(
-    split: str,
-    seeds: list[int],
-    rng_seed: int,
-    config: EpisodeGenConfig,
-    floors: int = 1,
-    preset: str = SMALL.name,
-) -> dict[str, Any]:
-    settings = {
-        "split": split,
-        "house_seeds": seeds,
-        "rng_seed": rng_seed,
-        "config": asdict(config),
-        "vlln_version": __version__,
-        "catalogue": default_catalogue().fingerprint(),
-    }
-    if floors != 1:  # one-storey settings stay as they were
-        settings["floors"] = floors
-    if preset != SMALL.name:
-        settings["preset"] = preset
-    return settings
-
-
-def _recorded_settings(path: Path) -> Any:
-    try:
-        return json.loads(path.read_text(encoding="utf-8")).get("build")
-    except (OSError, ValueError, AttributeError):
-        return None

@@ -19,8 +19,8 @@ def _serve_web(args: argparse.Namespace) -> int:
     from vlln.oracle.llm.openai_client import OpenAISettings
     from vlln.oracle.service.server import is_loopback
     from vlln.tasks.episode import read_episodes
-    from vlln.tasks.generation import load_or_build_split
     from vlln.tasks.spec import TaskType
+    from vlln.tasks.split_files import load_or_build_split
     from vlln.tasks.splits import SPLIT_SIZES
     from vlln.web.config import WebConfig
     from vlln.web.server import episode_source, serve

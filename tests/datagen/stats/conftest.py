@@ -15,7 +15,8 @@ from vlln.sim.agent import Action, AgentState
 from vlln.sim.camera import CameraSpec
 from vlln.sim.renderer import Frame
 from vlln.tasks.episode import Episode, read_episodes
-from vlln.tasks.generation import EpisodeGenConfig, build_split, episode_path
+from vlln.tasks.generation import EpisodeGenConfig
+from vlln.tasks.split_files import build_split, episode_path
 
 CAMERA = CameraSpec(width=8, height=6)  # image content plays no part in the statistics
 # (steps, dialog as (trigger, question, answer, question type)) per kept trajectory
