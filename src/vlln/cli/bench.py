@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from vlln.cli.options import Commands
+from vlln.cli.options import Commands, add_preset_option
 from vlln.web.command import add_bench_web
 
 
@@ -115,8 +115,6 @@ def _bench_world(args: argparse.Namespace) -> int:
 
 
 def add_bench_commands(commands: Commands) -> None:
-    from vlln.world.generator.presets import DEFAULT_PRESET, PRESETS
-
     bench = commands.add_parser("bench", help="speed and memory benchmarks").add_subparsers(
         dest="bench_command", required=True
     )
@@ -200,9 +198,7 @@ def add_bench_commands(commands: Commands) -> None:
     fidelity.add_argument(
         "--out", default="out/fidelity", help="run folders, resumed (default out/fidelity)"
     )
-    fidelity.add_argument(
-        "--preset", default=DEFAULT_PRESET, choices=sorted(PRESETS), help="houses (default mp3d)"
-    )
+    add_preset_option(fidelity)
     fidelity.add_argument("--workers", type=int, default=1, help="processes (default 1)")
     fidelity.add_argument("--cache-dir", help="where built splits are kept (default ~/.cache/vlln)")
     fidelity.add_argument("--json", action="store_true", help="print one JSON object per line")
@@ -212,12 +208,7 @@ def add_bench_commands(commands: Commands) -> None:
     )
     bench_world.add_argument("--houses", type=int, default=20, help="houses (default 20)")
     bench_world.add_argument("--first-seed", type=int, default=0, help="first seed (default 0)")
-    bench_world.add_argument(
-        "--preset",
-        default=DEFAULT_PRESET,
-        choices=sorted(PRESETS),
-        help="houses to measure: mp3d (the benchmark's, default) or small",
-    )
+    add_preset_option(bench_world)
     bench_world.add_argument(
         "--test-houses",
         type=int,

@@ -6,7 +6,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from vlln.cli.options import Commands, add_ray_options
+from vlln.cli.options import Commands, add_preset_option, add_ray_options
 from vlln.errors import ConfigError
 
 
@@ -98,8 +98,6 @@ def _data_episodes(args: argparse.Namespace) -> int:
 
 
 def add_data_commands(commands: Commands) -> None:
-    from vlln.world.generator.presets import DEFAULT_PRESET, PRESETS
-
     data = commands.add_parser("data", help="the training-data pipeline").add_subparsers(
         dest="data_command", required=True
     )
@@ -133,12 +131,7 @@ def add_data_commands(commands: Commands) -> None:
     episodes.add_argument("--out", required=True, help="folder for <split>_<task>.json.gz")
     episodes.add_argument("--split", default="test", help="house split (default test)")
     episodes.add_argument("--seed", type=int, default=0, help="seed of every random choice")
-    episodes.add_argument(
-        "--preset",
-        default=DEFAULT_PRESET,
-        choices=sorted(PRESETS),
-        help="houses: mp3d (the benchmark's, default) or small (demo, fast tests)",
-    )
+    add_preset_option(episodes)
     episodes.add_argument(
         "--floors", type=int, help="small houses: storeys joined by stairs, 1 to 3 (default 1)"
     )

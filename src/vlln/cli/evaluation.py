@@ -6,7 +6,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from vlln.cli.options import Commands, add_ray_options
+from vlln.cli.options import Commands, add_preset_option, add_ray_options
 from vlln.errors import ConfigError
 
 
@@ -165,7 +165,6 @@ def _report(args: argparse.Namespace) -> int:
 def add_eval_commands(commands: Commands) -> None:
     """`vlln eval`, `vlln score` and `vlln report`."""
     from vlln.tasks.metrics import ORACLE_SUCCESS_RADIUS, SUCCESS_RADIUS
-    from vlln.world.generator.presets import DEFAULT_PRESET, PRESETS
 
     run = commands.add_parser("eval", help="play an agent over episodes into a run directory")
     run.add_argument(
@@ -196,12 +195,7 @@ def add_eval_commands(commands: Commands) -> None:
     run.add_argument("--shard", default="0/1", help="i/n: every episode whose index mod n is i")
     run.add_argument("--seed", type=int, default=0, help="base seed of agents and oracle")
     run.add_argument("--houses", type=int, help="houses of the split (default: 61/15/14)")
-    run.add_argument(
-        "--preset",
-        default=DEFAULT_PRESET,
-        choices=sorted(PRESETS),
-        help="houses of the split: mp3d (the benchmark's, default) or small (demo, fast tests)",
-    )
+    add_preset_option(run)
     run.add_argument("--max-steps", type=int, default=500, help="counted-step cap (default 500)")
     run.add_argument("--cache-dir", help="where built splits are kept (default ~/.cache/vlln)")
     run.add_argument("--stop-after", type=int, help="play at most N episodes now, then stop")

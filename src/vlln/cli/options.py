@@ -25,3 +25,20 @@ def add_ray_options(parser: argparse.ArgumentParser, chunks: bool) -> None:
     parser.add_argument(
         "--retries", type=int, default=3, help="re-runs of a task whose worker died (default 3)"
     )
+
+
+def add_preset_option(parser: argparse.ArgumentParser, benchmark_default: bool = True) -> None:
+    """``--preset``: which houses (:mod:`vlln.world.generator.presets`); the benchmark's
+    (``DEFAULT_PRESET``) unless ``benchmark_default`` is false, ``small`` for the demo and fast
+    tests."""
+    from vlln.world.generator.presets import DEFAULT_PRESET, PRESETS
+
+    default = DEFAULT_PRESET if benchmark_default else None
+    shown = "none: the generator's parameters" if default is None else default
+    parser.add_argument(
+        "--preset",
+        default=default,
+        choices=sorted(PRESETS),
+        help=f"houses: mp3d (the benchmark's, calibrated to Matterport3D) or small (demo, fast "
+        f"tests); default {shown}",
+    )

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from vlln.cli.options import Commands
+from vlln.cli.options import Commands, add_preset_option
 from vlln.errors import ConfigError
 
 
@@ -93,11 +93,7 @@ def add_world_commands(commands: Commands) -> None:
         help="a house-generator parameter, e.g. --param max_rooms=6 (repeatable)",
     )
     show.add_argument("--floors", type=int, help="storeys joined by stairs, 1 to 3 (default 1)")
-    show.add_argument(
-        "--preset",
-        choices=("small", "mp3d"),
-        help="a house of a preset: mp3d is the benchmark's (its parameters follow the seed)",
-    )
+    add_preset_option(show, benchmark_default=False)
     show.set_defaults(handler=_world_show)
     export = world.add_parser("export", help="write a house as Matterport3D/HM3D scene folders")
     export.add_argument("--seed", type=int, default=0, help="house seed (default 0)")
