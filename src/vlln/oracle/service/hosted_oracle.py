@@ -22,7 +22,6 @@ import numpy as np
 
 from vlln import __version__
 from vlln.errors import VllnError
-from vlln.oracle.protocol import EpisodeContext, Question, QuestionType
 from vlln.oracle.rule_oracle import RuleOracle, reads_view
 from vlln.oracle.service.config import ServiceConfig
 from vlln.oracle.service.limits import BuildLimiter
@@ -44,6 +43,7 @@ from vlln.sim.simulator import Simulator
 from vlln.sim.storeys import Storeys
 from vlln.sim.viewpoints import GoalPoint
 from vlln.tasks.episode import Episode
+from vlln.tasks.oracle_protocol import EpisodeContext, Question, QuestionType
 from vlln.tasks.scenes import SceneCache, canonical_seed, procedural_scene_id
 from vlln.tasks.spec import REFUSAL_MESSAGE
 from vlln.world.frame import wrap_angle
