@@ -6,7 +6,6 @@ import argparse
 from pathlib import Path
 
 from vlln.cli.options import Commands, add_preset_option
-from vlln.web.command import add_bench_web
 
 
 def _bench_sim(args: argparse.Namespace) -> int:
@@ -98,6 +97,13 @@ def _bench_fidelity(args: argparse.Namespace) -> int:
         cache_dir=None if args.cache_dir is None else Path(args.cache_dir),
         as_json=args.json,
     )
+    return 0
+
+
+def _bench_web(args: argparse.Namespace) -> int:
+    from vlln.bench.web import run_web_benchmark
+
+    run_web_benchmark(presses=args.presses, browser=args.browser, as_json=args.json)
     return 0
 
 
@@ -218,4 +224,10 @@ def add_bench_commands(commands: Commands) -> None:
     )
     bench_world.add_argument("--json", action="store_true", help="print one JSON object per line")
     bench_world.set_defaults(handler=_bench_world)
-    add_bench_web(bench)
+    web = bench.add_parser("web", help="key-press-to-new-frame latency in the browser")
+    web.add_argument("--presses", type=int, default=200, help="key presses (default 200)")
+    web.add_argument(
+        "--browser", default="/usr/bin/chromium", help="Chromium executable (Debian: chromium)"
+    )
+    web.add_argument("--json", action="store_true", help="print one JSON object per line")
+    web.set_defaults(handler=_bench_web)

@@ -11,7 +11,7 @@ from vlln.extras import SERVE_PACKAGES, require_extra
 
 def _oracle_serve(args: argparse.Namespace) -> int:
     require_extra("serve", "vlln oracle serve", SERVE_PACKAGES)
-    from vlln.oracle.service.server import serve, token_from_environment
+    from vlln.oracle_service.server import serve, token_from_environment
 
     token = token_from_environment(args.token_env)
     serve(

@@ -1,5 +1,5 @@
-"""``vlln serve web`` and ``vlln bench web``: argument definitions and handlers (imports of
-the heavy parts happen inside the handlers, so ``vlln --help`` stays fast)."""
+"""``vlln serve web``: argument definitions and the handler (imports of the heavy parts happen
+inside the handler, so ``vlln --help`` stays fast)."""
 
 from __future__ import annotations
 
@@ -16,8 +16,8 @@ def _serve_web(args: argparse.Namespace) -> int:
     require_extra("serve", "vlln serve web", SERVE_PACKAGES)
     from vlln.errors import ConfigError
     from vlln.eval.runner import default_cache_dir, order_by_scene, spread_over_scenes
+    from vlln.http.addresses import is_loopback
     from vlln.oracle.llm.openai_client import OpenAISettings
-    from vlln.oracle.service.server import is_loopback
     from vlln.tasks.episode import read_episodes
     from vlln.tasks.spec import TaskType
     from vlln.tasks.split_files import load_or_build_split
@@ -126,21 +126,3 @@ def add_serve_commands(commands: Commands) -> None:
     )
     web.add_argument("--cache-dir", help="where built splits are kept (default ~/.cache/vlln)")
     web.set_defaults(handler=_serve_web)
-
-
-def _bench_web(args: argparse.Namespace) -> int:
-    from vlln.bench.web import run_web_benchmark
-
-    run_web_benchmark(presses=args.presses, browser=args.browser, as_json=args.json)
-    return 0
-
-
-def add_bench_web(bench: Commands) -> None:
-    """``vlln bench web``."""
-    web = bench.add_parser("web", help="key-press-to-new-frame latency in the browser")
-    web.add_argument("--presses", type=int, default=200, help="key presses (default 200)")
-    web.add_argument(
-        "--browser", default="/usr/bin/chromium", help="Chromium executable (Debian: chromium)"
-    )
-    web.add_argument("--json", action="store_true", help="print one JSON object per line")
-    web.set_defaults(handler=_bench_web)

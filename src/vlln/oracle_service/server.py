@@ -9,7 +9,6 @@ announced with a warning on stderr.
 from __future__ import annotations
 
 import gc
-import ipaddress
 import os
 import sys
 from pathlib import Path
@@ -17,24 +16,15 @@ from pathlib import Path
 import uvicorn
 
 from vlln.errors import ConfigError
-from vlln.oracle.service.app import create_app
-from vlln.oracle.service.config import ServiceConfig
+from vlln.http.addresses import is_loopback
+from vlln.http.server import uvicorn_server
+from vlln.oracle_service.app import create_app
+from vlln.oracle_service.config import ServiceConfig
 from vlln.tasks.episode import read_episodes
 
 DEFAULT_HOST = "127.0.0.1"
 DEFAULT_PORT = 8765
 DEFAULT_TOKEN_ENV = "VLLN_ORACLE_TOKEN"
-LOG_LEVELS = ("critical", "error", "warning", "info", "debug")
-
-
-def is_loopback(host: str) -> bool:
-    """Whether ``host`` names this machine only (``localhost`` or a loopback address)."""
-    if host.lower() == "localhost":
-        return True
-    try:
-        return ipaddress.ip_address(host).is_loopback
-    except ValueError:
-        return False
 
 
 def token_from_environment(token_env: str | None) -> str | None:
@@ -62,10 +52,6 @@ def build_server(
     log_level: str = "info",
 ) -> uvicorn.Server:
     """A uvicorn server for the oracle app, not yet running; ``port=0`` picks a free port."""
-    if isinstance(port, bool) or not isinstance(port, int) or not 0 <= port <= 65535:
-        raise ConfigError(f"port must be a whole number in 0..65535, got {port!r}")
-    if log_level not in LOG_LEVELS:
-        raise ConfigError(f"log_level must be one of {', '.join(LOG_LEVELS)}, got {log_level!r}")
     if not is_loopback(host):
         if not allow_remote:
             raise ConfigError(
@@ -84,16 +70,7 @@ def build_server(
             "machines, with a bearer token",
             file=sys.stderr,
         )
-    settings = uvicorn.Config(
-        create_app(config),
-        host=host,
-        port=port,
-        log_level=log_level,
-        proxy_headers=False,
-        server_header=False,
-        lifespan="on",
-    )
-    return uvicorn.Server(settings)
+    return uvicorn_server(lambda: create_app(config), host, port, log_level)
 
 
 def freeze_startup_objects() -> int:

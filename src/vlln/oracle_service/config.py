@@ -23,7 +23,7 @@ class ServiceConfig:
     scene. ``oracle_seed`` seeds every session's :class:`RuleOracle`, so answers are
     reproducible. ``floor_tolerance`` is how far (m) a pose's y may be from the floor.
     ``builds_per_minute`` and ``client_builds_per_minute`` bound the houses built for all
-    clients together and for one client address (:mod:`vlln.oracle.service.limits`).
+    clients together and for one client address (:mod:`vlln.oracle_service.limits`).
     """
 
     token: str | None = None
