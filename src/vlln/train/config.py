@@ -4,53 +4,65 @@ warm-up, no weight decay, gradient clipping at 1.0, 5 epochs, 2 samples per devi
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass
 from pathlib import Path
-from typing import Any
+from typing import Annotated
 
-from vlln.errors import ConfigError
+from pydantic import AliasChoices, Field
+
+from vlln.config import Config
 
 
-@dataclass(frozen=True)
-class TrainConfig:
-    data_dir: Path  # a folder written by ``vlln data export-sft``
-    model: str  # a local model folder or a Hugging Face model name
-    out_dir: Path
-    epochs: float = 5.0
-    learning_rate: float = 2e-5
-    vision_learning_rate: float = 5e-6
-    warmup_ratio: float = 0.03
-    batch_size: int = 2  # per device
-    grad_accumulation: int = 1
-    max_grad_norm: float = 1.0
-    max_steps: int = -1  # > 0 stops after that many optimizer steps
-    save_steps: int = 500
-    save_limit: int = 2  # checkpoints kept
-    logging_steps: int = 10
-    workers: int = 4  # data-loader processes per device
+def _flag(name: str, field: str) -> AliasChoices:
+    """A flag named ``--name`` for ``field`` (both read from stored settings)."""
+    return AliasChoices(name, field)
+
+
+class TrainConfig(Config):
+    """Supervised fine-tuning of a vision-language model on a training export."""
+
+    data_dir: Annotated[Path, Field(validation_alias=_flag("data", "data_dir"))]
+    """a folder made by vlln data export-sft"""
+    model: str
+    """model folder or Hugging Face name"""
+    out_dir: Annotated[Path, Field(validation_alias=_flag("out", "out_dir"))]
+    """output folder (a rerun resumes it)"""
+    epochs: float = Field(5.0, gt=0)
+    """epochs"""
+    learning_rate: float = Field(2e-5, gt=0, validation_alias=_flag("lr", "learning_rate"))
+    """learning rate"""
+    vision_learning_rate: float = Field(
+        5e-6, gt=0, validation_alias=_flag("vision_lr", "vision_learning_rate")
+    )
+    """the vision tower's learning rate"""
+    warmup_ratio: float = Field(0.03, ge=0, lt=1)
+    """share of steps that warm the learning rate up"""
+    batch_size: int = Field(2, ge=1)
+    """samples per device"""
+    grad_accumulation: int = Field(
+        1, ge=1, validation_alias=_flag("grad_accum", "grad_accumulation")
+    )
+    """gradient accumulation steps"""
+    max_grad_norm: float = Field(1.0, gt=0)
+    """gradient clipping norm"""
+    max_steps: int = -1
+    """stop after N optimizer steps (-1: run the epochs)"""
+    save_steps: int = Field(500, ge=1)
+    """checkpoint every N steps"""
+    save_limit: int = Field(2, ge=1)
+    """checkpoints kept"""
+    logging_steps: int = Field(10, ge=1)
+    """log the loss every N steps"""
+    workers: int = Field(4, ge=0)
+    """data-loader processes per device"""
     seed: int = 0
+    """seed of the data order and new weights"""
     lora: bool = False
-    lora_rank: int = 16
-    max_pixels: int | None = None  # caps the image processor's pixels per image
-    gradient_checkpointing: bool | None = None  # None = when a GPU is used
-    resume: Path | None = None  # None = the newest checkpoint in out_dir, if any
-
-    def __post_init__(self) -> None:
-        for name in ("learning_rate", "vision_learning_rate", "epochs", "max_grad_norm"):
-            if not getattr(self, name) > 0:
-                raise ConfigError(f"--{name.replace('_', '-')} must be > 0")
-        if not 0 <= self.warmup_ratio < 1:
-            raise ConfigError(f"warm-up ratio must be in [0, 1), got {self.warmup_ratio}")
-        for name in ("batch_size", "grad_accumulation", "save_steps", "logging_steps"):
-            if getattr(self, name) < 1:
-                raise ConfigError(f"--{name.replace('_', '-')} must be >= 1")
-        if self.workers < 0 or self.save_limit < 1 or self.lora_rank < 1:
-            raise ConfigError("--workers must be >= 0, --save-limit and --lora-rank >= 1")
-        if self.max_pixels is not None and self.max_pixels < 28 * 28:
-            raise ConfigError(f"--max-pixels must be at least 784, got {self.max_pixels}")
-
-    def settings(self) -> dict[str, Any]:
-        return {
-            key: str(value) if isinstance(value, Path) else value
-            for key, value in asdict(self).items()
-        }
+    """train LoRA adapters (small GPUs)"""
+    lora_rank: int = Field(16, ge=1)
+    """LoRA rank"""
+    max_pixels: int | None = Field(None, ge=28 * 28)
+    """cap on pixels per image, fewer tokens (none: the processor's)"""
+    gradient_checkpointing: bool | None = None
+    """recompute activations (none: on with a GPU)"""
+    resume: Path | None = None
+    """a checkpoint folder (none: the newest in --out)"""

@@ -221,7 +221,7 @@ def _save_final(trainer: Any, encoder: Any, config: TrainConfig) -> None:
 
 def _write_summary(config: TrainConfig, outcome: TrainOutcome) -> None:
     document = {
-        "settings": config.settings(),
+        "settings": config.to_json(),
         "samples": outcome.samples,
         "steps": outcome.steps,
         "seconds": round(outcome.seconds, 3),

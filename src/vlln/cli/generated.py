@@ -1,0 +1,92 @@
+"""Commands whose flags are generated from a typed config (:class:`vlln.config.Config`).
+
+Each field becomes one flag (``max_steps`` -> ``--max-steps``; a field's first validation
+alias, when it has one, names the flag instead), its help text is the field's docstring and
+its default the field's default; booleans get ``--x/--no-x``. The handler receives the built
+config, so no command maps flags to settings by hand.
+"""
+
+from __future__ import annotations
+
+import argparse
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any, TypeVar
+
+from pydantic_settings import CliSettingsSource
+
+from vlln.cli.options import Commands
+from vlln.config import Config
+from vlln.errors import ConfigError, DataFormatError
+from vlln.files import parse_json
+
+C = TypeVar("C", bound=Config)
+
+CONFIG_FLAG = "config"
+"""``--config FILE``: settings stored by an earlier run, under the flags given."""
+
+
+def add_config_command(
+    commands: Commands,
+    name: str,
+    config: type[C],
+    handler: Callable[[C], int],
+    help: str,
+    replay: bool = False,
+) -> argparse.ArgumentParser:
+    """Add command ``name``, its flags generated from ``config``; ``handler`` gets the config
+    built from the flags given. With ``replay``, ``--config FILE`` reads settings stored by
+    :meth:`Config.to_json` (e.g. a run's ``run.json``) and the flags given override them."""
+    parser = commands.add_parser(name, help=help, description=help)
+    if replay:
+        parser.add_argument(
+            "--" + CONFIG_FLAG,
+            metavar="FILE",
+            help="settings stored by an earlier run (its run.json); flags given override them",
+        )
+    source: CliSettingsSource[Any] = CliSettingsSource(config, root_parser=parser)
+
+    def run(args: argparse.Namespace) -> int:
+        return handler(config_from_args(config, source, args))
+
+    parser.set_defaults(handler=run, config_class=config)
+    return parser
+
+
+def config_from_args(
+    config: type[C], source: CliSettingsSource[Any], args: argparse.Namespace
+) -> C:
+    """The config the parsed ``args`` give, over a ``--config`` file's settings if named."""
+    given = {key: value for key, value in vars(args).items() if key != CONFIG_FLAG}
+    flags = source(parsed_args=argparse.Namespace(**given))()
+    stored_path = getattr(args, CONFIG_FLAG, None)
+    if stored_path is None:
+        return config.build(flags)
+    stored = config.from_json(_read_settings(Path(stored_path)), stored_path).to_json()
+    return config.build(stored | _by_field_name(config, flags))
+
+
+def _by_field_name(config: type[Config], flags: dict[str, Any]) -> dict[str, Any]:
+    """``flags`` keyed by field name, where a flag is named by its alias, so that it overrides
+    the stored value of the same field."""
+    names = {}
+    for field_name, field in config.model_fields.items():
+        alias = field.validation_alias
+        for choice in getattr(alias, "choices", [alias] if alias else []):
+            names[str(choice)] = field_name
+    unknown = sorted(set(flags) - set(config.model_fields) - set(names))
+    if unknown:
+        raise ConfigError(f"unknown settings {', '.join(unknown)}")
+    return {names.get(key, key): value for key, value in flags.items()}
+
+
+def _read_settings(path: Path) -> Any:
+    """The JSON of a ``--config`` file; a missing or unreadable one is one line."""
+    try:
+        data = path.read_bytes()
+    except OSError as error:
+        raise ConfigError(f"--config {path}: cannot read it ({error.strerror})") from None
+    try:
+        return parse_json(data)
+    except DataFormatError as error:
+        raise ConfigError(f"--config {path}: {error}") from None

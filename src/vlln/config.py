@@ -1,0 +1,101 @@
+"""Typed configs: the one place a command's settings, their defaults and their checks live.
+
+Every command's settings are a :class:`Config` (pydantic-settings). The command line is
+generated from the class (:mod:`vlln.cli.generated`: one flag per field, its help text the
+field's docstring, its default the field's default), files such as ``run.json`` are written
+with :meth:`Config.to_json` and read back with :meth:`Config.from_json`, and every check is a
+pydantic validator. So a default or a rule is written once, and a stored run replays exactly.
+
+pydantic-settings was chosen over tyro and draccus because pydantic already validates the web
+app's and the oracle service's request bodies: one validation style everywhere, and its
+command-line source attaches to an existing argparse tree, so commands without settings stay
+plain argparse.
+"""
+
+from __future__ import annotations
+
+from typing import Any, ClassVar, Self
+
+from pydantic import ValidationError
+from pydantic_settings import BaseSettings, PydanticBaseSettingsSource, SettingsConfigDict
+
+from vlln.errors import ConfigError, DataFormatError
+
+__all__ = ["Config", "describe_validation_error"]
+
+
+class Config(BaseSettings):
+    """Base of every typed config: frozen, unknown keys refused, read from its arguments only
+    (never from environment variables or ``.env`` files, so a run depends on what was given)."""
+
+    model_config = SettingsConfigDict(
+        frozen=True,
+        extra="forbid",
+        populate_by_name=True,
+        use_attribute_docstrings=True,
+        cli_kebab_case=True,
+        cli_implicit_flags=True,
+        cli_hide_none_type=True,
+        cli_avoid_json=True,
+    )
+
+    file_keys: ClassVar[tuple[str, ...]] = ()
+    """Keys a stored file may hold beside the settings (written by the runner, not settings)."""
+
+    @classmethod
+    def settings_customise_sources(
+        cls,
+        settings_cls: type[BaseSettings],
+        init_settings: PydanticBaseSettingsSource,
+        env_settings: PydanticBaseSettingsSource,
+        dotenv_settings: PydanticBaseSettingsSource,
+        file_secret_settings: PydanticBaseSettingsSource,
+    ) -> tuple[PydanticBaseSettingsSource, ...]:
+        return (init_settings,)
+
+    @classmethod
+    def build(cls, values: dict[str, Any], flags: bool = True) -> Self:
+        """The config of ``values``; an invalid value raises :class:`ConfigError` in one line
+        that names the flag (``flags``) or the key at fault."""
+        try:
+            return cls(**values)
+        except ValidationError as error:
+            raise ConfigError(describe_validation_error(error, flags)) from None
+
+    def to_json(self) -> dict[str, Any]:
+        """The settings as JSON values, in field order (what ``run.json`` and friends store)."""
+        return self.model_dump(mode="json")
+
+    @classmethod
+    def from_json(cls, data: Any, where: str) -> Self:
+        """Read settings stored by :meth:`to_json`; ``where`` names the file in errors. Keys in
+        :attr:`file_keys` are the file's own and are skipped."""
+        if not isinstance(data, dict):
+            raise DataFormatError(f"{where}: expected a JSON object of settings")
+        values = {key: value for key, value in data.items() if key not in cls.file_keys}
+        try:
+            return cls(**values)
+        except ValidationError as error:
+            raise DataFormatError(
+                f"{where}: malformed settings ({describe_validation_error(error, False)})"
+            ) from None
+
+
+def describe_validation_error(error: ValidationError, flags: bool) -> str:
+    """One line per problem, joined: ``--max-steps: must be at least 1`` (or the bare key when
+    ``flags`` is false); pydantic's "Value error, " prefix is dropped from our own messages."""
+    parts = []
+    for problem in error.errors():
+        message = str(problem["msg"]).removeprefix("Value error, ")
+        names = [str(part) for part in problem["loc"]]
+        if not names:
+            parts.append(message)
+            continue
+        name = ".".join(names)
+        shown = "--" + name.replace("_", "-") if flags else name
+        if problem["type"] == "extra_forbidden":
+            message = "not a known setting"
+        elif problem["type"] == "missing":
+            message = "required"
+        parts.append(f"{shown}: {message}")
+    return "; ".join(parts)

@@ -1,0 +1,87 @@
+"""Commands generated from typed configs: their flags, defaults and errors come from the config
+class alone, and ``--config`` replays stored settings."""
+
+from __future__ import annotations
+
+import argparse
+import json
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+from pydantic import BaseModel
+
+from vlln.cli import build_parser, main
+from vlln.config import Config
+from vlln.train.config import TrainConfig
+
+
+def _commands(
+    parser: argparse.ArgumentParser, path: tuple[str, ...] = ()
+) -> Iterator[tuple[tuple[str, ...], argparse.ArgumentParser]]:
+    """Every (sub)command of the parser tree, with its words."""
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            for name, sub in action.choices.items():
+                yield (*path, name), sub
+                yield from _commands(sub, (*path, name))
+
+
+def _generated() -> list[tuple[tuple[str, ...], argparse.ArgumentParser, type[Config]]]:
+    found = []
+    for words, parser in _commands(build_parser()):
+        config = parser.get_default("config_class")
+        if config is not None:
+            found.append((words, parser, config))
+    return found
+
+
+def test_the_commands_with_settings_are_generated_from_their_configs() -> None:
+    names = {" ".join(words) for words, _, _ in _generated()}
+    assert "train sft" in names
+
+
+@pytest.mark.parametrize("words, parser, config", _generated(), ids=lambda v: str(v))
+def test_every_flag_is_a_field_and_every_default_the_fields(
+    words: tuple[str, ...], parser: argparse.ArgumentParser, config: type[Config]
+) -> None:
+    flags = {
+        option: action
+        for action in parser._actions
+        for option in action.option_strings
+        if option.startswith("--") and option not in ("--help", "--config")
+    }
+    for name, field in config.model_fields.items():
+        if isinstance(field.default, BaseModel):
+            continue
+        flag = "--" + name.replace("_", "-")
+        assert flag in flags, f"{' '.join(words)}: field {name} has no flag {flag}"
+        help_text = flags[flag].help or ""
+        assert field.description or field.is_required(), f"{name} has no docstring"
+        if not field.is_required():
+            assert f"(default: {field.default})" in help_text.replace("\n", " ") or (
+                isinstance(field.default, tuple | list)
+            ), f"{' '.join(words)} {flag}: help shows no default {field.default!r}: {help_text}"
+        # The argparse-level default is never a second copy of the value.
+        assert flags[flag].default in (None, argparse.SUPPRESS, False), (
+            f"{' '.join(words)} {flag} has its own default {flags[flag].default!r}"
+        )
+
+
+def test_train_flags_build_the_config_and_bad_values_are_one_line(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    code = main(["train", "sft", "--data", "d", "--model", "m", "--out", "o", "--lr", "-1"])
+    err = capsys.readouterr().err
+    assert code == 2
+    assert err.strip() == "error: --lr: Input should be greater than 0"
+    code = main(["train", "sft", "--model", "m"])
+    assert capsys.readouterr().err.strip() == "error: --data: required; --out: required"
+
+
+def test_stored_settings_read_back_equal_and_refuse_unknown_keys(tmp_path: Path) -> None:
+    config = TrainConfig.build({"data": "d", "model": "m", "out": "o", "lr": 0.5, "lora": True})
+    stored = json.loads(json.dumps(config.to_json()))
+    assert TrainConfig.from_json(stored, "x.json") == config
+    with pytest.raises(Exception, match=r"x.json: malformed settings \(learnig_rate: not a known"):
+        TrainConfig.from_json({**stored, "learnig_rate": 1.0}, "x.json")
