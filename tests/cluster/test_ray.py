@@ -18,6 +18,7 @@ import ray
 from vlln.cluster.data import build_dataset_ray
 from vlln.cluster.evaluation import run_ray_evaluation
 from vlln.datagen.build import BuildConfig, build_dataset
+from vlln.datagen.layout import INFO_FILE
 from vlln.errors import ConfigError
 from vlln.eval.config import EvalConfig
 from vlln.eval.run_dir import EPISODES_FILE, REFUSED_FILE, RUN_FILE, SUMMARY_JSON, SUMMARY_MD
@@ -151,4 +152,6 @@ def test_data_build_on_ray_equals_a_local_build(cluster: None, tmp_path: Path) -
         }
 
     assert files(remote) == files(local)
-    assert any("/meta/info.json" in name for name in files(remote))
+    assert any(name.endswith(INFO_FILE) for name in files(remote))
+    with pytest.raises(ConfigError, match="other settings"):  # the runner's check, on Ray too
+        build_dataset_ray(tmp_path / "ray", replace(config, seed=1), progress=False)
