@@ -17,8 +17,9 @@ from tests.oracle.llm.chat_server import ChatServer, Scripted, chat_server, comp
 from vlln.agents.expert import ExpertAgent
 from vlln.cli import main
 from vlln.eval.config import EvalConfig
+from vlln.eval.play import derive_seed, play_episode
 from vlln.eval.report import write_report
-from vlln.eval.runner import RunOutcome, derive_seed, play_episode, run_evaluation
+from vlln.eval.runner import RunOutcome, run_evaluation
 from vlln.prompt import IMAGE_TAG, DialogExchange, build_conversation, connective_for
 from vlln.sim.agent import AgentState
 from vlln.tasks.env import NavigationEnv

@@ -13,9 +13,9 @@ from tests.eval.runs import evaluate, lines, summary
 from vlln.errors import ConfigError
 from vlln.eval.config import EvalConfig
 from vlln.eval.health import run_health
+from vlln.eval.play import derive_seed
 from vlln.eval.results import load_runs
 from vlln.eval.runner import (
-    derive_seed,
     load_episodes,
     order_by_scene,
     plan_work,

@@ -63,12 +63,13 @@ def _data_stats(args: argparse.Namespace) -> int:
 def _data_export_sft(args: argparse.Namespace) -> int:
     from vlln.datagen.sft.config import SftConfig
     from vlln.datagen.sft.export import export_sft
+    from vlln.datagen.sft.records import SFT_FILE
 
     config = SftConfig(seed=args.seed, history_frames=args.history)
     summary = export_sft(Path(args.dataset), Path(args.out), config, progress=not args.quiet)
     print(
         f"wrote {summary.samples} conversations from {summary.trajectories} trajectories "
-        f"({summary.images} images) to {args.out}/sft.jsonl"
+        f"({summary.images} images) to {Path(args.out) / SFT_FILE}"
     )
     return 0
 

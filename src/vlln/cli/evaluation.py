@@ -19,6 +19,7 @@ def _demo(args: argparse.Namespace) -> int:
 
 def _eval(args: argparse.Namespace) -> int:
     from vlln.eval.config import EvalConfig, default_budgets, parse_budgets
+    from vlln.eval.run_dir import summary_md_file
     from vlln.eval.runner import run_evaluation
     from vlln.eval.sharding import Shard
 
@@ -95,7 +96,7 @@ def _eval(args: argparse.Namespace) -> int:
     )
     print(outcome.health.line(), file=sys.stderr)
     if outcome.summary is not None:
-        print((Path(args.out) / "summary.md").read_text(encoding="utf-8"), end="")
+        print(summary_md_file(Path(args.out)).read_text(encoding="utf-8"), end="")
     calls = [call for record in outcome.records for call in record.model_calls]
     if calls and all(call.text is None for call in calls):
         first = " ".join(str(calls[0].error).split())[:200]

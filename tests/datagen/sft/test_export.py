@@ -22,6 +22,7 @@ from vlln.agents.model.options import openai_vlm_agent
 from vlln.datagen.layout import DOWN_TILT_DEG
 from vlln.datagen.reader import HouseDataset
 from vlln.datagen.sft import SftConfig, export_sft
+from vlln.datagen.sft.records import sharegpt
 from vlln.prompt import (
     QUESTION_LIMIT_ANSWER,
     Conversation,
@@ -126,7 +127,7 @@ def test_conversations_are_the_prompt_the_agent_builds(
                 )
                 for left in range(7)
             ]
-            matches = [c for c in candidates if c.as_sharegpt() == sample["conversations"]]
+            matches = [c for c in candidates if sharegpt(c.turns) == sample["conversations"]]
             assert matches, sample["id"]
             prefix = f"images/{hand_dataset.house}/episode_{episode:06d}"
             paths = [f"{prefix}/{ref.camera}_{ref.frame:06d}.jpg" for ref in matches[0].images]
