@@ -38,7 +38,7 @@ def _generated() -> list[tuple[tuple[str, ...], argparse.ArgumentParser, type[Co
 
 def test_the_commands_with_settings_are_generated_from_their_configs() -> None:
     names = {" ".join(words) for words, _, _ in _generated()}
-    assert "train sft" in names
+    assert {"train sft", "eval", "score", "report", "video", "demo"} <= names
 
 
 @pytest.mark.parametrize("words, parser, config", _generated(), ids=lambda v: str(v))
@@ -51,15 +51,22 @@ def test_every_flag_is_a_field_and_every_default_the_fields(
         for option in action.option_strings
         if option.startswith("--") and option not in ("--help", "--config")
     }
+    positionals = {action.dest: action for action in parser._actions if not action.option_strings}
     for name, field in config.model_fields.items():
         if isinstance(field.default, BaseModel):
             continue
+        if name in positionals:  # CliPositionalArg: required, so no default
+            assert field.description and positionals[name].help == field.description
+            continue
         flag = "--" + name.replace("_", "-")
         assert flag in flags, f"{' '.join(words)}: field {name} has no flag {flag}"
-        help_text = flags[flag].help or ""
+        help_text = (flags[flag].help or "").replace("\n", " ")
         assert field.description or field.is_required(), f"{name} has no docstring"
-        if not field.is_required():
-            assert f"(default: {field.default})" in help_text.replace("\n", " ") or (
+        if field.default_factory is not None:
+            shown = f"(default factory: {field.default_factory.__name__})"
+            assert shown in help_text, f"{' '.join(words)} {flag}: {help_text}"
+        elif not field.is_required():
+            assert f"(default: {field.default})" in help_text or (
                 isinstance(field.default, tuple | list)
             ), f"{' '.join(words)} {flag}: help shows no default {field.default!r}: {help_text}"
         # The argparse-level default is never a second copy of the value.

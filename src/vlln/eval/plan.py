@@ -19,8 +19,6 @@ from typing import Any
 from vlln.eval.config import EvalConfig
 from vlln.tasks.record import EpisodeRecord
 
-PLAN_FACT = "plan"  # the key of the plan in run.json
-
 
 @dataclass(frozen=True)
 class RunPlan:

@@ -34,8 +34,8 @@ from pathlib import Path
 from typing import IO, Any
 
 from vlln.errors import ConfigError, DataFormatError
-from vlln.eval.config import EvalConfig, describe_differences
-from vlln.eval.plan import PLAN_FACT, RunPlan, missing_shards
+from vlln.eval.config import PLAN_FACT, EvalConfig, describe_differences
+from vlln.eval.plan import RunPlan, missing_shards
 from vlln.eval.refusals import Refusal, read_refusals
 from vlln.files import check_output_folder, parse_json, write_bytes_atomic, write_text_atomic
 from vlln.tasks.record import EpisodeRecord
@@ -43,8 +43,6 @@ from vlln.tasks.record import EpisodeRecord
 RUN_FILE = "run.json"
 EPISODES_FILE = "episodes.jsonl"
 SKIPPED_FILE = "episodes.skipped.jsonl"
-# in run.json, but not arguments of the run
-RUN_FACTS = ("planned_episodes", PLAN_FACT, "provenance")
 SUMMARY_JSON = "summary.json"
 SUMMARY_MD = "summary.md"
 LOCK_FILE = ".lock"
@@ -258,8 +256,7 @@ class RunDirectory:
         data = self.stored_run()
         if data is None:
             return None
-        arguments = {name: value for name, value in data.items() if name not in RUN_FACTS}
-        return EvalConfig.from_json(arguments, str(self.run_path))
+        return EvalConfig.from_json(data, str(self.run_path))
 
     def stored_scenes(self) -> str | None:
         """The folder of scanned scenes the run was made with (``--scenes``), if any."""
