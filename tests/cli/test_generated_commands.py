@@ -12,6 +12,8 @@ import pytest
 from pydantic import BaseModel
 
 from vlln.cli import build_parser, main
+from vlln.cli.eval_configs import EvalCommand
+from vlln.cli.generated import add_config_command
 from vlln.config import Config
 from vlln.train.config import TrainConfig
 
@@ -92,3 +94,19 @@ def test_stored_settings_read_back_equal_and_refuse_unknown_keys(tmp_path: Path)
     assert TrainConfig.from_json(stored, "x.json") == config
     with pytest.raises(Exception, match=r"x.json: malformed settings \(learnig_rate: not a known"):
         TrainConfig.from_json({**stored, "learnig_rate": 1.0}, "x.json")
+
+
+def test_a_bare_flag_goes_without_its_value_and_eval_keeps_its_flag_spellings() -> None:
+    parser = argparse.ArgumentParser()
+    built: list[EvalCommand] = []
+
+    def keep(config: EvalCommand) -> int:
+        built.append(config)
+        return 0
+
+    add_config_command(parser.add_subparsers(), "eval", EvalCommand, keep, help="", replay=True)
+    common = ["eval", "--agent", "frontier", "--task", "iign", "--out", "o", "--preset", "small"]
+    for given, ray in (([], None), (["--ray"], ""), (["--ray", "auto"], "auto")):
+        args = parser.parse_args([*common, *given, "--budget", "0", "--no-sweep"])
+        assert args.handler(args) == 0
+        assert (built[-1].ray, built[-1].budgets, built[-1].sweep) == (ray, (0,), False)

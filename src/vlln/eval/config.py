@@ -47,9 +47,12 @@ def _budgets(value: Any) -> Any:
     """Budgets as given: ``"0-5"``, ``"0,5"``, ``"3"``, a number, or a list of those."""
     if isinstance(value, str):
         return parse_budgets(value)
+    if isinstance(value, int):
+        return (value,)
     if isinstance(value, list | tuple):
-        return tuple(b for part in value for b in _budgets(part))
-    return (value,) if isinstance(value, int) else value
+        parts = [_budgets(part) if isinstance(part, str | int) else (part,) for part in value]
+        return tuple(budget for part in parts for budget in part)  # pydantic checks each
+    return value
 
 
 def _shard(value: Any) -> Shard:
