@@ -12,6 +12,8 @@ import pytest
 from pydantic import BaseModel
 
 from vlln.cli import build_parser, main
+from vlln.cli.eval_configs import EvalCommand
+from vlln.cli.generated import add_config_command
 from vlln.config import Config
 from vlln.train.config import TrainConfig
 
@@ -38,7 +40,7 @@ def _generated() -> list[tuple[tuple[str, ...], argparse.ArgumentParser, type[Co
 
 def test_the_commands_with_settings_are_generated_from_their_configs() -> None:
     names = {" ".join(words) for words, _, _ in _generated()}
-    assert "train sft" in names
+    assert {"train sft", "eval", "score", "report", "video", "demo"} <= names
 
 
 @pytest.mark.parametrize("words, parser, config", _generated(), ids=lambda v: str(v))
@@ -51,15 +53,22 @@ def test_every_flag_is_a_field_and_every_default_the_fields(
         for option in action.option_strings
         if option.startswith("--") and option not in ("--help", "--config")
     }
+    positionals = {action.dest: action for action in parser._actions if not action.option_strings}
     for name, field in config.model_fields.items():
         if isinstance(field.default, BaseModel):
             continue
+        if name in positionals:  # CliPositionalArg: required, so no default
+            assert field.description and positionals[name].help == field.description
+            continue
         flag = "--" + name.replace("_", "-")
         assert flag in flags, f"{' '.join(words)}: field {name} has no flag {flag}"
-        help_text = flags[flag].help or ""
+        help_text = (flags[flag].help or "").replace("\n", " ")
         assert field.description or field.is_required(), f"{name} has no docstring"
-        if not field.is_required():
-            assert f"(default: {field.default})" in help_text.replace("\n", " ") or (
+        if field.default_factory is not None:
+            shown = f"(default factory: {field.default_factory.__name__})"
+            assert shown in help_text, f"{' '.join(words)} {flag}: {help_text}"
+        elif not field.is_required():
+            assert f"(default: {field.default})" in help_text or (
                 isinstance(field.default, tuple | list)
             ), f"{' '.join(words)} {flag}: help shows no default {field.default!r}: {help_text}"
         # The argparse-level default is never a second copy of the value.
@@ -85,3 +94,19 @@ def test_stored_settings_read_back_equal_and_refuse_unknown_keys(tmp_path: Path)
     assert TrainConfig.from_json(stored, "x.json") == config
     with pytest.raises(Exception, match=r"x.json: malformed settings \(learnig_rate: not a known"):
         TrainConfig.from_json({**stored, "learnig_rate": 1.0}, "x.json")
+
+
+def test_a_bare_flag_goes_without_its_value_and_eval_keeps_its_flag_spellings() -> None:
+    parser = argparse.ArgumentParser()
+    built: list[EvalCommand] = []
+
+    def keep(config: EvalCommand) -> int:
+        built.append(config)
+        return 0
+
+    add_config_command(parser.add_subparsers(), "eval", EvalCommand, keep, help="", replay=True)
+    common = ["eval", "--agent", "frontier", "--task", "iign", "--out", "o", "--preset", "small"]
+    for given, ray in (([], None), (["--ray"], ""), (["--ray", "auto"], "auto")):
+        args = parser.parse_args([*common, *given, "--budget", "0", "--no-sweep"])
+        assert args.handler(args) == 0
+        assert (built[-1].ray, built[-1].budgets, built[-1].sweep) == (ray, (0,), False)

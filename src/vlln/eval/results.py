@@ -34,7 +34,6 @@ from vlln.eval.run_dir import (
     PLAN_FACT,
     PLANNED_FACT,
     PROVENANCE_FACT,
-    RUN_FACTS,
     RUN_FILE,
     SKIPPED_FILE,
     SUMMARY_JSON,
@@ -252,8 +251,7 @@ class RunDirectory:
         data = self.stored_run()
         if data is None:
             return None
-        arguments = {name: value for name, value in data.items() if name not in RUN_FACTS}
-        return EvalConfig.from_json(arguments, str(self.run_path))
+        return EvalConfig.from_json(data, str(self.run_path))
 
     def stored_scenes(self) -> str | None:
         """The folder of scanned scenes the run was made with (``--scenes``), if any."""

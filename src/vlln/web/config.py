@@ -9,7 +9,8 @@ from dataclasses import dataclass, field
 from enum import StrEnum
 from pathlib import Path
 
-from vlln.agents.registry import AGENTS, CONFIGURED_AGENTS
+from vlln.agents.options import AgentOptions
+from vlln.agents.registry import AGENTS, CONFIGURED_AGENTS, agent_options
 from vlln.errors import ConfigError
 from vlln.oracle.llm.openai_client import OpenAISettings
 from vlln.tasks.episode import Episode
@@ -55,7 +56,8 @@ class WebConfig:
     max_answer_chars: int = 1000
     jpeg_quality: int = 85
     llm: OpenAISettings | None = None
-    agent_options: Mapping[str, Mapping[str, str]] = field(default_factory=dict)
+    agent_options: Mapping[str, AgentOptions | Mapping[str, str]] = field(default_factory=dict)
+    """Options of agents that take them, by agent; read into the agent's options class."""
 
     def __post_init__(self) -> None:
         if not self.episodes:
@@ -89,6 +91,8 @@ class WebConfig:
                 raise ConfigError(f"{name} must be a whole number >= 1, got {value!r}")
         if not 1 <= self.jpeg_quality <= 95:
             raise ConfigError(f"jpeg_quality must be in 1..95, got {self.jpeg_quality}")
+        typed = {name: agent_options(name, given) for name, given in self.agent_options.items()}
+        object.__setattr__(self, "agent_options", typed)
 
     @property
     def agents(self) -> tuple[str, ...]:

@@ -18,7 +18,7 @@ from tests.datagen.sft.conftest import CATEGORY, HandDataset
 from tests.datagen.sft.samples import episode_samples, read_samples, sample_key
 from tests.oracle.llm.chat_server import chat_server, completion
 
-from vlln.agents.model.options import openai_vlm_agent
+from vlln.agents.model.options import OpenAIVLMOptions, openai_vlm_agent
 from vlln.datagen.layout import DOWN_TILT_DEG
 from vlln.datagen.reader import HouseDataset
 from vlln.datagen.sft import SftConfig, export_sft
@@ -315,7 +315,7 @@ def test_the_model_agent_is_shown_the_exported_images_byte_for_byte(
     script = [completion("<move>↓"), completion("<move>320 240")]
     with chat_server(script) as server:
         options = {"base_url": server.base_url, "model": "images-test", "max_retries": "0"}
-        agent = openai_vlm_agent(0, options)
+        agent = openai_vlm_agent(0, OpenAIVLMOptions.parse("openai-vlm", options))
         agent.reset(info)
         assert agent.act(views[0]) == Action.LOOK_DOWN
         assert isinstance(agent.act(views[1]), PixelGoal)
