@@ -26,7 +26,7 @@ from vlln.oracle.classifier.entities import (
     mentioned,
     step_choice,
 )
-from vlln.oracle.classifier.model import packaged_classifier
+from vlln.oracle.classifier.model import packaged_classifier, prepared
 from vlln.oracle.protocol import QuestionType
 from vlln.oracle.topics import AttributeTopic, OtherTopic, RouteKind, StepChoice, parse_label
 from vlln.world.materials import COLORS
@@ -71,20 +71,19 @@ def analysed(text: str) -> QuestionAnalysis:
     return analyse_question(text)
 
 
-_WORD = re.compile(r"[a-z0-9]+")
 _SENTENCE_END = re.compile(r"[.?!;\n]+")
 
 
 def analyse_question(text: str) -> QuestionAnalysis:
     """Type, topic and mentioned values of a question."""
-    lowered = text.lower()
-    sentences = [s for s in _SENTENCE_END.split(lowered) if _WORD.search(s)]
-    words = corrected_words(_WORD.findall(lowered))
+    sentences = [prepared(s) for s in _SENTENCE_END.split(text)]
+    sentences = [s for s in sentences if s]
+    words = corrected_words(prepared(text).split())
     normalised = " ".join(words)
     if not words:
         return QuestionAnalysis(normalised, QuestionType.OTHER, other=OtherTopic.UNKNOWN)
     question_type, topic = parse_label(packaged_classifier().predict(text))
-    last = _WORD.findall(sentences[-1]) if sentences else []
+    last = sentences[-1].split()
     route = topic if isinstance(topic, RouteKind) else None
     return QuestionAnalysis(
         text=normalised,

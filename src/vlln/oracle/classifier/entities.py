@@ -49,38 +49,15 @@ MATERIAL_SYNONYMS: dict[str, str] = {
     "tiled": "tile",
 }
 THIS_ROOM = ("this room", "same room", "current room", "room i am in", "room we are in")
+# First words of a yes/no question ("isn't" reads as "isn" "t").
 YES_NO_OPENERS = frozenset(
-    [
-        "is",
-        "are",
-        "was",
-        "were",
-        "does",
-        "do",
-        "did",
-        "can",
-        "could",
-        "should",
-        "shall",
-        "am",
-        "has",
-        "have",
-        "isn",
-        "aren",
-        "doesn",
-        "don",
-        "didn",
-        "can't",
-        "couldn",
-        "shouldn",
-        "hasn",
-        "haven",
-    ]
+    {"is", "are", "was", "were", "does", "do", "did", "can", "could", "should", "shall", "am"}
+    | {"has", "have", "isn", "aren", "doesn", "don", "didn", "couldn", "shouldn", "hasn"}
 )
 FUZZY_SIMILARITY = 85.0  # rapidfuzz ratio (0-100) a typed word needs to a vocabulary word
 FUZZY_MIN_LENGTH = 4  # shorter words are too easily one letter from another word
 _SIDES = ("left", "right")
-_NOT_A_SIDE = frozenset("here now there way direction track one place room".split())
+_NOT_A_SIDE = frozenset(["here", "now", "there", "way", "direction", "track", "one", "place"])
 _MOVES = frozenset(["turn", "go", "head", "move", "keep", "bear", "veer"])
 _FORWARD = ("forward", "straight", "ahead", "continue", "keep going")
 

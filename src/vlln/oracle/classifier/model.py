@@ -14,6 +14,7 @@ from __future__ import annotations
 import gzip
 import json
 import math
+import re
 import zlib
 from collections import Counter
 from collections.abc import Callable
@@ -38,12 +39,19 @@ FEATURE_SETS: dict[str, dict[str, Any]] = {
     "word": {"analyzer": "word", "ngram_range": (1, 2), "token_pattern": r"(?u)\b\w+\b"},
     "char": {"analyzer": "char_wb", "ngram_range": (2, 5)},
 }
-TFIDF_SETTINGS: dict[str, Any] = {"sublinear_tf": True, "lowercase": True, "norm": "l2"}
+TFIDF_SETTINGS: dict[str, Any] = {"sublinear_tf": True, "norm": "l2"}
+_WORD = re.compile(r"[a-z0-9]+")
+
+
+def prepared(text: str) -> str:
+    """The text the features are read from: lower-case letters and digits, one space between
+    words (case, punctuation and spacing say nothing about the intent)."""
+    return " ".join(_WORD.findall(text.lower()))
 
 
 def vectoriser(name: str, **extra: Any) -> TfidfVectorizer:
     """A TF-IDF vectoriser with the settings of feature set ``name``."""
-    return TfidfVectorizer(**FEATURE_SETS[name], **TFIDF_SETTINGS, **extra)
+    return TfidfVectorizer(**FEATURE_SETS[name], **TFIDF_SETTINGS, preprocessor=prepared, **extra)
 
 
 def packaged_artefact_path() -> Path:

@@ -1,6 +1,7 @@
 """Fitting the question classifier from the packaged labelled questions.
 
-Training reads the ``train`` and ``extra`` sets (never ``heldout``), adds to each question
+Training reads the ``train`` and ``extra`` sets, less any question that reads the same as one
+of ``heldout`` (which is only measured), adds to each question
 :data:`TYPO_COPIES` copies with random one-letter slips (a letter dropped, doubled, swapped
 with its neighbour or replaced), so that the character n-grams learn what typing errors look
 like, and fits a linear support-vector classifier on TF-IDF features of word 1-2-grams and
@@ -26,7 +27,7 @@ from sklearn.svm import LinearSVC
 
 import vlln
 from vlln.errors import DataFormatError
-from vlln.oracle.classifier.model import FEATURE_SETS, FORMAT, vectoriser
+from vlln.oracle.classifier.model import FEATURE_SETS, FORMAT, prepared, vectoriser
 from vlln.oracle.question_set import (
     TRAINING_SETS,
     LabelledQuestion,
@@ -43,16 +44,24 @@ _LETTERS = "abcdefghijklmnopqrstuvwxyz"
 
 
 def training_digest() -> str:
-    """SHA-256 of the packaged training files, as stored in the artefact."""
+    """SHA-256 of the packaged question files (the held-out one decides what is left out), as
+    stored in the artefact."""
     digest = hashlib.sha256()
-    for name in TRAINING_SETS:
+    for name in (*TRAINING_SETS, "heldout"):
         digest.update(packaged_question_set_path(name).read_bytes())
     return digest.hexdigest()
 
 
 def training_questions() -> list[LabelledQuestion]:
-    """Every packaged training question; raises when one lacks the topic training needs."""
-    questions = [q for name in TRAINING_SETS for q in load_packaged_question_set(name)]
+    """Every packaged training question but those that read the same as a held-out one (so
+    that the held-out set stays unseen); raises when one lacks the topic training needs."""
+    heldout = {prepared(q.question) for q in load_packaged_question_set("heldout")}
+    questions = [
+        q
+        for name in TRAINING_SETS
+        for q in load_packaged_question_set(name)
+        if prepared(q.question) not in heldout
+    ]
     unlabelled = next((q for q in questions if q.label is None), None)
     if unlabelled is not None:
         raise DataFormatError(
