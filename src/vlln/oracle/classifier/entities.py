@@ -11,7 +11,8 @@ from __future__ import annotations
 
 from functools import cache
 
-from rapidfuzz import fuzz, process
+from rapidfuzz import process
+from rapidfuzz.distance import OSA
 
 from vlln.oracle.topics import StepChoice
 from vlln.world.catalogue.aliases import aliases_of
@@ -54,8 +55,10 @@ YES_NO_OPENERS = frozenset(
     {"is", "are", "was", "were", "does", "do", "did", "can", "could", "should", "shall", "am"}
     | {"has", "have", "isn", "aren", "doesn", "don", "didn", "couldn", "shouldn", "hasn"}
 )
-FUZZY_SIMILARITY = 85.0  # rapidfuzz ratio (0-100) a typed word needs to a vocabulary word
-FUZZY_MIN_LENGTH = 4  # shorter words are too easily one letter from another word
+# Normalised similarity (1 - edits / length; a swap of neighbours is one edit) a typed word
+# needs to a vocabulary word: one slip in five letters.
+FUZZY_SIMILARITY = 0.8
+FUZZY_MIN_LENGTH = 5  # shorter words are too easily one slip from another word
 _SIDES = ("left", "right")
 _NOT_A_SIDE = frozenset(["here", "now", "there", "way", "direction", "track", "one", "place"])
 _MOVES = frozenset(["turn", "go", "head", "move", "keep", "bear", "veer"])
@@ -92,7 +95,7 @@ def corrected_words(words: list[str]) -> list[str]:
     for word in words:
         if len(word) >= FUZZY_MIN_LENGTH and word not in known:
             match = process.extractOne(
-                word, vocabulary, scorer=fuzz.ratio, score_cutoff=FUZZY_SIMILARITY
+                word, vocabulary, scorer=OSA.normalized_similarity, score_cutoff=FUZZY_SIMILARITY
             )
             word = match[0] if match is not None else word
         out.append(word)
