@@ -22,14 +22,16 @@ from dataclasses import dataclass
 from functools import cache
 from importlib.resources import files
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
-from sklearn.feature_extraction.text import TfidfVectorizer
 
 from vlln.errors import DataFormatError
 from vlln.oracle.topics import LABELS
+
+if TYPE_CHECKING:
+    from sklearn.feature_extraction.text import TfidfVectorizer
 
 FORMAT = 1  # bump when the artefact's layout changes; older files are then refused
 ARTEFACT_NAME = "question_classifier.json.gz"
@@ -51,6 +53,9 @@ def prepared(text: str) -> str:
 
 def vectoriser(name: str, **extra: Any) -> TfidfVectorizer:
     """A TF-IDF vectoriser with the settings of feature set ``name``."""
+    # Imported here: scikit-learn takes a second to import, which only classifying needs.
+    from sklearn.feature_extraction.text import TfidfVectorizer
+
     return TfidfVectorizer(**FEATURE_SETS[name], **TFIDF_SETTINGS, preprocessor=prepared, **extra)
 
 
