@@ -1,8 +1,9 @@
-"""``vlln oracle ...``: serve the oracle, measure its classifier."""
+"""``vlln oracle ...``: serve the oracle, train and measure its question classifier."""
 
 from __future__ import annotations
 
 import argparse
+import json
 from pathlib import Path
 
 from vlln.cli.options import Commands
@@ -30,10 +31,29 @@ def _oracle_serve(args: argparse.Namespace) -> int:
 
 
 def _oracle_classify_report(args: argparse.Namespace) -> int:
+    from vlln.oracle.classifier.model import packaged_classifier
     from vlln.oracle.question_set import classifier_report
 
-    accuracy, table = classifier_report(args.questions)
-    print(f"accuracy: {accuracy:.1%}\n\n{table}")
+    report = classifier_report(args.questions)
+    report["classifier"] = packaged_classifier().meta
+    if args.json:
+        print(json.dumps({k: v for k, v in report.items() if k != "table"}, indent=2))
+        return 0
+    print(f"type accuracy: {report['accuracy']:.1%} of {report['questions']} questions")
+    for kind, topic in report["topic_accuracy"].items():
+        print(f"{kind} topic accuracy: {topic['accuracy']:.1%} of {topic['questions']}")
+    print(f"\n{report['table']}")
+    return 0
+
+
+def _oracle_train_classifier(args: argparse.Namespace) -> int:
+    from vlln.oracle.classifier.model import load_classifier, packaged_artefact_path
+    from vlln.oracle.classifier.training import train_packaged, write_artefact
+
+    path = Path(args.out) if args.out else packaged_artefact_path()
+    write_artefact(train_packaged(args.seed), path)
+    meta = load_classifier(path).meta
+    print(f"wrote {path} (training data {meta['training_digest'][:12]}, seed {args.seed})")
     return 0
 
 
@@ -74,4 +94,12 @@ def add_oracle_commands(commands: Commands) -> None:
         "classify-report", help="accuracy and confusion matrix of the offline classifier"
     )
     report.add_argument("--questions", help="a JSON Lines question set (default: held-out set)")
+    report.add_argument("--json", action="store_true", help="print the figures as JSON")
     report.set_defaults(handler=_oracle_classify_report)
+    train = oracle.add_parser(
+        "train-classifier",
+        help="fit the offline question classifier on the packaged training questions",
+    )
+    train.add_argument("--seed", type=int, default=0, help="seed of the typo copies (default 0)")
+    train.add_argument("--out", help="where to write it (default: the packaged artefact)")
+    train.set_defaults(handler=_oracle_train_classifier)
