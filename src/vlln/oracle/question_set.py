@@ -35,7 +35,7 @@ TRAINING_SETS = ("train", "extra")
 _PACKAGED_FILES = {
     "train": "questions_train.jsonl",
     "extra": "questions_extra.jsonl",
-    "heldout": "questions_heldout_v6.jsonl",
+    "heldout": "questions_heldout_v7.jsonl",
 }
 _FIELDS = frozenset({"question", "type", "route_kind", "topic"})
 _TOPICS: dict[QuestionType, type[AttributeTopic] | type[OtherTopic]] = {
