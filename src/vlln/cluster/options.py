@@ -3,6 +3,8 @@
 
 from __future__ import annotations
 
+from typing import Annotated
+
 from pydantic import Field, field_validator
 
 from vlln.cluster.scheduler import DEFAULT_MAX_RETRIES
@@ -19,7 +21,7 @@ class RayOptions(Config):
     ray: str | None = None
     """run on a Ray cluster: ADDRESS (host:port), auto (the one on this machine) or local
     (RAY_ADDRESS's, else a fresh one for the run); none: without Ray"""
-    retries: int = Field(DEFAULT_MAX_RETRIES, ge=0)
+    retries: Annotated[int, Field(ge=0)] = DEFAULT_MAX_RETRIES
     """re-runs of a task whose worker died"""
 
     @field_validator("ray")
@@ -41,5 +43,5 @@ class RayOptions(Config):
 class RayChunkOptions(RayOptions):
     """:class:`RayOptions` for episode work, sent in chunks of whole episodes."""
 
-    chunk: int = Field(4, ge=1)
+    chunk: Annotated[int, Field(ge=1)] = 4
     """episodes per Ray task"""
