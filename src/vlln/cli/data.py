@@ -5,48 +5,71 @@ from __future__ import annotations
 import argparse
 import sys
 from pathlib import Path
+from typing import Self
 
-from vlln.cli.options import Commands, add_preset_option, add_ray_options
-from vlln.errors import ConfigError
+from pydantic import field_validator, model_validator
+
+from vlln.cli.generated import add_config_command
+from vlln.cli.options import Commands, add_preset_option
+from vlln.cluster.options import RayOptions
+from vlln.datagen.build import BuildOptions
+from vlln.eval.sharding import Shard
 
 
-def _data_build(args: argparse.Namespace) -> int:
+class BuildCommand(RayOptions, BuildOptions):
+    """``vlln data build``: a build's settings and how to run it."""
+
+    out: Path
+    """dataset folder (a rerun resumes it)"""
+    shard: str | None = None
+    """i/n: build every n-th house, starting at the i-th (none: every house)"""
+    quiet: bool = False
+    """no progress bars"""
+    yes: bool = False
+    """start a large build without asking (it states its cost)"""
+
+    @field_validator("shard")
+    @classmethod
+    def _readable_shard(cls, value: str | None) -> str | None:
+        if value is not None:
+            Shard.parse(value)
+        return value
+
+    @model_validator(mode="after")
+    def _shard_or_ray(self) -> Self:
+        if self.shard is not None and self.ray is not None:
+            raise ValueError("--shard and --ray do not mix: Ray shares the houses out itself")
+        return self
+
+
+def _data_build(command: BuildCommand) -> int:
     from vlln.datagen.build import BuildConfig, build_dataset, summarize
     from vlln.datagen.cost import build_cost
-    from vlln.eval.sharding import Shard
     from vlln.files import check_output_folder
 
-    config = BuildConfig(
-        houses=args.houses,
-        split=args.split,
-        seed=args.seed,
-        per_house=args.per_house,
-        floors=args.floors,
-    )
-    check_output_folder(Path(args.out))
-    shard = Shard.parse(args.shard) if args.shard else None
+    config = BuildConfig(**command.model_dump(include=set(BuildOptions.model_fields)))
+    check_output_folder(command.out)
+    shard = Shard.parse(command.shard) if command.shard else None
     houses = -(-config.houses // shard.count) if shard else config.houses
     cost = build_cost(houses, config.per_house)
     print(cost.line(), file=sys.stderr)
-    if cost.large and not args.yes and sys.stdin.isatty():
+    if cost.large and not command.yes and sys.stdin.isatty():
         answer = input("this is a large build; start it? [y/N] ")
         if answer.strip().lower() not in ("y", "yes"):
             print("not started (pass --yes to skip this question)", file=sys.stderr)
             return 1
-    if args.ray is not None:
+    if command.ray is not None:
         from vlln.cluster.data import build_dataset_ray
 
-        if shard is not None:
-            raise ConfigError("--shard and --ray do not mix: Ray shares the houses out itself")
         out = build_dataset_ray(
-            Path(args.out),
+            command.out,
             config,
-            address=args.ray or None,
-            max_retries=args.retries,
-            progress=not args.quiet,
+            address=command.ray_address,
+            max_retries=command.retries,
+            progress=not command.quiet,
         )
     else:
-        out = build_dataset(Path(args.out), config, shard=shard, progress=not args.quiet)
+        out = build_dataset(command.out, config, shard=shard, progress=not command.quiet)
     print(summarize(out).line())
     print(f"dataset in {out} (summarise it with: vlln data stats {out})")
     return 0
@@ -101,29 +124,13 @@ def add_data_commands(commands: Commands) -> None:
     data = commands.add_parser("data", help="the training-data pipeline").add_subparsers(
         dest="data_command", required=True
     )
-    build = data.add_parser(
-        "build", help="scene summaries, episodes and dialog-augmented trajectories"
+    add_config_command(
+        data,
+        "build",
+        BuildCommand,
+        _data_build,
+        help="scene summaries, episodes and dialog-augmented trajectories",
     )
-    build.add_argument("--houses", type=int, required=True, help="houses of the split to use")
-    build.add_argument("--out", required=True, help="dataset folder (a rerun resumes it)")
-    build.add_argument(
-        "--per-house",
-        type=int,
-        default=20,
-        help="trajectories tried per house (default 20; 0 = every IIGN episode)",
-    )
-    build.add_argument("--split", default="train", help="house split (default train)")
-    build.add_argument("--seed", type=int, default=0, help="seed of every random choice")
-    build.add_argument(
-        "--floors", type=int, default=1, help="storeys joined by stairs, 1 to 3 (default 1)"
-    )
-    build.add_argument("--shard", help="i/n: build every n-th house, starting at the i-th")
-    build.add_argument("--quiet", action="store_true", help="no progress bars")
-    add_ray_options(build, chunks=False)
-    build.add_argument(
-        "--yes", action="store_true", help="start a large build without asking (it states its cost)"
-    )
-    build.set_defaults(handler=_data_build)
     episodes = data.add_parser(
         "episodes", help="episode files (IIGN, IGN, ObjectNav) of a split's procedural houses"
     )
