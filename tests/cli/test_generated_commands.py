@@ -38,7 +38,7 @@ def _generated() -> list[tuple[tuple[str, ...], argparse.ArgumentParser, type[Co
 
 def test_the_commands_with_settings_are_generated_from_their_configs() -> None:
     names = {" ".join(words) for words, _, _ in _generated()}
-    assert {"train sft", "data build"} <= names
+    assert {"train sft", "data build", "data export-sft"} <= names
 
 
 @pytest.mark.parametrize("words, parser, config", _generated(), ids=lambda v: str(v))
@@ -51,8 +51,12 @@ def test_every_flag_is_a_field_and_every_default_the_fields(
         for option in action.option_strings
         if option.startswith("--") and option not in ("--help", "--config")
     }
+    positionals = {action.dest for action in parser._actions if not action.option_strings}
     for name, field in config.model_fields.items():
         if isinstance(field.default, BaseModel):
+            continue
+        if name in positionals:  # a required positional argument (CliPositionalArg)
+            assert field.is_required() and field.description, f"{name}: no docstring"
             continue
         flag = "--" + name.replace("_", "-")
         assert flag in flags, f"{' '.join(words)}: field {name} has no flag {flag}"

@@ -8,11 +8,13 @@ from pathlib import Path
 from typing import Self
 
 from pydantic import field_validator, model_validator
+from pydantic_settings import CliPositionalArg
 
 from vlln.cli.generated import add_config_command
 from vlln.cli.options import Commands, add_preset_option
 from vlln.cluster.options import RayOptions
 from vlln.datagen.build import BuildOptions
+from vlln.datagen.sft.config import SftConfig
 from vlln.eval.sharding import Shard
 
 
@@ -83,15 +85,25 @@ def _data_stats(args: argparse.Namespace) -> int:
     return 0
 
 
-def _data_export_sft(args: argparse.Namespace) -> int:
-    from vlln.datagen.sft.config import SftConfig
+class SftCommand(SftConfig):
+    """``vlln data export-sft``: an export's settings and where it reads and writes."""
+
+    dataset: CliPositionalArg[Path]
+    """a folder made by vlln data build"""
+    out: Path
+    """output folder (sft.jsonl and images)"""
+    quiet: bool = False
+    """no progress bar"""
+
+
+def _data_export_sft(command: SftCommand) -> int:
     from vlln.datagen.sft.export import export_sft
 
-    config = SftConfig(seed=args.seed, history_frames=args.history)
-    summary = export_sft(Path(args.dataset), Path(args.out), config, progress=not args.quiet)
+    config = SftConfig(**command.model_dump(include=set(SftConfig.model_fields)))
+    summary = export_sft(command.dataset, command.out, config, progress=not command.quiet)
     print(
         f"wrote {summary.samples} conversations from {summary.trajectories} trajectories "
-        f"({summary.images} images) to {args.out}/sft.jsonl"
+        f"({summary.images} images) to {command.out}/sft.jsonl"
     )
     return 0
 
@@ -148,12 +160,10 @@ def add_data_commands(commands: Commands) -> None:
     stats.add_argument("dataset", help="a folder made by vlln data build")
     stats.add_argument("--out", help="where to write them (default DATASET/stats)")
     stats.set_defaults(handler=_data_stats)
-    sft = data.add_parser(
-        "export-sft", help="trajectories as multi-image conversations for fine-tuning"
+    add_config_command(
+        data,
+        "export-sft",
+        SftCommand,
+        _data_export_sft,
+        help="trajectories as multi-image conversations for fine-tuning",
     )
-    sft.add_argument("dataset", help="a folder made by vlln data build")
-    sft.add_argument("--out", required=True, help="output folder (sft.jsonl and images)")
-    sft.add_argument("--seed", type=int, default=0, help="seed of every random choice")
-    sft.add_argument("--history", type=int, default=8, help="history frames (default 8)")
-    sft.add_argument("--quiet", action="store_true", help="no progress bar")
-    sft.set_defaults(handler=_data_export_sft)
