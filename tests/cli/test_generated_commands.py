@@ -38,7 +38,7 @@ def _generated() -> list[tuple[tuple[str, ...], argparse.ArgumentParser, type[Co
 
 def test_the_commands_with_settings_are_generated_from_their_configs() -> None:
     names = {" ".join(words) for words, _, _ in _generated()}
-    assert {"train sft", "data build", "data export-sft"} <= names
+    assert {"train sft", "data build", "data export-sft", "oracle serve"} <= names
 
 
 @pytest.mark.parametrize("words, parser, config", _generated(), ids=lambda v: str(v))

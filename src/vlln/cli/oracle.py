@@ -4,27 +4,67 @@ from __future__ import annotations
 
 import argparse
 from pathlib import Path
+from typing import Annotated
 
+from pydantic import Field, field_validator
+
+from vlln.cli.generated import add_config_command
 from vlln.cli.options import Commands
 from vlln.extras import SERVE_PACKAGES, require_extra
+from vlln.oracle.service.config import (
+    DEFAULT_HOST,
+    DEFAULT_PORT,
+    LOG_LEVELS,
+    ServiceConfig,
+    ServiceLimits,
+)
 
 
-def _oracle_serve(args: argparse.Namespace) -> int:
+class ServeCommand(ServiceLimits):
+    """``vlln oracle serve``: the service's limits and where and how it listens."""
+
+    host: str = DEFAULT_HOST
+    """address to listen on (loopback only unless --allow-remote)"""
+    port: Annotated[int, Field(ge=0, le=65535)] = DEFAULT_PORT
+    """port (0: a free one)"""
+    token_env: str | None = None
+    """environment variable holding the bearer token; it must be set and not empty (none:
+    VLLN_ORACLE_TOKEN when set, else no token, loopback only)"""
+    episodes: Path | None = None
+    """an episode file whose episodes sessions can name"""
+    allow_remote: bool = False
+    """allow a host other than loopback"""
+    log_level: str = "warning"
+    """uvicorn log level (warning: no line per request)"""
+
+    @field_validator("log_level")
+    @classmethod
+    def _known_level(cls, value: str) -> str:
+        if value not in LOG_LEVELS:
+            raise ValueError(f"must be one of {', '.join(LOG_LEVELS)}, got {value!r}")
+        return value
+
+
+def _oracle_serve(command: ServeCommand) -> int:
     require_extra("serve", "vlln oracle serve", SERVE_PACKAGES)
     from vlln.oracle.service.server import serve, token_from_environment
+    from vlln.tasks.episode import read_episodes
 
-    token = token_from_environment(args.token_env)
+    limits = command.model_dump(include=set(ServiceLimits.model_fields))
+    config = ServiceConfig.build(
+        {
+            **limits,
+            "token": token_from_environment(command.token_env),
+            "episodes": () if command.episodes is None else tuple(read_episodes(command.episodes)),
+        },
+        flags=False,
+    )
     serve(
-        host=args.host,
-        port=args.port,
-        token=token,
-        episodes=None if args.episodes is None else Path(args.episodes),
-        allow_remote=args.allow_remote,
-        max_sessions=args.max_sessions,
-        oracle_seed=args.oracle_seed,
-        builds_per_minute=args.builds_per_minute,
-        client_builds_per_minute=args.client_builds_per_minute,
-        log_level=args.log_level,
+        config,
+        command.host,
+        command.port,
+        allow_remote=command.allow_remote,
+        log_level=command.log_level,
     )
     return 0
 
@@ -41,35 +81,9 @@ def add_oracle_commands(commands: Commands) -> None:
     oracle = commands.add_parser("oracle", help="the oracle").add_subparsers(
         dest="oracle_command", required=True
     )
-    serve = oracle.add_parser("serve", help="answer questions over HTTP (FastAPI)")
-    serve.add_argument("--host", default="127.0.0.1", help="address (default loopback only)")
-    serve.add_argument("--port", type=int, default=8765, help="port (default 8765)")
-    serve.add_argument(
-        "--token-env",
-        help="environment variable holding the bearer token; it must be set and not empty "
-        "(without the flag: VLLN_ORACLE_TOKEN when set, else no token, loopback only)",
+    add_config_command(
+        oracle, "serve", ServeCommand, _oracle_serve, help="answer questions over HTTP (FastAPI)"
     )
-    serve.add_argument("--episodes", help="an episode file whose episodes sessions can name")
-    serve.add_argument(
-        "--allow-remote", action="store_true", help="allow a host other than loopback"
-    )
-    serve.add_argument("--max-sessions", type=int, default=64, help="sessions kept (default 64)")
-    serve.add_argument("--oracle-seed", type=int, default=0, help="paraphrase seed (default 0)")
-    serve.add_argument(
-        "--builds-per-minute", type=int, default=60, help="house builds, all clients (default 60)"
-    )
-    serve.add_argument(
-        "--client-builds-per-minute",
-        type=int,
-        default=20,
-        help="house builds one client address may cause (default 20)",
-    )
-    serve.add_argument(
-        "--log-level",
-        default="warning",
-        help="uvicorn log level (default warning: no line per request)",
-    )
-    serve.set_defaults(handler=_oracle_serve)
     report = oracle.add_parser(
         "classify-report", help="accuracy and confusion matrix of the offline classifier"
     )

@@ -12,19 +12,18 @@ import gc
 import ipaddress
 import os
 import sys
-from pathlib import Path
 
 import uvicorn
 
 from vlln.errors import ConfigError
 from vlln.oracle.service.app import create_app
-from vlln.oracle.service.config import ServiceConfig
-from vlln.tasks.episode import read_episodes
-
-DEFAULT_HOST = "127.0.0.1"
-DEFAULT_PORT = 8765
-DEFAULT_TOKEN_ENV = "VLLN_ORACLE_TOKEN"
-LOG_LEVELS = ("critical", "error", "warning", "info", "debug")
+from vlln.oracle.service.config import (
+    DEFAULT_HOST,
+    DEFAULT_PORT,
+    DEFAULT_TOKEN_ENV,
+    LOG_LEVELS,
+    ServiceConfig,
+)
 
 
 def is_loopback(host: str) -> bool:
@@ -107,30 +106,14 @@ def freeze_startup_objects() -> int:
 
 
 def serve(
+    config: ServiceConfig,
     host: str = DEFAULT_HOST,
     port: int = DEFAULT_PORT,
-    token: str | None = None,
-    episodes: Path | None = None,
     *,
     allow_remote: bool = False,
-    max_sessions: int = 64,
-    scene_capacity: int = 2,
-    oracle_seed: int = 0,
     log_level: str = "info",
-    builds_per_minute: int = 60,
-    client_builds_per_minute: int = 20,
 ) -> None:
-    """Serve the oracle until interrupted; ``episodes`` is an episode file (``.json.gz``) whose
-    episodes sessions may name by ``episode_id``."""
-    config = ServiceConfig(
-        token=token,
-        episodes=tuple(read_episodes(episodes)) if episodes is not None else (),
-        max_sessions=max_sessions,
-        scene_capacity=scene_capacity,
-        oracle_seed=oracle_seed,
-        builds_per_minute=builds_per_minute,
-        client_builds_per_minute=client_builds_per_minute,
-    )
+    """Serve the oracle of ``config`` until interrupted."""
     server = build_server(config, host, port, allow_remote=allow_remote, log_level=log_level)
     freeze_startup_objects()
     server.run()
