@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import argparse
 import json
+import subprocess
+import sys
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -89,3 +91,15 @@ def test_stored_settings_read_back_equal_and_refuse_unknown_keys(tmp_path: Path)
     assert TrainConfig.from_json(stored, "x.json") == config
     with pytest.raises(Exception, match=r"x.json: malformed settings \(learnig_rate: not a known"):
         TrainConfig.from_json({**stored, "learnig_rate": 1.0}, "x.json")
+
+
+def test_the_parser_imports_no_config_module_until_a_command_is_used() -> None:
+    code = (
+        "import sys; from vlln.cli import build_parser; build_parser(); "
+        "print(sorted(m for m in sys.modules if m.startswith(('vlln.datagen', 'vlln.oracle.s'))))"
+    )
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert done.stdout.strip() == "[]"
+    parser = build_parser()
+    parser.parse_args(["data", "build", "--houses", "1", "--out", "o"])
+    assert "vlln.cli.data_settings" in sys.modules

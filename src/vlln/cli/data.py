@@ -5,48 +5,31 @@ from __future__ import annotations
 import argparse
 import sys
 from pathlib import Path
-from typing import Self
-
-from pydantic import field_validator, model_validator
-from pydantic_settings import CliPositionalArg
+from typing import TYPE_CHECKING
 
 from vlln.cli.generated import add_config_command
 from vlln.cli.options import Commands, add_preset_option
-from vlln.cluster.options import RayOptions
-from vlln.datagen.build import BuildOptions
-from vlln.datagen.sft.config import SftConfig
-from vlln.eval.sharding import Shard
+
+if TYPE_CHECKING:
+    from vlln.cli.data_settings import BuildCommand, SftCommand
 
 
-class BuildCommand(RayOptions, BuildOptions):
-    """``vlln data build``: a build's settings and how to run it."""
+def _build_command() -> type[BuildCommand]:
+    from vlln.cli.data_settings import BuildCommand
 
-    out: Path
-    """dataset folder (a rerun resumes it)"""
-    shard: str | None = None
-    """i/n: build every n-th house, starting at the i-th (none: every house)"""
-    quiet: bool = False
-    """no progress bars"""
-    yes: bool = False
-    """start a large build without asking (it states its cost)"""
+    return BuildCommand
 
-    @field_validator("shard")
-    @classmethod
-    def _readable_shard(cls, value: str | None) -> str | None:
-        if value is not None:
-            Shard.parse(value)
-        return value
 
-    @model_validator(mode="after")
-    def _shard_or_ray(self) -> Self:
-        if self.shard is not None and self.ray is not None:
-            raise ValueError("--shard and --ray do not mix: Ray shares the houses out itself")
-        return self
+def _sft_command() -> type[SftCommand]:
+    from vlln.cli.data_settings import SftCommand
+
+    return SftCommand
 
 
 def _data_build(command: BuildCommand) -> int:
-    from vlln.datagen.build import BuildConfig, build_dataset, summarize
+    from vlln.datagen.build import BuildConfig, BuildOptions, build_dataset, summarize
     from vlln.datagen.cost import build_cost
+    from vlln.eval.sharding import Shard
     from vlln.files import check_output_folder
 
     config = BuildConfig(**command.model_dump(include=set(BuildOptions.model_fields)))
@@ -85,18 +68,8 @@ def _data_stats(args: argparse.Namespace) -> int:
     return 0
 
 
-class SftCommand(SftConfig):
-    """``vlln data export-sft``: an export's settings and where it reads and writes."""
-
-    dataset: CliPositionalArg[Path]
-    """a folder made by vlln data build"""
-    out: Path
-    """output folder (sft.jsonl and images)"""
-    quiet: bool = False
-    """no progress bar"""
-
-
 def _data_export_sft(command: SftCommand) -> int:
+    from vlln.datagen.sft.config import SftConfig
     from vlln.datagen.sft.export import export_sft
 
     config = SftConfig(**command.model_dump(include=set(SftConfig.model_fields)))
@@ -139,7 +112,7 @@ def add_data_commands(commands: Commands) -> None:
     add_config_command(
         data,
         "build",
-        BuildCommand,
+        _build_command,
         _data_build,
         help="scene summaries, episodes and dialog-augmented trajectories",
     )
@@ -163,7 +136,7 @@ def add_data_commands(commands: Commands) -> None:
     add_config_command(
         data,
         "export-sft",
-        SftCommand,
+        _sft_command,
         _data_export_sft,
         help="trajectories as multi-image conversations for fine-tuning",
     )

@@ -3,50 +3,25 @@
 from __future__ import annotations
 
 import argparse
-from pathlib import Path
-from typing import Annotated
-
-from pydantic import Field, field_validator
+from typing import TYPE_CHECKING
 
 from vlln.cli.generated import add_config_command
 from vlln.cli.options import Commands
 from vlln.extras import SERVE_PACKAGES, require_extra
-from vlln.oracle.service.config import (
-    DEFAULT_HOST,
-    DEFAULT_PORT,
-    LOG_LEVELS,
-    ServiceConfig,
-    ServiceLimits,
-)
+
+if TYPE_CHECKING:
+    from vlln.cli.oracle_settings import ServeCommand
 
 
-class ServeCommand(ServiceLimits):
-    """``vlln oracle serve``: the service's limits and where and how it listens."""
+def _serve_command() -> type[ServeCommand]:
+    from vlln.cli.oracle_settings import ServeCommand
 
-    host: str = DEFAULT_HOST
-    """address to listen on (loopback only unless --allow-remote)"""
-    port: Annotated[int, Field(ge=0, le=65535)] = DEFAULT_PORT
-    """port (0: a free one)"""
-    token_env: str | None = None
-    """environment variable holding the bearer token; it must be set and not empty (none:
-    VLLN_ORACLE_TOKEN when set, else no token, loopback only)"""
-    episodes: Path | None = None
-    """an episode file whose episodes sessions can name"""
-    allow_remote: bool = False
-    """allow a host other than loopback"""
-    log_level: str = "warning"
-    """uvicorn log level (warning: no line per request)"""
-
-    @field_validator("log_level")
-    @classmethod
-    def _known_level(cls, value: str) -> str:
-        if value not in LOG_LEVELS:
-            raise ValueError(f"must be one of {', '.join(LOG_LEVELS)}, got {value!r}")
-        return value
+    return ServeCommand
 
 
 def _oracle_serve(command: ServeCommand) -> int:
     require_extra("serve", "vlln oracle serve", SERVE_PACKAGES)
+    from vlln.oracle.service.config import ServiceConfig, ServiceLimits
     from vlln.oracle.service.server import serve, token_from_environment
     from vlln.tasks.episode import read_episodes
 
@@ -82,7 +57,7 @@ def add_oracle_commands(commands: Commands) -> None:
         dest="oracle_command", required=True
     )
     add_config_command(
-        oracle, "serve", ServeCommand, _oracle_serve, help="answer questions over HTTP (FastAPI)"
+        oracle, "serve", _serve_command, _oracle_serve, help="answer questions over HTTP (FastAPI)"
     )
     report = oracle.add_parser(
         "classify-report", help="accuracy and confusion matrix of the offline classifier"

@@ -1,0 +1,53 @@
+"""The settings of ``vlln data build`` and ``vlln data export-sft``: what is stored with the
+data (:class:`BuildOptions`, :class:`SftConfig`) and how a command runs (where it writes,
+Ray, progress). Imported when one of these commands is used."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Self
+
+from pydantic import field_validator, model_validator
+from pydantic_settings import CliPositionalArg
+
+from vlln.cluster.options import RayOptions
+from vlln.datagen.build import BuildOptions
+from vlln.datagen.sft.config import SftConfig
+from vlln.eval.sharding import Shard
+
+
+class BuildCommand(RayOptions, BuildOptions):
+    """``vlln data build``: a build's settings and how to run it."""
+
+    out: Path
+    """dataset folder (a rerun resumes it)"""
+    shard: str | None = None
+    """i/n: build every n-th house, starting at the i-th (none: every house)"""
+    quiet: bool = False
+    """no progress bars"""
+    yes: bool = False
+    """start a large build without asking (it states its cost)"""
+
+    @field_validator("shard")
+    @classmethod
+    def _readable_shard(cls, value: str | None) -> str | None:
+        if value is not None:
+            Shard.parse(value)
+        return value
+
+    @model_validator(mode="after")
+    def _shard_or_ray(self) -> Self:
+        if self.shard is not None and self.ray is not None:
+            raise ValueError("--shard and --ray do not mix: Ray shares the houses out itself")
+        return self
+
+
+class SftCommand(SftConfig):
+    """``vlln data export-sft``: an export's settings and where it reads and writes."""
+
+    dataset: CliPositionalArg[Path]
+    """a folder made by vlln data build"""
+    out: Path
+    """output folder (sft.jsonl and images)"""
+    quiet: bool = False
+    """no progress bar"""

@@ -1,0 +1,36 @@
+"""The settings of ``vlln oracle serve``: the service's limits and where and how it listens.
+Imported when the command is used."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+from pydantic import Field, field_validator
+
+from vlln.oracle.service.config import DEFAULT_HOST, DEFAULT_PORT, LOG_LEVELS, ServiceLimits
+
+
+class ServeCommand(ServiceLimits):
+    """``vlln oracle serve``: the service's limits and where and how it listens."""
+
+    host: str = DEFAULT_HOST
+    """address to listen on (loopback only unless --allow-remote)"""
+    port: Annotated[int, Field(ge=0, le=65535)] = DEFAULT_PORT
+    """port (0: a free one)"""
+    token_env: str | None = None
+    """environment variable holding the bearer token; it must be set and not empty (none:
+    VLLN_ORACLE_TOKEN when set, else no token, loopback only)"""
+    episodes: Path | None = None
+    """an episode file whose episodes sessions can name"""
+    allow_remote: bool = False
+    """allow a host other than loopback"""
+    log_level: str = "warning"
+    """uvicorn log level (warning: no line per request)"""
+
+    @field_validator("log_level")
+    @classmethod
+    def _known_level(cls, value: str) -> str:
+        if value not in LOG_LEVELS:
+            raise ValueError(f"must be one of {', '.join(LOG_LEVELS)}, got {value!r}")
+        return value
