@@ -18,6 +18,18 @@ from vlln.cli import build_parser, main
 from vlln.config import Config
 from vlln.train.config import TrainConfig
 
+BENCH_COMMANDS = (
+    "sim",
+    "eval",
+    "oracle",
+    "agent",
+    "storeys",
+    "frontier-storeys",
+    "data",
+    "fidelity",
+    "world",
+)
+
 
 def _commands(
     parser: argparse.ArgumentParser, path: tuple[str, ...] = ()
@@ -41,7 +53,14 @@ def _generated() -> list[tuple[tuple[str, ...], argparse.ArgumentParser, type[Co
 
 def test_the_commands_with_settings_are_generated_from_their_configs() -> None:
     names = {" ".join(words) for words, _, _ in _generated()}
-    assert {"train sft", "data build", "data export-sft", "oracle serve", "serve web"} <= names
+    assert {
+        "train sft",
+        "data build",
+        "data export-sft",
+        "oracle serve",
+        "serve web",
+        *(f"bench {name}" for name in BENCH_COMMANDS),
+    } <= names
 
 
 @pytest.mark.parametrize("words, parser, config", _generated(), ids=lambda v: str(v))
