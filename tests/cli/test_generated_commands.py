@@ -57,6 +57,7 @@ def test_the_commands_with_settings_are_generated_from_their_configs() -> None:
         "train sft",
         "data build",
         "data export-sft",
+        "data episodes",
         "oracle serve",
         "serve web",
         *(f"bench {name}" for name in BENCH_COMMANDS),
@@ -125,3 +126,13 @@ def test_the_parser_imports_no_config_module_until_a_command_is_used() -> None:
     parser = build_parser()
     parser.parse_args(["data", "build", "--houses", "1", "--out", "o"])
     assert "vlln.cli.data_settings" in sys.modules
+
+
+def test_data_episodes_refuses_floors_for_houses_that_draw_their_own(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    assert main(["data", "episodes", "--houses", "1", "--out", "o", "--floors", "2"]) == 2
+    assert capsys.readouterr().err.strip() == (
+        "error: --floors sets the storeys of small houses; mp3d houses draw theirs from the "
+        "seed: add --preset small, or drop --floors"
+    )

@@ -8,16 +8,22 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from vlln.cli.generated import add_config_command
-from vlln.cli.options import Commands, add_preset_option
+from vlln.cli.options import Commands
 
 if TYPE_CHECKING:
-    from vlln.cli.data_settings import BuildCommand, SftCommand
+    from vlln.cli.data_settings import BuildCommand, EpisodesCommand, SftCommand
 
 
 def _build_command() -> type[BuildCommand]:
     from vlln.cli.data_settings import BuildCommand
 
     return BuildCommand
+
+
+def _episodes_command() -> type[EpisodesCommand]:
+    from vlln.cli.data_settings import EpisodesCommand
+
+    return EpisodesCommand
 
 
 def _sft_command() -> type[SftCommand]:
@@ -81,26 +87,19 @@ def _data_export_sft(command: SftCommand) -> int:
     return 0
 
 
-def _data_episodes(args: argparse.Namespace) -> int:
-    from vlln.errors import ConfigError
+def _data_episodes(command: EpisodesCommand) -> int:
     from vlln.tasks.split_files import build_split
-    from vlln.world.generator.presets import SMALL
 
-    if args.floors is not None and args.preset != SMALL.name:
-        raise ConfigError(
-            f"--floors sets the storeys of small houses; {args.preset} houses draw theirs from "
-            "the seed: add --preset small, or drop --floors"
-        )
     out = build_split(
-        args.split,
-        args.houses,
-        Path(args.out),
-        args.seed,
-        floors=args.floors or 1,
-        progress=not args.quiet,
-        preset=args.preset,
+        command.split,
+        command.houses,
+        command.out,
+        command.seed,
+        floors=command.floors or 1,
+        progress=not command.quiet,
+        preset=command.preset,
     )
-    ign = out / f"{args.split}_ign.json.gz"
+    ign = out / f"{command.split}_ign.json.gz"
     print(f"episodes in {out} (evaluate with: vlln eval --episode-file {ign})")
     return 0
 
@@ -116,19 +115,13 @@ def add_data_commands(commands: Commands) -> None:
         _data_build,
         help="scene summaries, episodes and dialog-augmented trajectories",
     )
-    episodes = data.add_parser(
-        "episodes", help="episode files (IIGN, IGN, ObjectNav) of a split's procedural houses"
+    add_config_command(
+        data,
+        "episodes",
+        _episodes_command,
+        _data_episodes,
+        help="episode files (IIGN, IGN, ObjectNav) of a split's procedural houses",
     )
-    episodes.add_argument("--houses", type=int, required=True, help="houses of the split")
-    episodes.add_argument("--out", required=True, help="folder for <split>_<task>.json.gz")
-    episodes.add_argument("--split", default="test", help="house split (default test)")
-    episodes.add_argument("--seed", type=int, default=0, help="seed of every random choice")
-    add_preset_option(episodes)
-    episodes.add_argument(
-        "--floors", type=int, help="small houses: storeys joined by stairs, 1 to 3 (default 1)"
-    )
-    episodes.add_argument("--quiet", action="store_true", help="no progress bar")
-    episodes.set_defaults(handler=_data_episodes)
     stats = data.add_parser("stats", help="statistics, figure and report of a built dataset")
     stats.add_argument("dataset", help="a folder made by vlln data build")
     stats.add_argument("--out", help="where to write them (default DATASET/stats)")

@@ -1,19 +1,21 @@
-"""The settings of ``vlln data build`` and ``vlln data export-sft``: what is stored with the
+"""The settings of ``vlln data build``, ``export-sft`` and ``episodes``: what is stored with the
 data (:class:`BuildOptions`, :class:`SftConfig`) and how a command runs (where it writes,
 Ray, progress). Imported when one of these commands is used."""
 
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Self
+from typing import Annotated, Self
 
-from pydantic import field_validator, model_validator
+from pydantic import Field, field_validator, model_validator
 from pydantic_settings import CliPositionalArg
 
 from vlln.cluster.options import RayOptions
 from vlln.datagen.build import BuildOptions
 from vlln.datagen.sft.config import SftConfig
 from vlln.eval.sharding import Shard
+from vlln.world.generator.presets import SMALL
+from vlln.world.options import PresetOptions
 
 
 class BuildCommand(RayOptions, BuildOptions):
@@ -51,3 +53,29 @@ class SftCommand(SftConfig):
     """output folder (sft.jsonl and images)"""
     quiet: bool = False
     """no progress bar"""
+
+
+class EpisodesCommand(PresetOptions):
+    """``vlln data episodes``: the episode files of a split's procedural houses."""
+
+    houses: Annotated[int, Field(ge=1)]
+    """houses of the split"""
+    out: Path
+    """folder for <split>_<task>.json.gz"""
+    split: str = "test"
+    """house split"""
+    seed: Annotated[int, Field(ge=0)] = 0
+    """seed of every random choice"""
+    floors: Annotated[int | None, Field(ge=1, le=3)] = None
+    """small houses: storeys joined by stairs, 1 to 3 (none: 1)"""
+    quiet: bool = False
+    """no progress bar"""
+
+    @model_validator(mode="after")
+    def _floors_of_small_houses(self) -> Self:
+        if self.floors is not None and self.preset != SMALL.name:
+            raise ValueError(
+                f"--floors sets the storeys of small houses; {self.preset} houses draw theirs "
+                "from the seed: add --preset small, or drop --floors"
+            )
+        return self
