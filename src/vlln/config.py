@@ -87,7 +87,7 @@ def describe_validation_error(error: ValidationError, flags: bool) -> str:
     parts = []
     for problem in error.errors():
         message = str(problem["msg"]).removeprefix("Value error, ")
-        names = [str(part) for part in problem["loc"]]
+        names = [str(part) for part in problem["loc"] if not isinstance(part, int)]
         if not names:
             parts.append(message)
             continue
