@@ -2,16 +2,14 @@
 
 from __future__ import annotations
 
-import argparse
 import sys
-from pathlib import Path
 from typing import TYPE_CHECKING
 
 from vlln.cli.generated import add_config_command
 from vlln.cli.options import Commands
 
 if TYPE_CHECKING:
-    from vlln.cli.data_settings import BuildCommand, EpisodesCommand, SftCommand
+    from vlln.cli.data_settings import BuildCommand, EpisodesCommand, SftCommand, StatsCommand
 
 
 def _build_command() -> type[BuildCommand]:
@@ -24,6 +22,12 @@ def _episodes_command() -> type[EpisodesCommand]:
     from vlln.cli.data_settings import EpisodesCommand
 
     return EpisodesCommand
+
+
+def _stats_command() -> type[StatsCommand]:
+    from vlln.cli.data_settings import StatsCommand
+
+    return StatsCommand
 
 
 def _sft_command() -> type[SftCommand]:
@@ -66,10 +70,10 @@ def _data_build(command: BuildCommand) -> int:
     return 0
 
 
-def _data_stats(args: argparse.Namespace) -> int:
+def _data_stats(command: StatsCommand) -> int:
     from vlln.datagen.stats.report import write_stats
 
-    paths = write_stats(Path(args.dataset), Path(args.out) if args.out else None)
+    paths = write_stats(command.dataset, command.out)
     print("wrote " + ", ".join(str(path) for path in paths))
     return 0
 
@@ -122,10 +126,13 @@ def add_data_commands(commands: Commands) -> None:
         _data_episodes,
         help="episode files (IIGN, IGN, ObjectNav) of a split's procedural houses",
     )
-    stats = data.add_parser("stats", help="statistics, figure and report of a built dataset")
-    stats.add_argument("dataset", help="a folder made by vlln data build")
-    stats.add_argument("--out", help="where to write them (default DATASET/stats)")
-    stats.set_defaults(handler=_data_stats)
+    add_config_command(
+        data,
+        "stats",
+        _stats_command,
+        _data_stats,
+        help="statistics, figure and report of a built dataset",
+    )
     add_config_command(
         data,
         "export-sft",

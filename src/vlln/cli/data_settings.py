@@ -1,6 +1,6 @@
-"""The settings of ``vlln data build``, ``export-sft`` and ``episodes``: what is stored with the
-data (:class:`BuildOptions`, :class:`SftConfig`) and how a command runs (where it writes,
-Ray, progress). Imported when one of these commands is used."""
+"""The settings of ``vlln data build``, ``export-sft``, ``episodes`` and ``stats``: what
+is stored with the data (:class:`BuildOptions`, :class:`SftConfig`) and how a command runs
+(where it reads and writes, Ray, progress). Imported when one of these commands is used."""
 
 from __future__ import annotations
 
@@ -11,6 +11,7 @@ from pydantic import Field, field_validator, model_validator
 from pydantic_settings import CliPositionalArg
 
 from vlln.cluster.options import RayOptions
+from vlln.config import Config
 from vlln.datagen.build import BuildOptions
 from vlln.datagen.sft.config import SftConfig
 from vlln.eval.sharding import Shard
@@ -79,3 +80,12 @@ class EpisodesCommand(PresetOptions):
                 "from the seed: add --preset small, or drop --floors"
             )
         return self
+
+
+class StatsCommand(Config):
+    """``vlln data stats``: statistics, figure and report of a built dataset."""
+
+    dataset: CliPositionalArg[Path]
+    """a folder made by vlln data build"""
+    out: Path | None = None
+    """where to write them (none: DATASET/stats)"""

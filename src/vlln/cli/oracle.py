@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import argparse
 from typing import TYPE_CHECKING
 
 from vlln.cli.generated import add_config_command
@@ -10,13 +9,19 @@ from vlln.cli.options import Commands
 from vlln.extras import SERVE_PACKAGES, require_extra
 
 if TYPE_CHECKING:
-    from vlln.cli.oracle_settings import ServeCommand
+    from vlln.cli.oracle_settings import ClassifyReportCommand, ServeCommand
 
 
 def _serve_command() -> type[ServeCommand]:
     from vlln.cli.oracle_settings import ServeCommand
 
     return ServeCommand
+
+
+def _classify_report_command() -> type[ClassifyReportCommand]:
+    from vlln.cli.oracle_settings import ClassifyReportCommand
+
+    return ClassifyReportCommand
 
 
 def _oracle_serve(command: ServeCommand) -> int:
@@ -44,10 +49,10 @@ def _oracle_serve(command: ServeCommand) -> int:
     return 0
 
 
-def _oracle_classify_report(args: argparse.Namespace) -> int:
+def _oracle_classify_report(command: ClassifyReportCommand) -> int:
     from vlln.oracle.question_set import classifier_report
 
-    accuracy, table = classifier_report(args.questions)
+    accuracy, table = classifier_report(command.questions)
     print(f"accuracy: {accuracy:.1%}\n\n{table}")
     return 0
 
@@ -59,8 +64,10 @@ def add_oracle_commands(commands: Commands) -> None:
     add_config_command(
         oracle, "serve", _serve_command, _oracle_serve, help="answer questions over HTTP (FastAPI)"
     )
-    report = oracle.add_parser(
-        "classify-report", help="accuracy and confusion matrix of the offline classifier"
+    add_config_command(
+        oracle,
+        "classify-report",
+        _classify_report_command,
+        _oracle_classify_report,
+        help="accuracy and confusion matrix of the offline classifier",
     )
-    report.add_argument("--questions", help="a JSON Lines question set (default: held-out set)")
-    report.set_defaults(handler=_oracle_classify_report)

@@ -1,5 +1,5 @@
-"""The settings of ``vlln oracle serve``: the service's limits and where and how it listens.
-Imported when the command is used."""
+"""The settings of ``vlln oracle serve`` (the service's limits and where and how it listens)
+and ``vlln oracle classify-report``. Imported when one of these commands is used."""
 
 from __future__ import annotations
 
@@ -8,6 +8,7 @@ from typing import Annotated
 
 from pydantic import Field, field_validator
 
+from vlln.config import Config
 from vlln.oracle.service.config import DEFAULT_HOST, DEFAULT_PORT, LOG_LEVELS, ServiceLimits
 
 
@@ -34,3 +35,10 @@ class ServeCommand(ServiceLimits):
         if value not in LOG_LEVELS:
             raise ValueError(f"must be one of {', '.join(LOG_LEVELS)}, got {value!r}")
         return value
+
+
+class ClassifyReportCommand(Config):
+    """``vlln oracle classify-report``: accuracy and confusion matrix of the offline classifier."""
+
+    questions: Path | None = None
+    """a JSON Lines question set (none: the held-out set)"""
