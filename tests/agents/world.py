@@ -13,11 +13,11 @@ import numpy as np
 
 from tests.sim import scenes
 from vlln.agents.protocol import Agent
-from vlln.oracle.protocol import EpisodeContext, Question, QuestionType, Reply
 from vlln.sim.simulator import Simulator
 from vlln.sim.viewpoints import view_points
 from vlln.tasks.env import NavigationEnv
 from vlln.tasks.episode import Episode, Goal, Instruction, ViewPoint
+from vlln.tasks.oracle_protocol import EpisodeContext, Question, QuestionType, Reply
 from vlln.tasks.scenes import SceneCache
 from vlln.tasks.spec import AgentOutput, TaskConfig, TaskType
 from vlln.world.frame import wrap_angle, yaw_of, yaw_to_quaternion

@@ -12,7 +12,6 @@ import numpy as np
 import pytest
 from matplotlib.path import Path as PolygonPath
 
-from vlln.oracle.protocol import EpisodeContext, Question, QuestionType
 from vlln.oracle.rule_oracle import RuleOracle
 from vlln.sim.agent import Action, AgentState
 from vlln.sim.camera import CameraSpec
@@ -20,6 +19,7 @@ from vlln.sim.follower import GreedyFollower
 from vlln.sim.renderer import Frame
 from vlln.sim.simulator import Simulator, SimulatorConfig
 from vlln.sim.viewpoints import view_points
+from vlln.tasks.oracle_protocol import EpisodeContext, Question, QuestionType
 from vlln.world.catalogue.aliases import ALIASES
 from vlln.world.frame import wrap_angle, yaw_of
 from vlln.world.generator import generate_house

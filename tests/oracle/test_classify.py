@@ -15,7 +15,6 @@ from vlln.oracle.classify import (
     classify_question,
 )
 from vlln.oracle.normalisation import normalise, rephrase
-from vlln.oracle.protocol import QuestionType
 from vlln.oracle.question_set import (
     LabelledQuestion,
     accuracy_of,
@@ -23,6 +22,7 @@ from vlln.oracle.question_set import (
     load_packaged_question_set,
 )
 from vlln.oracle.spelling import corrected
+from vlln.tasks.oracle_protocol import QuestionType
 
 A = QuestionType.ATTRIBUTE
 R = QuestionType.ROUTE

@@ -11,13 +11,13 @@ from vlln.oracle.llm.offline import OfflineLanguageModel
 from vlln.oracle.llm.openai_client import OpenAIChatClient, OpenAISettings
 from vlln.oracle.llm.prompts import QUESTION_MARKER, REFERENCE_MARKER, field_value
 from vlln.oracle.llm_oracle import LLMOracle
-from vlln.oracle.protocol import EpisodeContext, Oracle, Question, QuestionType
 from vlln.oracle.rule_oracle import RuleOracle
 from vlln.sim.agent import AgentState
 from vlln.sim.simulator import Simulator
 from vlln.sim.viewpoints import view_points
 from vlln.tasks.env import NavigationEnv
 from vlln.tasks.episode import Episode, Goal, Instruction, ViewPoint
+from vlln.tasks.oracle_protocol import EpisodeContext, Oracle, Question, QuestionType
 from vlln.tasks.record import DialogTurn, EpisodeRecord
 from vlln.tasks.scenes import SceneCache
 from vlln.tasks.spec import Talk, TaskConfig

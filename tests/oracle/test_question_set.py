@@ -9,7 +9,6 @@ import pytest
 
 from vlln.errors import ConfigError, DataFormatError
 from vlln.oracle.classify import RouteKind
-from vlln.oracle.protocol import QuestionType
 from vlln.oracle.question_set import (
     PACKAGED_SETS,
     LabelledQuestion,
@@ -22,6 +21,7 @@ from vlln.oracle.question_set import (
     markdown_confusion_table,
     packaged_question_set_path,
 )
+from vlln.tasks.oracle_protocol import QuestionType
 
 A, R, D, X = (
     QuestionType.ATTRIBUTE,

@@ -9,13 +9,13 @@ from collections.abc import Iterator
 import numpy as np
 import pytest
 
-from vlln.oracle.protocol import EpisodeContext, Question
 from vlln.oracle.question_set import load_packaged_question_set
 from vlln.oracle.rule_oracle import RuleOracle, reads_view
 from vlln.sim.agent import AgentState
 from vlln.sim.renderer import Frame
 from vlln.sim.simulator import Simulator
 from vlln.sim.viewpoints import view_points
+from vlln.tasks.oracle_protocol import EpisodeContext, Question
 from vlln.world.frame import yaw_of
 from vlln.world.generator import HouseParameters, generate_house
 

@@ -7,13 +7,13 @@ import pytest
 
 from vlln.errors import ConfigError
 from vlln.oracle.classify import classify_question
-from vlln.oracle.protocol import EpisodeContext, Oracle, Question
 from vlln.oracle.rule_oracle import RuleOracle
 from vlln.sim.agent import AgentState
 from vlln.sim.simulator import Simulator
 from vlln.sim.viewpoints import view_points
 from vlln.tasks.env import NavigationEnv
 from vlln.tasks.episode import Episode, Goal, Instruction, ViewPoint
+from vlln.tasks.oracle_protocol import EpisodeContext, Oracle, Question
 from vlln.tasks.scenes import SceneCache
 from vlln.tasks.spec import REFUSAL_MESSAGE, Talk, TaskConfig
 from vlln.world.frame import yaw_to_quaternion

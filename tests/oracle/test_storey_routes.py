@@ -7,7 +7,6 @@ from collections.abc import Iterator
 import numpy as np
 import pytest
 
-from vlln.oracle.protocol import EpisodeContext, Question
 from vlln.oracle.rule_oracle import RuleOracle
 from vlln.sim.agent import Action, AgentState
 from vlln.sim.camera import CameraSpec
@@ -15,6 +14,7 @@ from vlln.sim.follower import GreedyFollower
 from vlln.sim.renderer import Frame
 from vlln.sim.simulator import Simulator, SimulatorConfig
 from vlln.sim.viewpoints import storey_view_points
+from vlln.tasks.oracle_protocol import EpisodeContext, Question
 from vlln.world.generator import HouseParameters, generate_house
 from vlln.world.model import ObjectInstance
 

@@ -45,6 +45,22 @@ def test_a_code_opens_only_its_own_role(served: Served) -> None:
         assert page.headers["referrer-policy"] == "no-referrer"
 
 
+def test_errors_are_the_shared_json_error_bodies(study: Study, tmp_path: Path) -> None:
+    config = WebConfig(episodes=tuple(study.episodes), out=tmp_path / "errors")
+    with TestClient(create_app(config)) as client:
+        invalid = client.post("/api/join", json={"code": ""})
+        assert invalid.status_code == 422 and invalid.json()["error"] == "invalid request"
+        assert [problem["field"] for problem in invalid.json()["detail"]] == ["body.code"]
+        malformed = client.post(
+            "/api/join", content=b'{"code": ', headers={"Content-Type": "application/json"}
+        )
+        assert malformed.status_code == 400 and malformed.json()["error"] == "malformed JSON"
+        missing = client.get("/api/nothing-here")
+        assert missing.status_code == 404 and missing.json()["error"] == "not found"
+        form = client.post("/api/join", content=b"code=x", headers={"Content-Type": "text/plain"})
+        assert form.status_code == 415
+
+
 def test_the_token_guards_the_lobby_and_other_hosts_need_one(study: Study, tmp_path: Path) -> None:
     config = WebConfig(episodes=tuple(study.episodes), out=tmp_path / "a", token=TOKEN)
     with TestClient(create_app(config)) as client:

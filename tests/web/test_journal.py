@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 from vlln.errors import DataFormatError
-from vlln.oracle.protocol import QuestionType, Reply
+from vlln.tasks.oracle_protocol import QuestionType, Reply
 from vlln.web.journal import (
     JOURNAL_FOLDER,
     Journal,

@@ -18,12 +18,12 @@ from vlln.bench.figures import Figure, emit, median_seconds
 from vlln.bench.service import run_service_benchmark
 from vlln.errors import ConfigError
 from vlln.oracle.classify import analyse_question
-from vlln.oracle.protocol import EpisodeContext, Question, QuestionType
 from vlln.oracle.question_set import load_packaged_question_set
 from vlln.oracle.rule_oracle import RuleOracle
 from vlln.sim.agent import AgentState
 from vlln.sim.simulator import Simulator
 from vlln.sim.viewpoints import view_points
+from vlln.tasks.oracle_protocol import EpisodeContext, Question, QuestionType
 from vlln.world.generator import generate_house
 from vlln.world.model import ObjectInstance
 

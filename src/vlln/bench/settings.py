@@ -115,6 +115,15 @@ class FidelityBench(BenchOptions, PresetOptions):
     """where built splits are kept (none: ~/.cache/vlln)"""
 
 
+class WebBench(BenchOptions):
+    """``vlln bench web``: key-press-to-new-frame latency in the browser."""
+
+    presses: Count = 200
+    """key presses"""
+    browser: str = "/usr/bin/chromium"
+    """Chromium executable (Debian: chromium)"""
+
+
 class WorldBench(BenchOptions, PresetOptions):
     """``vlln bench world``: catalogue size; objects, triangles and build time per house."""
 

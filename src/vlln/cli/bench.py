@@ -8,7 +8,6 @@ from typing import TYPE_CHECKING, Any
 
 from vlln.cli.generated import add_config_command
 from vlln.cli.options import Commands
-from vlln.web.command import add_bench_web
 
 if TYPE_CHECKING:
     from vlln.bench.settings import (
@@ -20,6 +19,7 @@ if TYPE_CHECKING:
         OracleBench,
         SimBench,
         StoreysBench,
+        WebBench,
         WorldBench,
     )
 
@@ -137,6 +137,13 @@ def _bench_fidelity(config: FidelityBench) -> int:
     return 0
 
 
+def _bench_web(config: WebBench) -> int:
+    from vlln.bench.web import run_web_benchmark
+
+    run_web_benchmark(presses=config.presses, browser=config.browser, as_json=config.as_json)
+    return 0
+
+
 def _bench_world(config: WorldBench) -> int:
     from vlln.bench.world import run_world_benchmark
 
@@ -218,4 +225,10 @@ def add_bench_commands(commands: Commands) -> None:
         _bench_world,
         help="catalogue size; objects, triangles and build time per house",
     )
-    add_bench_web(bench)
+    add_config_command(
+        bench,
+        "web",
+        _settings("WebBench"),
+        _bench_web,
+        help="key-press-to-new-frame latency in the browser",
+    )

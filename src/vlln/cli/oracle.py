@@ -26,8 +26,8 @@ def _classify_report_command() -> type[ClassifyReportCommand]:
 
 def _oracle_serve(command: ServeCommand) -> int:
     require_extra("serve", "vlln oracle serve", SERVE_PACKAGES)
-    from vlln.oracle.service.config import ServiceConfig, ServiceLimits
-    from vlln.oracle.service.server import serve, token_from_environment
+    from vlln.oracle_service.config import ServiceConfig, ServiceLimits
+    from vlln.oracle_service.server import serve, token_from_environment
     from vlln.tasks.episode import read_episodes
 
     limits = command.model_dump(include=set(ServiceLimits.model_fields))

@@ -49,11 +49,11 @@ from vlln.eval.refusals import Refusal, append_refusals, read_refusals
 from vlln.eval.results import RecordKey, RunDirectory, SkippedLine, load_runs, record_key
 from vlln.eval.summary import GroupSummary, summarize_run, summary_json, summary_markdown
 from vlln.eval.sweep import can_sweep, describe_error, play_sweep
-from vlln.oracle.protocol import Oracle
 from vlln.oracle.rule_oracle import RuleOracle
 from vlln.tasks.env import NavigationEnv
 from vlln.tasks.episode import Episode, read_episodes
 from vlln.tasks.metrics import success
+from vlln.tasks.oracle_protocol import Oracle
 from vlln.tasks.record import EpisodeRecord, agent_label
 from vlln.tasks.scenes import SceneCache
 from vlln.tasks.spec import TaskConfig, TaskType

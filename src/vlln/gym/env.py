@@ -21,9 +21,10 @@ Datasheet
 * **Info**: ``episode_id``, ``house``; on the last step ``record``, the episode record as
   JSON (the same line ``vlln eval`` writes; score it with :mod:`vlln.tasks.metrics`).
 * **Arguments** of ``gymnasium.make``: ``split`` (train/val/test, default test) and ``houses``,
-  or ``episode_file``; ``oracle`` ("rule", default, or an :class:`vlln.oracle.protocol.Oracle`);
-  ``oracle_seed``; ``dialog_budget`` (IIGN, default 5); ``max_steps`` (500); ``privileged``;
-  ``width``/``height`` of the camera (640×480); ``cache_dir`` of built splits.
+  or ``episode_file``; ``oracle`` ("rule", default, or an
+  :class:`vlln.tasks.oracle_protocol.Oracle`); ``oracle_seed``; ``dialog_budget`` (IIGN,
+  default 5); ``max_steps`` (500); ``privileged``; ``width``/``height`` of the camera
+  (640×480); ``cache_dir`` of built splits.
 * **Reset options**: ``episode_index`` (default: drawn with the reset's seed), and ``split``,
   ``houses``, ``episode_file`` or ``oracle`` to switch the episode source or the oracle.
 * **Render**: ``render_mode="rgb_array"`` returns the first-person RGB frame.
@@ -45,13 +46,13 @@ from vlln.errors import ConfigError
 from vlln.eval.runner import default_cache_dir
 from vlln.gym.remote import RemoteEnv
 from vlln.gym.spaces import action_space, from_space, observation_space, to_space
-from vlln.oracle.protocol import Oracle
 from vlln.oracle.rule_oracle import RuleOracle
 from vlln.sim.camera import CameraSpec
 from vlln.sim.gl_context import forked_after_gl
 from vlln.sim.simulator import SimulatorConfig
 from vlln.tasks.env import NavigationEnv
 from vlln.tasks.episode import Episode, read_episodes
+from vlln.tasks.oracle_protocol import Oracle
 from vlln.tasks.scenes import SceneCache
 from vlln.tasks.spec import TaskConfig, TaskType
 from vlln.tasks.split_files import load_or_build_split

@@ -24,7 +24,6 @@ from typing import TypeVar
 from vlln.oracle.attribute_cues import ATTRIBUTE_RULES
 from vlln.oracle.normalisation import MATERIAL_SYNONYMS, ROOM_SYNONYMS, normalise, rephrase
 from vlln.oracle.other_cues import OTHER_RULES
-from vlln.oracle.protocol import QuestionType
 from vlln.oracle.question_cues import (
     DISAMBIGUATION_RULES,
     AttributeTopic,
@@ -33,6 +32,7 @@ from vlln.oracle.question_cues import (
     Topic,
 )
 from vlln.oracle.route_cues import ROUTE_RULES
+from vlln.tasks.oracle_protocol import QuestionType
 from vlln.world.materials import COLORS
 
 __all__ = [

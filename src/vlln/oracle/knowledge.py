@@ -16,10 +16,10 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from vlln.oracle.protocol import EpisodeContext
 from vlln.sim.follower import GreedyFollower
 from vlln.sim.geodesic import GeodesicField
 from vlln.sim.storey_field import StoreyField
+from vlln.tasks.oracle_protocol import EpisodeContext
 from vlln.world.catalogue.aliases import aliases_of
 from vlln.world.model import House, ObjectInstance, Relation, Room
 

@@ -39,8 +39,8 @@ from vlln.oracle.llm.protocol import (
     LanguageModelUnavailableError,
     Message,
 )
-from vlln.oracle.protocol import EpisodeContext, Question, QuestionType, Reply
 from vlln.oracle.rule_oracle import RuleOracle
+from vlln.tasks.oracle_protocol import EpisodeContext, Question, QuestionType, Reply
 
 logger = logging.getLogger(__name__)
 
@@ -67,7 +67,7 @@ class _Spend:
 
 
 class LLMOracle:
-    """An :class:`~vlln.oracle.protocol.Oracle` that asks ``model`` to classify and word.
+    """An :class:`~vlln.tasks.oracle_protocol.Oracle` that asks ``model`` to classify and word.
 
     ``fallback`` is the rule oracle that grounds every answer and stands in for failed calls
     (default: ``RuleOracle(seed)``); ``seed`` must match its seed when both are given.

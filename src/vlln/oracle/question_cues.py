@@ -15,7 +15,7 @@ import re
 from enum import StrEnum
 
 from vlln.oracle.normalisation import ROOM_SYNONYMS
-from vlln.oracle.protocol import QuestionType
+from vlln.tasks.oracle_protocol import QuestionType
 
 
 class RouteKind(StrEnum):

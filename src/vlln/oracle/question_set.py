@@ -20,7 +20,7 @@ from pathlib import Path
 
 from vlln.errors import ConfigError, DataFormatError
 from vlln.oracle.classify import RouteKind, classify_question
-from vlln.oracle.protocol import QuestionType
+from vlln.tasks.oracle_protocol import QuestionType
 
 PACKAGED_SETS = ("train", "heldout")
 # A held-out set stops being held out once patterns are tuned on its errors; each replacement

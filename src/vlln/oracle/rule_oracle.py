@@ -18,8 +18,8 @@ from vlln.oracle.answers import answer_attribute, answer_other
 from vlln.oracle.classify import OtherTopic, RouteKind, analysed
 from vlln.oracle.disambiguation import answer_disambiguation
 from vlln.oracle.knowledge import EpisodeKnowledge, HouseIndex
-from vlln.oracle.protocol import EpisodeContext, Question, QuestionType, Reply
 from vlln.oracle.route import answer_orientation, answer_path, answer_step
+from vlln.tasks.oracle_protocol import EpisodeContext, Question, QuestionType, Reply
 
 
 def reads_view(text: str) -> bool:

@@ -49,13 +49,13 @@ from typing import Any
 import numpy as np
 
 from vlln.errors import ConfigError, EpisodeRefusedError
-from vlln.oracle.protocol import EpisodeContext, Oracle, Question
 from vlln.sim.agent import Action, AgentState, MotionConfig
 from vlln.sim.camera import CameraSpec
 from vlln.sim.follower import GreedyFollower
 from vlln.sim.simulator import Simulator
 from vlln.sim.viewpoints import GoalPoint
 from vlln.tasks.episode import Episode
+from vlln.tasks.oracle_protocol import EpisodeContext, Oracle, Question
 from vlln.tasks.record import DialogTurn, EndReason, EpisodeRecord, ModelCall, StopReason
 from vlln.tasks.refusal import no_goal_reason, on_the_storey, reach_problem, start_problem
 from vlln.tasks.scenes import SceneCache

@@ -9,14 +9,14 @@
   wait (up to 20 s) for something newer. ``POST /api/navigator/act``, ``/api/navigator/ask``,
   ``/api/oracle/answer``; ``GET /api/oracle/map`` the house map with the target.
 
-Bodies are bounded (:class:`vlln.oracle.service.app.RequestGate`), requests are rate-limited
-per client and every response carries a strict Content-Security-Policy (:mod:`.limits`).
+Bodies are bounded (:class:`vlln.http.gate.RequestGate`), errors are JSON error bodies
+(:mod:`vlln.http.responses`), requests are rate-limited per client and every response carries
+a strict Content-Security-Policy (:mod:`.limits`).
 """
 
 from __future__ import annotations
 
 import asyncio
-import hmac
 import queue
 from collections.abc import AsyncIterator
 from contextlib import asynccontextmanager, suppress
@@ -25,14 +25,13 @@ from pathlib import Path
 from typing import Any
 
 from fastapi import FastAPI, Header, Request
-from fastapi.exceptions import RequestValidationError
-from fastapi.responses import FileResponse, JSONResponse
+from fastapi.responses import FileResponse
 from fastapi.staticfiles import StaticFiles
-from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from vlln import __version__
 from vlln.errors import ConfigError
-from vlln.oracle.service.app import RequestGate, error_response
+from vlln.http.gate import RequestGate, bearer_matches
+from vlln.http.responses import RequestError, add_error_handlers
 from vlln.tasks.spec import Talk
 from vlln.web.config import HUMAN_PREFIX, OracleKind, WebConfig
 from vlln.web.limits import RateLimit
@@ -48,10 +47,8 @@ QUESTION_WAIT_S = 1.0  # a person's answer takes longer: the page waits for it b
 STATIC = Path(str(resources.files("vlln.web") / "static"))
 
 
-class WebError(Exception):
-    def __init__(self, status: int, error: str, detail: str) -> None:
-        super().__init__(detail)
-        self.status, self.error, self.detail = status, error, detail
+class WebError(RequestError):
+    """A request the web app cannot serve; ``status`` is its HTTP status code."""
 
 
 def create_app(config: WebConfig, source: str = "", opened: SessionStore | None = None) -> FastAPI:
@@ -82,7 +79,7 @@ def create_app(config: WebConfig, source: str = "", opened: SessionStore | None 
         openapi_url=None,
         lifespan=lifespan,
     )
-    _add_error_handlers(app)
+    add_error_handlers(app)
     app.add_middleware(RequestGate, token=None, max_body_bytes=config.max_body_bytes)
 
     def known_code(code: str) -> bool:
@@ -105,11 +102,7 @@ def create_app(config: WebConfig, source: str = "", opened: SessionStore | None 
         app.add_api_route(route, _page(page), methods=["GET"], include_in_schema=False)
 
     def admin(authorization: str | None) -> None:
-        if config.token is None:
-            return
-        scheme, _, given = (authorization or "").partition(" ")
-        token = config.token.encode("utf-8")
-        if scheme.lower() != "bearer" or not hmac.compare_digest(given.strip().encode(), token):
+        if config.token is not None and not bearer_matches(authorization, config.token):
             raise WebError(401, "unauthorized", "this server needs its access token (ask the host)")
 
     def role(code: str | None, wanted: str) -> EpisodeSession:
@@ -266,21 +259,3 @@ def _page(name: str) -> Any:
         return FileResponse(STATIC / name, media_type="text/html")
 
     return page
-
-
-def _add_error_handlers(app: FastAPI) -> None:
-    @app.exception_handler(WebError)
-    async def web_error(_: Request, exc: WebError) -> JSONResponse:
-        return error_response(exc.status, exc.error, exc.detail)
-
-    @app.exception_handler(RequestValidationError)
-    async def invalid(_: Request, exc: RequestValidationError) -> JSONResponse:
-        problems = [
-            f"{'.'.join(str(p) for p in e.get('loc', ()))}: {e.get('msg', '')}"
-            for e in exc.errors()
-        ]
-        return error_response(422, "invalid request", "; ".join(problems)[:500])
-
-    @app.exception_handler(StarletteHTTPException)
-    async def http_error(_: Request, exc: StarletteHTTPException) -> JSONResponse:
-        return error_response(exc.status_code, "error", str(exc.detail))

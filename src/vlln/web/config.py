@@ -30,8 +30,6 @@ HUMAN_PREFIX = "human"
 DEFAULT_HOST = "127.0.0.1"
 DEFAULT_PORT = 8770
 DEFAULT_TOKEN_ENV = "VLLN_WEB_TOKEN"
-IIGN_DIALOG_BUDGET = 5
-"""Answered questions of an IIGN session unless told (the paper's largest budget)."""
 
 
 class OracleKind(StrEnum):
@@ -97,7 +95,7 @@ class WebConfig(WebLimits):
 
     episodes: SkipValidation[tuple[Episode, ...]]
     out: Path
-    dialog_budget: int = IIGN_DIALOG_BUDGET
+    dialog_budget: int = TaskType.IIGN.default_budget
     token: str | None = None
     llm: SkipValidation[OpenAISettings | None] = None
     agent_options: Mapping[str, Mapping[str, str]] = Field(default_factory=dict)

@@ -1,7 +1,7 @@
 """A person as the oracle: the question goes on a board that the oracle page reads, and the
 answer comes back from the browser within a time limit.
 
-:class:`HumanOracle` implements :class:`vlln.oracle.protocol.Oracle`, so any navigator (a
+:class:`HumanOracle` implements :class:`vlln.tasks.oracle_protocol.Oracle`, so any navigator (a
 person or an agent playing through :class:`vlln.tasks.env.NavigationEnv`) can be paired with
 it: ``answer`` blocks the navigator's thread until the answer arrives. When no answer comes in
 time, the rule oracle answers instead and the turn is recorded as a fallback, as the language-
@@ -16,10 +16,10 @@ from collections.abc import Callable
 from dataclasses import dataclass, replace
 
 from vlln.oracle.classify import classify_question
-from vlln.oracle.protocol import EpisodeContext, Question, Reply
 from vlln.oracle.rule_oracle import RuleOracle
 from vlln.sim.agent import AgentState
 from vlln.sim.renderer import Frame
+from vlln.tasks.oracle_protocol import EpisodeContext, Question, Reply
 
 HUMAN_BACKEND = "human"
 

@@ -21,7 +21,7 @@ from pathlib import Path
 from typing import IO, Any
 
 from vlln.errors import DataFormatError
-from vlln.oracle.protocol import QuestionType, Reply
+from vlln.tasks.oracle_protocol import QuestionType, Reply
 
 JOURNAL_FOLDER = "sessions"
 

@@ -7,7 +7,7 @@ from collections.abc import Callable
 
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
-from vlln.oracle.service.app import error_response
+from vlln.http.responses import error_response
 
 # Pages load their scripts and styles from this server only, never inline: a question or
 # an answer that smuggles in markup cannot run even if a page forgot to escape it.

@@ -6,8 +6,8 @@ import numpy as np
 
 from vlln.oracle.llm.openai_client import OpenAIChatClient
 from vlln.oracle.llm_oracle import LLMOracle
-from vlln.oracle.protocol import Oracle
 from vlln.oracle.rule_oracle import RuleOracle
+from vlln.tasks.oracle_protocol import Oracle
 from vlln.web.config import OracleKind, WebConfig
 from vlln.web.human_oracle import AnswerBoard, HumanOracle
 from vlln.web.session import OracleFactory

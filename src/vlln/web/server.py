@@ -12,7 +12,8 @@ from pathlib import Path
 import uvicorn
 
 from vlln.errors import ConfigError
-from vlln.oracle.service.server import is_loopback
+from vlln.http.addresses import is_loopback
+from vlln.http.server import uvicorn_server
 from vlln.web.app import create_app, open_store
 from vlln.web.config import DEFAULT_HOST, DEFAULT_PORT, WebConfig
 
@@ -27,8 +28,6 @@ def build_server(
 ) -> uvicorn.Server:
     """A uvicorn server for the web app, not yet running (its output folder already taken);
     ``port=0`` picks a free port."""
-    if isinstance(port, bool) or not isinstance(port, int) or not 0 <= port <= 65535:
-        raise ConfigError(f"port must be a whole number in 0..65535, got {port!r}")
     if not is_loopback(host):
         if config.token is None:
             raise ConfigError(
@@ -40,17 +39,13 @@ def build_server(
             "machines; starting sessions needs the token, each page its session code",
             file=sys.stderr,
         )
-    settings = uvicorn.Config(
-        create_app(config, source, open_store(config, source)),
-        host=host,
-        port=port,
-        log_level=log_level,
-        proxy_headers=False,
-        server_header=False,
-        lifespan="on",
+    return uvicorn_server(
+        lambda: create_app(config, source, open_store(config, source)),
+        host,
+        port,
+        log_level,
         timeout_graceful_shutdown=5,
     )
-    return uvicorn.Server(settings)
 
 
 def serve(config: WebConfig, host: str, port: int, source: str) -> None:

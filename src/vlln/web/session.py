@@ -25,10 +25,10 @@ from vlln.agents.protocol import Agent, reported_stop_reason
 from vlln.agents.registry import make_agent
 from vlln.eval.results import RecordKey
 from vlln.eval.runner import derive_seed
-from vlln.oracle.protocol import EpisodeContext, Oracle, Question, Reply
 from vlln.sim.agent import Action
 from vlln.tasks.env import NavigationEnv, Observation
 from vlln.tasks.episode import Episode
+from vlln.tasks.oracle_protocol import EpisodeContext, Oracle, Question, Reply
 from vlln.tasks.record import EpisodeRecord
 from vlln.tasks.scenes import SceneCache
 from vlln.tasks.spec import AgentOutput, Talk, TaskConfig

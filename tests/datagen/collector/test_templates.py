@@ -12,7 +12,7 @@ from vlln.datagen.collector.templates import (
     fill,
 )
 from vlln.oracle.classify import classify_question
-from vlln.oracle.protocol import QuestionType
+from vlln.tasks.oracle_protocol import QuestionType
 
 CASES = [
     *((t, QuestionType.ATTRIBUTE) for ts in ATTRIBUTE_TEMPLATES.values() for t in ts),

@@ -15,7 +15,7 @@ from vlln.oracle.llm.prompts import (
     is_classification,
     parse_question_type,
 )
-from vlln.oracle.protocol import QuestionType
+from vlln.tasks.oracle_protocol import QuestionType
 
 
 @pytest.mark.parametrize(

@@ -14,10 +14,10 @@ from vlln.datagen.collector.lattice import LatticeFollower
 from vlln.datagen.collector.policy import CollectorPolicy, PolicyConfig
 from vlln.datagen.trajectory import Step, Trajectory
 from vlln.errors import ConfigError
-from vlln.oracle.protocol import EpisodeContext, Oracle
 from vlln.sim.agent import Action, AgentState
 from vlln.sim.simulator import Simulator
 from vlln.tasks.episode import Episode
+from vlln.tasks.oracle_protocol import EpisodeContext, Oracle
 from vlln.world.frame import quaternion_to_yaw
 
 TOO_LONG = "too_long"  # the step limit was reached before STOP

@@ -29,10 +29,10 @@ from vlln.datagen.collector.templates import (
 from vlln.datagen.trajectory import Exchange
 from vlln.errors import ConfigError
 from vlln.oracle.disambiguation import centre_counts, is_centred, most_visible_of
-from vlln.oracle.protocol import Oracle, Question
 from vlln.sim.agent import AgentState
 from vlln.sim.renderer import Frame
 from vlln.sim.storeys import Storeys
+from vlln.tasks.oracle_protocol import Oracle, Question
 from vlln.world.model import House, ObjectInstance
 
 ATTRIBUTE, ROUTE, DISAMBIGUATION = "attribute", "route", "disambiguation"

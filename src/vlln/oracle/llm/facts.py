@@ -12,10 +12,10 @@ from vlln.errors import NavigationError
 from vlln.oracle.answers import answer_other, room_phrase
 from vlln.oracle.classify import OtherTopic, QuestionAnalysis
 from vlln.oracle.knowledge import EpisodeKnowledge, object_phrase
-from vlln.oracle.protocol import QuestionType
 from vlln.oracle.route import answer_path, signed_degrees
 from vlln.sim.agent import Action, AgentState
 from vlln.sim.renderer import Frame
+from vlln.tasks.oracle_protocol import QuestionType
 
 NEARBY_LIMIT = 3  # related objects listed in the goal information
 _UNKNOWN = "unknown"

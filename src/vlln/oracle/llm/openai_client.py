@@ -20,7 +20,6 @@ on disk when a cache folder is set, and every request is added to a :class:`Usag
 from __future__ import annotations
 
 import email.utils
-import ipaddress
 import json
 import logging
 import math
@@ -35,6 +34,7 @@ import httpx
 import numpy as np
 
 from vlln.errors import ConfigError
+from vlln.http.addresses import is_loopback
 from vlln.oracle.llm.accounting import Pricing, UsageLedger
 from vlln.oracle.llm.cache import ResponseCache, cache_key
 from vlln.oracle.llm.deadline import DeadlineBackend, deadline
@@ -50,7 +50,6 @@ from vlln.oracle.llm.protocol import (
 
 logger = logging.getLogger(__name__)
 
-_LOOPBACK_NAMES = ("localhost",)
 _ERROR_EXCERPT = 300  # characters of a server's error body quoted in an exception
 MAX_REPLY_BYTES = 1 << 20  # a completion of a few hundred tokens is a few kilobytes
 _TRANSPORT_ERRORS = (httpcore.TimeoutException, httpcore.NetworkError, httpcore.RemoteProtocolError)
@@ -100,21 +99,12 @@ def check_base_url(base_url: str) -> None:
         raise ConfigError(f"base_url {base_url!r} is not a URL: {error}") from None
     if url.scheme == "https" and url.host:
         return
-    if url.scheme == "http" and _is_loopback(url.host):
+    if url.scheme == "http" and is_loopback(url.host):
         return
     raise ConfigError(
         f"base_url {base_url!r} must use https:// (plain http:// is only allowed for "
         "localhost, 127.0.0.0/8 and ::1, where the key never leaves the machine)"
     )
-
-
-def _is_loopback(host: str) -> bool:
-    if host.lower() in _LOOPBACK_NAMES:
-        return True
-    try:
-        return ipaddress.ip_address(host.strip("[]")).is_loopback
-    except ValueError:
-        return False
 
 
 class OpenAIChatClient:

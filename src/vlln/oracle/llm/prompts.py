@@ -12,7 +12,7 @@ from __future__ import annotations
 import re
 
 from vlln.oracle.llm.protocol import Message
-from vlln.oracle.protocol import QuestionType
+from vlln.tasks.oracle_protocol import QuestionType
 
 QUESTION_MARKER = "QUESTION: "
 REFERENCE_MARKER = "Reference Answer: "

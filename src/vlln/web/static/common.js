@@ -24,11 +24,21 @@ const vlln = {
     }
     if (!response.ok) {
       const detail = data && data.detail ? data.detail : response.statusText;
-      const failure = new Error(typeof detail === "string" ? detail : JSON.stringify(detail));
+      const failure = new Error(vlln.describeDetail(detail));
       failure.status = response.status;
       throw failure;
     }
     return data;
+  },
+
+  // An error body's detail as one line: text as it is, a list of {field, problem} (an
+  // invalid request) as "field: problem; ...".
+  describeDetail(detail) {
+    if (typeof detail === "string") return detail;
+    if (Array.isArray(detail)) {
+      return detail.map((item) => (item.field ? `${item.field}: ${item.problem}` : item.problem)).join("; ");
+    }
+    return JSON.stringify(detail);
   },
 
   withCode(method, path, body) {

@@ -9,8 +9,8 @@ import pytest
 
 from vlln.errors import ConfigError
 from vlln.oracle.rule_oracle import RuleOracle
-from vlln.oracle.service.config import ServiceConfig
-from vlln.oracle.service.sessions import ServiceError, Session, SessionStore
+from vlln.oracle_service.config import ServiceConfig
+from vlln.oracle_service.sessions import ServiceError, Session, SessionStore
 from vlln.world.model import ObjectInstance
 
 from .conftest import World

@@ -1,4 +1,5 @@
-"""The oracle's small interface: start an episode with privileged context, answer questions."""
+"""The oracle protocol the environment calls: start an episode with privileged context, answer
+questions. It lives in tasks, the layer that calls it; the answerers (vlln.oracle) implement it."""
 
 from __future__ import annotations
 

@@ -10,13 +10,13 @@ from typing import Any
 import pytest
 from fastapi.testclient import TestClient
 
-from vlln.oracle.protocol import EpisodeContext, Question
 from vlln.oracle.rule_oracle import RuleOracle
-from vlln.oracle.service.app import create_app
-from vlln.oracle.service.config import ServiceConfig
-from vlln.oracle.service.schemas import MAX_QUESTION_CHARS
-from vlln.oracle.service.sessions import REFUSED_TURNS_KEPT
+from vlln.oracle_service.app import create_app
+from vlln.oracle_service.config import ServiceConfig
+from vlln.oracle_service.schemas import MAX_QUESTION_CHARS
+from vlln.oracle_service.sessions import REFUSED_TURNS_KEPT
 from vlln.sim.agent import AgentState
+from vlln.tasks.oracle_protocol import EpisodeContext, Question
 from vlln.tasks.spec import REFUSAL_MESSAGE
 from vlln.world.frame import yaw_of
 

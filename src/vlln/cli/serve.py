@@ -1,19 +1,18 @@
-"""``vlln serve web`` and ``vlln bench web``: argument definitions and handlers (imports of
-the heavy parts happen inside the handlers, so ``vlln --help`` stays fast)."""
+"""``vlln serve web``: its flags come from :class:`vlln.web.settings.ServeWebCommand`; the
+handler imports the heavy parts, so ``vlln --help`` stays fast."""
 
 from __future__ import annotations
 
-import argparse
 import os
 from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from vlln.cli.generated import add_config_command
+from vlln.cli.options import Commands
 
 if TYPE_CHECKING:
     from vlln.web.settings import ServeWebCommand
 
-Commands = argparse._SubParsersAction
 DEFAULT_SPLIT = "test"
 
 
@@ -29,13 +28,12 @@ def _serve_web(command: ServeWebCommand) -> int:
     require_extra("serve", "vlln serve web", SERVE_PACKAGES)
     from vlln.errors import ConfigError
     from vlln.eval.runner import default_cache_dir, order_by_scene, spread_over_scenes
+    from vlln.http.addresses import is_loopback
     from vlln.oracle.llm.openai_client import OpenAISettings
-    from vlln.oracle.service.server import is_loopback
     from vlln.tasks.episode import read_episodes
-    from vlln.tasks.spec import TaskType
     from vlln.tasks.split_files import load_or_build_split
     from vlln.tasks.splits import SPLIT_SIZES
-    from vlln.web.config import IIGN_DIALOG_BUDGET, WebConfig, WebLimits
+    from vlln.web.config import WebConfig, WebLimits
     from vlln.web.server import episode_source, serve
 
     token = os.environ.get(command.token_env) or None
@@ -59,9 +57,7 @@ def _serve_web(command: ServeWebCommand) -> int:
         llm = OpenAISettings(model=command.llm_model)
         if command.llm_base_url:
             llm = replace(llm, base_url=command.llm_base_url)
-    budget = command.budget
-    if budget is None:
-        budget = IIGN_DIALOG_BUDGET if command.task == TaskType.IIGN else 0
+    budget = command.task.default_budget if command.budget is None else command.budget
     config = WebConfig.build(
         {
             **command.model_dump(include=set(WebLimits.model_fields)),
@@ -107,21 +103,3 @@ def add_serve_commands(commands: Commands) -> None:
         _serve_web,
         help="navigate or answer in the browser (human studies)",
     )
-
-
-def _bench_web(args: argparse.Namespace) -> int:
-    from vlln.bench.web import run_web_benchmark
-
-    run_web_benchmark(presses=args.presses, browser=args.browser, as_json=args.json)
-    return 0
-
-
-def add_bench_web(bench: Commands) -> None:
-    """``vlln bench web``."""
-    web = bench.add_parser("web", help="key-press-to-new-frame latency in the browser")
-    web.add_argument("--presses", type=int, default=200, help="key presses (default 200)")
-    web.add_argument(
-        "--browser", default="/usr/bin/chromium", help="Chromium executable (Debian: chromium)"
-    )
-    web.add_argument("--json", action="store_true", help="print one JSON object per line")
-    web.set_defaults(handler=_bench_web)

@@ -22,22 +22,17 @@ from collections import OrderedDict
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-from vlln.errors import ConfigError, VllnError
+from vlln.errors import ConfigError
+from vlln.http.responses import RequestError
 from vlln.oracle.rule_oracle import RuleOracle
-from vlln.oracle.service.schemas import DialogTurnView
+from vlln.oracle_service.schemas import DialogTurnView
 from vlln.sim.simulator import Simulator
 from vlln.sim.viewpoints import GoalPoint
 from vlln.world.model import ObjectInstance
 
 
-class ServiceError(VllnError):
-    """A request the service cannot serve; ``status`` is its HTTP status code."""
-
-    def __init__(self, status: int, error: str, detail: str | dict[str, object]) -> None:
-        super().__init__(f"{error}: {detail}")
-        self.status = status
-        self.error = error
-        self.detail = detail
+class ServiceError(RequestError):
+    """A request the oracle service cannot serve; ``status`` is its HTTP status code."""
 
 
 REFUSED_TURNS_KEPT = 8

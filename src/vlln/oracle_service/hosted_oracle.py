@@ -22,11 +22,10 @@ import numpy as np
 
 from vlln import __version__
 from vlln.errors import VllnError
-from vlln.oracle.protocol import EpisodeContext, Question, QuestionType
 from vlln.oracle.rule_oracle import RuleOracle, reads_view
-from vlln.oracle.service.config import ServiceConfig
-from vlln.oracle.service.limits import BuildLimiter
-from vlln.oracle.service.schemas import (
+from vlln.oracle_service.config import ServiceConfig
+from vlln.oracle_service.limits import BuildLimiter
+from vlln.oracle_service.schemas import (
     AskRequest,
     AskResponse,
     CreateSessionRequest,
@@ -36,14 +35,15 @@ from vlln.oracle.service.schemas import (
     Pose,
     SessionView,
 )
-from vlln.oracle.service.schemas import QuestionType as WireQuestionType
-from vlln.oracle.service.sessions import REFUSED_TURNS_KEPT, ServiceError, Session, SessionStore
+from vlln.oracle_service.schemas import QuestionType as WireQuestionType
+from vlln.oracle_service.sessions import REFUSED_TURNS_KEPT, ServiceError, Session, SessionStore
 from vlln.sim.agent import AgentState
 from vlln.sim.renderer import Frame
 from vlln.sim.simulator import Simulator
 from vlln.sim.storeys import Storeys
 from vlln.sim.viewpoints import GoalPoint
 from vlln.tasks.episode import Episode
+from vlln.tasks.oracle_protocol import EpisodeContext, Question, QuestionType
 from vlln.tasks.scenes import SceneCache, canonical_seed, procedural_scene_id
 from vlln.tasks.spec import REFUSAL_MESSAGE
 from vlln.world.frame import wrap_angle

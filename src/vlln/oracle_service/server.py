@@ -9,31 +9,21 @@ announced with a warning on stderr.
 from __future__ import annotations
 
 import gc
-import ipaddress
 import os
 import sys
 
 import uvicorn
 
 from vlln.errors import ConfigError
-from vlln.oracle.service.app import create_app
-from vlln.oracle.service.config import (
+from vlln.http.addresses import is_loopback
+from vlln.http.server import uvicorn_server
+from vlln.oracle_service.app import create_app
+from vlln.oracle_service.config import (
     DEFAULT_HOST,
     DEFAULT_PORT,
     DEFAULT_TOKEN_ENV,
-    LOG_LEVELS,
     ServiceConfig,
 )
-
-
-def is_loopback(host: str) -> bool:
-    """Whether ``host`` names this machine only (``localhost`` or a loopback address)."""
-    if host.lower() == "localhost":
-        return True
-    try:
-        return ipaddress.ip_address(host).is_loopback
-    except ValueError:
-        return False
 
 
 def token_from_environment(token_env: str | None) -> str | None:
@@ -61,10 +51,6 @@ def build_server(
     log_level: str = "info",
 ) -> uvicorn.Server:
     """A uvicorn server for the oracle app, not yet running; ``port=0`` picks a free port."""
-    if isinstance(port, bool) or not isinstance(port, int) or not 0 <= port <= 65535:
-        raise ConfigError(f"port must be a whole number in 0..65535, got {port!r}")
-    if log_level not in LOG_LEVELS:
-        raise ConfigError(f"log_level must be one of {', '.join(LOG_LEVELS)}, got {log_level!r}")
     if not is_loopback(host):
         if not allow_remote:
             raise ConfigError(
@@ -83,16 +69,7 @@ def build_server(
             "machines, with a bearer token",
             file=sys.stderr,
         )
-    settings = uvicorn.Config(
-        create_app(config),
-        host=host,
-        port=port,
-        log_level=log_level,
-        proxy_headers=False,
-        server_header=False,
-        lifespan="on",
-    )
-    return uvicorn.Server(settings)
+    return uvicorn_server(lambda: create_app(config), host, port, log_level)
 
 
 def freeze_startup_objects() -> int:

@@ -15,7 +15,6 @@ DEFAULT_MAX_BODY_BYTES = 64 * 1024
 DEFAULT_HOST = "127.0.0.1"
 DEFAULT_PORT = 8765
 DEFAULT_TOKEN_ENV = "VLLN_ORACLE_TOKEN"
-LOG_LEVELS = ("critical", "error", "warning", "info", "debug")
 
 
 class ServiceLimits(Config):
@@ -32,7 +31,7 @@ class ServiceLimits(Config):
     floor_tolerance: float = 0.3
     """how far (m) a pose's y may be from the floor"""
     builds_per_minute: Annotated[int, Field(ge=1)] = 60
-    """house builds, all clients together (vlln.oracle.service.limits)"""
+    """house builds, all clients together (vlln.oracle_service.limits)"""
     client_builds_per_minute: Annotated[int, Field(ge=1)] = 20
     """house builds one client address may cause"""
 

@@ -7,12 +7,12 @@ from typing import Any
 import pytest
 from fastapi.testclient import TestClient
 
-from vlln.oracle.service.app import create_app
-from vlln.oracle.service.config import ServiceConfig
-from vlln.oracle.service.hosted_oracle import HostedOracle
-from vlln.oracle.service.limits import BuildLimiter
-from vlln.oracle.service.schemas import AskRequest, CreateSessionRequest, Pose
-from vlln.oracle.service.sessions import ServiceError
+from vlln.oracle_service.app import create_app
+from vlln.oracle_service.config import ServiceConfig
+from vlln.oracle_service.hosted_oracle import HostedOracle
+from vlln.oracle_service.limits import BuildLimiter
+from vlln.oracle_service.schemas import AskRequest, CreateSessionRequest, Pose
+from vlln.oracle_service.sessions import ServiceError
 from vlln.tasks.scenes import procedural_scene_id
 
 from .conftest import World

@@ -13,8 +13,8 @@ import httpx
 import pytest
 
 from tests.stairs import SCENE_ID, Flight, flight_foot, upstairs_episode
-from vlln.oracle.service.config import ServiceConfig
-from vlln.oracle.service.server import build_server
+from vlln.oracle_service.config import ServiceConfig
+from vlln.oracle_service.server import build_server
 from vlln.sim.simulator import Simulator
 from vlln.sim.viewpoints import storey_view_points
 from vlln.tasks.episode import Episode

@@ -14,7 +14,7 @@ import time
 from collections import deque
 from collections.abc import Callable
 
-from vlln.oracle.service.sessions import ServiceError
+from vlln.oracle_service.sessions import ServiceError
 
 WINDOW_S = 60.0
 
