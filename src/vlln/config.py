@@ -14,6 +14,7 @@ plain argparse.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import Any, ClassVar, Self
 
 from pydantic import ValidationError
@@ -21,7 +22,7 @@ from pydantic_settings import BaseSettings, PydanticBaseSettingsSource, Settings
 
 from vlln.errors import ConfigError, DataFormatError
 
-__all__ = ["Config", "describe_validation_error"]
+__all__ = ["BareFlag", "Config", "SettingsError", "describe_validation_error"]
 
 
 class Config(BaseSettings):
@@ -53,14 +54,34 @@ class Config(BaseSettings):
     ) -> tuple[PydanticBaseSettingsSource, ...]:
         return (init_settings,)
 
+    def __init__(self, **values: Any) -> None:
+        """The config of ``values``; invalid ones raise :class:`SettingsError`, one line that
+        names each flag at fault (never pydantic's multi-line report)."""
+        try:
+            super().__init__(**values)
+        except ValidationError as error:
+            raise SettingsError(error) from None
+
     @classmethod
     def build(cls, values: dict[str, Any], flags: bool = True) -> Self:
         """The config of ``values``; an invalid value raises :class:`ConfigError` in one line
         that names the flag (``flags``) or the key at fault."""
         try:
             return cls(**values)
-        except ValidationError as error:
-            raise ConfigError(describe_validation_error(error, flags)) from None
+        except SettingsError as error:
+            if flags:
+                raise
+            raise ConfigError(describe_validation_error(error.error, False)) from None
+
+    @classmethod
+    def replay(cls, stored: Any, where: str, given: dict[str, Any]) -> dict[str, Any]:
+        """The values of a command replaying the settings ``stored`` in file ``where`` (read
+        with :meth:`from_json`) under the flags ``given`` (keyed by field name)."""
+        return cls.from_json(stored, where).to_json() | given
+
+    def replace(self, **changes: Any) -> Self:
+        """A copy with ``changes``, checked like a new config (``dataclasses.replace``)."""
+        return type(self)(**(self.model_dump() | changes))
 
     def to_json(self) -> dict[str, Any]:
         """The settings as JSON values, in field order (what ``run.json`` and friends store)."""
@@ -75,10 +96,27 @@ class Config(BaseSettings):
         values = {key: value for key, value in data.items() if key not in cls.file_keys}
         try:
             return cls(**values)
-        except ValidationError as error:
+        except SettingsError as error:
             raise DataFormatError(
-                f"{where}: malformed settings ({describe_validation_error(error, False)})"
+                f"{where}: malformed settings ({describe_validation_error(error.error, False)})"
             ) from None
+
+
+class SettingsError(ConfigError):
+    """Settings that do not validate; the message names each flag at fault, and ``error``
+    keeps pydantic's report for other wordings (a file's keys)."""
+
+    def __init__(self, error: ValidationError) -> None:
+        super().__init__(describe_validation_error(error, True))
+        self.error = error
+
+
+@dataclass(frozen=True)
+class BareFlag:
+    """Marks a field (``Annotated[str | None, BareFlag("")]``) whose flag may be given without
+    a value, which then means ``value``: ``--ray`` alone as well as ``--ray ADDRESS``."""
+
+    value: str
 
 
 def describe_validation_error(error: ValidationError, flags: bool) -> str:
@@ -86,6 +124,8 @@ def describe_validation_error(error: ValidationError, flags: bool) -> str:
     ``flags`` is false); pydantic's "Value error, " prefix is dropped from our own messages."""
     parts = []
     for problem in error.errors():
+        if problem["type"] == "default_factory_not_called":
+            continue  # a consequence of another field's error, reported on its own
         message = str(problem["msg"]).removeprefix("Value error, ")
         names = [str(part) for part in problem["loc"] if not isinstance(part, int)]
         if not names:

@@ -12,6 +12,7 @@ from pathlib import Path
 
 from vlln.eval.config import EvalConfig
 from vlln.eval.report import write_report
+from vlln.eval.run_dir import summary_md_file
 from vlln.eval.runner import run_evaluation
 from vlln.tasks.splits import house_seeds
 from vlln.viz.show import show_world
@@ -38,6 +39,6 @@ def run_demo(out: Path) -> None:
     )
     run = out / "frontier_iign"
     outcome = run_evaluation(config, run, cache_dir=out / "episodes")
-    print((run / "summary.md").read_text(encoding="utf-8"))
+    print(summary_md_file(run).read_text(encoding="utf-8"))
     files = write_report([run], out / "report")
     print(f"{len(outcome.records)} episodes in {run}; report: {files[-1]}")

@@ -6,7 +6,7 @@ from tests.agents import world
 from tests.sim import scenes
 from vlln.agents.frontier import FrontierAgent
 from vlln.errors import ConfigError
-from vlln.eval.runner import play_episode
+from vlln.eval.play import play_episode
 from vlln.eval.sweep import play_sweep
 from vlln.sim.agent import Action, MotionConfig
 from vlln.sim.camera import CameraSpec

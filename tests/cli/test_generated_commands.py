@@ -15,6 +15,8 @@ import pytest
 from pydantic import BaseModel
 
 from vlln.cli import build_parser, main
+from vlln.cli.eval_configs import EvalCommand
+from vlln.cli.generated import add_config_command
 from vlln.config import Config
 from vlln.train.config import TrainConfig
 
@@ -55,6 +57,11 @@ def test_the_commands_with_settings_are_generated_from_their_configs() -> None:
     names = {" ".join(words) for words, _, _ in _generated()}
     assert {
         "train sft",
+        "eval",
+        "score",
+        "report",
+        "video",
+        "demo",
         "data build",
         "data export-sft",
         "data episodes",
@@ -81,21 +88,24 @@ def test_every_flag_is_a_field_and_every_default_the_fields(
         for option in action.option_strings
         if option.startswith("--") and option not in ("--help", "--config")
     }
-    positionals = {action.dest for action in parser._actions if not action.option_strings}
+    positionals = {action.dest: action for action in parser._actions if not action.option_strings}
     for name, field in config.model_fields.items():
         if isinstance(field.default, BaseModel):
             continue
-        if name in positionals:  # a required positional argument (CliPositionalArg)
-            assert field.is_required() and field.description, f"{name}: no docstring"
+        if name in positionals:  # CliPositionalArg: required, so no default
+            assert field.description and positionals[name].help == field.description
             continue
         flag = "--" + name.replace("_", "-")
         assert flag in flags, f"{' '.join(words)}: field {name} has no flag {flag}"
-        help_text = flags[flag].help or ""
+        help_text = (flags[flag].help or "").replace("\n", " ")
         assert field.description or field.is_required(), f"{name} has no docstring"
-        if not field.is_required():
+        if field.default_factory is not None:
+            shown = f"(default factory: {field.default_factory.__name__})"
+            assert shown in help_text, f"{' '.join(words)} {flag}: {help_text}"
+        elif not field.is_required():
             # pydantic-settings names an enum default by its member name (flags take both)
-            shown = field.default.name if isinstance(field.default, Enum) else field.default
-            assert f"(default: {shown})" in help_text.replace("\n", " ") or (
+            default = field.default.name if isinstance(field.default, Enum) else field.default
+            assert f"(default: {default})" in help_text or (
                 isinstance(field.default, tuple | list)
             ), f"{' '.join(words)} {flag}: help shows no default {field.default!r}: {help_text}"
         # The argparse-level default is never a second copy of the value.
@@ -125,8 +135,8 @@ def test_stored_settings_read_back_equal_and_refuse_unknown_keys(tmp_path: Path)
 
 def test_the_parser_imports_no_config_module_until_a_command_is_used() -> None:
     code = (
-        "import sys; from vlln.cli import build_parser; build_parser(); "
-        "print(sorted(m for m in sys.modules if m.startswith(('vlln.datagen', 'vlln.oracle.s'))))"
+        "import sys; from vlln.cli import build_parser; build_parser(); print(sorted(m for m "
+        "in sys.modules if m.startswith(('vlln.datagen', 'vlln.oracle_service'))))"
     )
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert done.stdout.strip() == "[]"
@@ -143,3 +153,19 @@ def test_data_episodes_refuses_floors_for_houses_that_draw_their_own(
         "error: --floors sets the storeys of small houses; mp3d houses draw theirs from the "
         "seed: add --preset small, or drop --floors"
     )
+
+
+def test_a_bare_flag_goes_without_its_value_and_eval_keeps_its_flag_spellings() -> None:
+    parser = argparse.ArgumentParser()
+    built: list[EvalCommand] = []
+
+    def keep(config: EvalCommand) -> int:
+        built.append(config)
+        return 0
+
+    add_config_command(parser.add_subparsers(), "eval", EvalCommand, keep, help="", replay=True)
+    common = ["eval", "--agent", "frontier", "--task", "iign", "--out", "o", "--preset", "small"]
+    for given, ray in (([], None), (["--ray"], ""), (["--ray", "auto"], "auto")):
+        args = parser.parse_args([*common, *given, "--budget", "0", "--no-sweep"])
+        assert args.handler(args) == 0
+        assert (built[-1].ray, built[-1].budgets, built[-1].sweep) == (ray, (0,), False)

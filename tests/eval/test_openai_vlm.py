@@ -17,8 +17,9 @@ from tests.oracle.llm.chat_server import ChatServer, Scripted, chat_server, comp
 from vlln.agents.expert import ExpertAgent
 from vlln.cli import main
 from vlln.eval.config import EvalConfig
+from vlln.eval.play import derive_seed, play_episode
 from vlln.eval.report import write_report
-from vlln.eval.runner import RunOutcome, derive_seed, play_episode, run_evaluation
+from vlln.eval.runner import RunOutcome, run_evaluation
 from vlln.prompt import IMAGE_TAG, DialogExchange, build_conversation, connective_for
 from vlln.sim.agent import AgentState
 from vlln.tasks.env import NavigationEnv
@@ -332,7 +333,7 @@ def test_the_cli_runs_the_agent_and_refuses_a_missing_model(
     common = ["eval", "--agent", "openai-vlm", "--task", "iign", "--budget", "0"]
     common += ["--episode-file", source, "--quiet"]
     assert main([*common, "--out", str(tmp_path / "a"), "--base-url", "http://127.0.0.1:9/v1"]) == 2
-    assert "needs --model NAME" in capsys.readouterr().err
+    assert "the openai-vlm agent needs --model (the served model" in capsys.readouterr().err
     with chat_server([completion("<move>STOP")]) as server:
         args = ["--base-url", server.base_url, "--model", "m", "--api-key-env", "VLLN_TEST_KEY"]
         assert main([*common, "--out", str(tmp_path / "b"), *args]) == 0

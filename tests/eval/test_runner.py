@@ -13,9 +13,9 @@ from tests.eval.runs import evaluate, lines, summary
 from vlln.errors import ConfigError
 from vlln.eval.config import EvalConfig
 from vlln.eval.health import run_health
+from vlln.eval.play import derive_seed
 from vlln.eval.results import load_runs
 from vlln.eval.runner import (
-    derive_seed,
     load_episodes,
     order_by_scene,
     plan_work,
@@ -228,7 +228,7 @@ def test_plan_spreads_n_episodes_and_shards_round_robin(split_cache: Path) -> No
     expected = [ordered[k * len(ordered) // 5] for k in range(5)]
     assert [item.episode for item in plan[::2]] == expected
     assert [item.budget for item in plan] == [0, 2] * 5
-    sharded = plan_work(episodes, replace(config, shard=Shard(1, 2)))
+    sharded = plan_work(episodes, config.replace(shard=Shard(1, 2)))
     assert [item.episode for item in sharded[::2]] == expected[1::2]
     with pytest.raises(ConfigError, match="only"):
         plan_work(episodes[:3], config)

@@ -15,7 +15,7 @@ from PIL import Image
 from vlln.agents.registry import make_agent
 from vlln.errors import ConfigError, DataFormatError
 from vlln.eval.episode_map import draw_episode_map, pose_storeys
-from vlln.eval.runner import play_episode
+from vlln.eval.play import play_episode
 from vlln.eval.video import VideoConfig, map_images, replay
 from vlln.eval.videos import write_videos
 from vlln.tasks.env import NavigationEnv

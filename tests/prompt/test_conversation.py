@@ -244,7 +244,6 @@ def test_parts_interleave_text_and_images() -> None:
         ImageRef("level", 2),
         ".",
     ]
-    assert conversation.as_sharegpt() == [{"from": "human", "value": conversation.turns[0].text}]
 
 
 def test_connective_is_a_pure_function_of_seed_episode_and_frame() -> None:

@@ -48,6 +48,6 @@ def test_the_vlln_agent_needs_a_model_folder(
     common += ["--preset", "small"]
     common += ["--cache-dir", str(tmp_path / "splits"), "--quiet"]
     assert main([*common, "--out", str(tmp_path / "a")]) == 2
-    assert "the vlln agent needs --model PATH" in capsys.readouterr().err
+    assert "the vlln agent needs --model (a model folder" in capsys.readouterr().err
     assert main([*common, "--out", str(tmp_path / "b"), "--model", str(tmp_path)]) == 2
     assert "is not a model folder (no config.json)" in capsys.readouterr().err

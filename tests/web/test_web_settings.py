@@ -34,3 +34,19 @@ def test_a_damaged_web_json_is_one_line(
     assert error.startswith(f"error: {out / 'web.json'} is damaged (") and error.count("\n") == 1
     assert "restore the study's settings, or serve into another --out" in error
     assert (out / "web.json").read_bytes() == DAMAGE[kind]
+
+
+def test_agent_options_are_read_into_the_agents_options_class(
+    study: Study, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    source = ["serve", "web", "--episode-file", str(study.episode_file), "--out", str(tmp_path)]
+    options = ["--agent-option", "openai-vlm.base_url=http://127.0.0.1:9/v1"]
+    options += ["--agent-option", "openai-vlm.model=m", "--agent-option", "openai-vlm.timeout_s=x"]
+    assert main([*source, *options]) == 2
+    error = capsys.readouterr().err
+    assert error == (
+        "error: openai-vlm option timeout_s = 'x': Input should be a valid number, "
+        "unable to parse string as a number\n"
+    )
+    assert main([*source, "--agent-option", "frontier.model=m"]) == 2
+    assert capsys.readouterr().err == "error: agent 'frontier' takes no options, got model\n"

@@ -4,13 +4,15 @@ any class that implements the protocol, named ``package.module:Class``."""
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
+from typing import Any
 
 from vlln.agents.custom import is_agent_spec, load_agent
 from vlln.agents.expert import ExpertAgent
 from vlln.agents.frontier import FrontierAgent
 from vlln.agents.frontier.perception import check_detector
-from vlln.agents.local.options import vlln_agent
-from vlln.agents.model.options import openai_vlm_agent
+from vlln.agents.local.options import VllnOptions, vlln_agent
+from vlln.agents.model.options import OpenAIVLMOptions, openai_vlm_agent
+from vlln.agents.options import AgentOptions
 from vlln.agents.protocol import Agent
 from vlln.agents.random_agent import RandomAgent
 from vlln.errors import ConfigError
@@ -21,8 +23,11 @@ AGENTS: dict[str, Callable[[int], Agent]] = {
     "frontier": FrontierAgent,
 }
 
-# Agents that take options (which server, which model), stored in run.json.
-CONFIGURED_AGENTS: dict[str, Callable[[int, Mapping[str, str]], Agent]] = {
+OPTIONS: dict[str, type[AgentOptions]] = {"openai-vlm": OpenAIVLMOptions, "vlln": VllnOptions}
+"""The options class of each agent that takes options (which server, which model); stored in
+run.json. Every other agent takes none (:class:`AgentOptions` itself, empty)."""
+
+CONFIGURED_AGENTS: dict[str, Callable[[int, Any], Agent]] = {
     "openai-vlm": openai_vlm_agent,
     "vlln": vlln_agent,
 }
@@ -47,27 +52,37 @@ def resolve_detector(agent: str, detector: str | None) -> str | None:
     return check_detector(detector or DEFAULT_DETECTOR)
 
 
+def agent_options(name: str, values: AgentOptions | Mapping[str, Any] | None) -> AgentOptions:
+    """The options of agent ``name``: ``values`` (keyed by option or flag name, strings
+    converted) checked against the agent's class; an option for an agent without any, an
+    unknown one or a bad value is one :class:`ConfigError` line."""
+    options = OPTIONS.get(name, AgentOptions)
+    if isinstance(values, AgentOptions):
+        if type(values) is options:
+            return values
+        values = values.to_json()
+    return options.parse(name, values or {})
+
+
 def make_agent(
     name: str,
     seed: int,
     detector: str | None = None,
-    options: Mapping[str, str] | None = None,
+    options: AgentOptions | Mapping[str, Any] | None = None,
 ) -> Agent:
     """A fresh agent of the named kind, seeded; ``detector`` for agents that perceive through
     one, ``options`` only for agents that take them."""
-    options = options or {}
     configured = CONFIGURED_AGENTS.get(name)
     if configured is not None:
         resolve_detector(name, detector)
-        return configured(seed, options)
+        return configured(seed, agent_options(name, options))
     if name not in AGENTS and not is_agent_spec(name):
         names = ", ".join(sorted([*AGENTS, *CONFIGURED_AGENTS]))
         raise ConfigError(
             f"unknown agent {name!r}; choose one of: {names}, or name a class of your own as "
             "package.module:Class (docs/own-agent.md)"
         )
-    if options:
-        raise ConfigError(f"agent {name!r} takes no options, got {', '.join(sorted(options))}")
+    agent_options(name, options)  # refuses options given to an agent without any
     chosen = resolve_detector(name, detector)
     if is_agent_spec(name):
         return load_agent(name, seed)

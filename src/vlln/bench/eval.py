@@ -21,7 +21,6 @@ ratio in actions played, the part of it that does not depend on the machine.
 
 from __future__ import annotations
 
-import dataclasses
 import multiprocessing
 import resource
 import tempfile
@@ -95,7 +94,7 @@ def run_eval_benchmark(
             outcome = run_evaluation(
                 config, Path(out), cache_dir=cache_dir, progress=False, scenes=scenes
             )
-        sweep = dataclasses.replace(config, budgets=tuple(range(BENCH_BUDGET + 1)))
+        sweep = config.replace(budgets=tuple(range(BENCH_BUDGET + 1)))
         with tempfile.TemporaryDirectory(prefix="vlln-bench-sweep-") as out:
             swept = run_evaluation(
                 sweep, Path(out), cache_dir=cache_dir, progress=False, scenes=scenes

@@ -23,7 +23,7 @@ import statistics
 import sys
 from collections import Counter
 from collections.abc import Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from pathlib import Path
 
 from scipy import stats
@@ -186,7 +186,7 @@ def run_fidelity_benchmark(
     for task in sorted({run.task for run in RUNS}):
         config = RUNS[0].config(episodes, preset)
         load_episodes(
-            replace(config, task=task, budgets=(0,)),
+            config.replace(task=task, budgets=(0,)),
             cache_dir or default_cache_dir(),
             progress=False,
         )

@@ -16,7 +16,8 @@ from pathlib import Path
 from vlln.agents.frontier import FrontierAgent
 from vlln.bench.figures import Figure, emit
 from vlln.errors import ConfigError
-from vlln.eval.runner import derive_seed, order_by_scene, play_episode, spread_over_scenes
+from vlln.eval.play import derive_seed, play_episode
+from vlln.eval.runner import order_by_scene, spread_over_scenes
 from vlln.oracle.rule_oracle import RuleOracle
 from vlln.tasks.env import NavigationEnv
 from vlln.tasks.episode import Episode, read_episodes

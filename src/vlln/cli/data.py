@@ -81,12 +81,13 @@ def _data_stats(command: StatsCommand) -> int:
 def _data_export_sft(command: SftCommand) -> int:
     from vlln.datagen.sft.config import SftConfig
     from vlln.datagen.sft.export import export_sft
+    from vlln.datagen.sft.records import SFT_FILE
 
     config = SftConfig(**command.model_dump(include=set(SftConfig.model_fields)))
     summary = export_sft(command.dataset, command.out, config, progress=not command.quiet)
     print(
         f"wrote {summary.samples} conversations from {summary.trajectories} trajectories "
-        f"({summary.images} images) to {command.out}/sft.jsonl"
+        f"({summary.images} images) to {command.out / SFT_FILE}"
     )
     return 0
 

@@ -2,8 +2,9 @@
 
 Each field becomes one flag (``max_steps`` -> ``--max-steps``; a field's first validation
 alias, when it has one, names the flag instead), its help text is the field's docstring and
-its default the field's default; booleans get ``--x/--no-x``. The handler receives the built
-config, so no command maps flags to settings by hand.
+its default the field's default; booleans get ``--x/--no-x``; a field marked
+:class:`vlln.config.BareFlag` also takes its flag alone. The handler receives the built config,
+so no command maps flags to settings by hand.
 """
 
 from __future__ import annotations
@@ -16,7 +17,7 @@ from typing import Any, TypeVar
 from pydantic_settings import CliSettingsSource
 
 from vlln.cli.options import Commands
-from vlln.config import Config
+from vlln.config import BareFlag, Config
 from vlln.errors import ConfigError, DataFormatError
 from vlln.files import parse_json
 
@@ -82,7 +83,9 @@ def add_config_command(
                 metavar="FILE",
                 help="settings stored by an earlier run (its run.json); flags given override them",
             )
-        source: CliSettingsSource[Any] = CliSettingsSource(config_class, root_parser=parser)
+        source: CliSettingsSource[Any] = CliSettingsSource(
+            config_class, root_parser=parser, add_argument_method=_argument_adder(config_class)
+        )
 
         def run(args: argparse.Namespace) -> int:
             return handler(config_from_args(config_class, source, args))
@@ -102,8 +105,27 @@ def config_from_args(
     stored_path = getattr(args, CONFIG_FLAG, None)
     if stored_path is None:
         return config.build(flags)
-    stored = config.from_json(_read_settings(Path(stored_path)), stored_path).to_json()
-    return config.build(stored | _by_field_name(config, flags))
+    stored = _read_settings(Path(stored_path))
+    return config.build(config.replay(stored, stored_path, _by_field_name(config, flags)))
+
+
+def _argument_adder(config: type[Config]) -> Callable[..., argparse.Action]:
+    """``parser.add_argument`` that lets the flag of a :class:`BareFlag` field go without a
+    value (argparse's ``nargs="?"``, which pydantic-settings does not generate)."""
+    bare = {
+        name: marker.value
+        for name, field in config.model_fields.items()
+        for marker in field.metadata
+        if isinstance(marker, BareFlag)
+    }
+
+    def add(parser: Any, *names: str, **kwargs: Any) -> argparse.Action:
+        if kwargs.get("dest") in bare:
+            kwargs.update(nargs="?", const=bare[kwargs["dest"]])
+        action: argparse.Action = parser.add_argument(*names, **kwargs)
+        return action
+
+    return add
 
 
 def _by_field_name(config: type[Config], flags: dict[str, Any]) -> dict[str, Any]:

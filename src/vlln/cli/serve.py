@@ -11,6 +11,7 @@ from vlln.cli.generated import add_config_command
 from vlln.cli.options import Commands
 
 if TYPE_CHECKING:
+    from vlln.agents.options import AgentOptions
     from vlln.web.settings import ServeWebCommand
 
 DEFAULT_SPLIT = "test"
@@ -77,8 +78,10 @@ def _serve_web(command: ServeWebCommand) -> int:
     return 0
 
 
-def _agent_options(given: tuple[str, ...]) -> dict[str, dict[str, str]]:
-    """``AGENT.KEY=VALUE`` settings, e.g. ``openai-vlm.base_url=http://127.0.0.1:8000/v1``."""
+def _agent_options(given: tuple[str, ...]) -> dict[str, AgentOptions]:
+    """``AGENT.KEY=VALUE`` settings, e.g. ``openai-vlm.base_url=http://127.0.0.1:8000/v1``,
+    read into each agent's options class (a bad one is one line naming the agent)."""
+    from vlln.agents.registry import agent_options
     from vlln.errors import ConfigError
 
     options: dict[str, dict[str, str]] = {}
@@ -88,7 +91,7 @@ def _agent_options(given: tuple[str, ...]) -> dict[str, dict[str, str]]:
         if not (dot and equals and name and key):
             raise ConfigError(f"--agent-option {item!r} is not AGENT.KEY=VALUE")
         options.setdefault(name, {})[key] = value
-    return options
+    return {name: agent_options(name, values) for name, values in options.items()}
 
 
 def add_serve_commands(commands: Commands) -> None:

@@ -1,37 +1,28 @@
-"""``vlln data build --ray``: each house's trajectories (stages 3-5) as a Ray task.
+"""``vlln data build --ray``: the data build's house builder for a Ray cluster.
 
-The driver writes the settings, builds stages 1-2 (scene summaries and the split's episode
-files: cheap next to the trajectories, and needed to choose each house's episodes), then sends
-every unfinished house to the cluster. A worker builds the house into a temporary folder of
-its own and returns the files; the driver writes them into the dataset, the house's journal
-and then ``meta/info.json`` last, so a house counts as finished only when all of it is on disk,
-and a rerun resumes at the unfinished houses. The dataset equals a local build: every file
-of a house depends only on (settings, house, its episodes).
+The build runner (:func:`vlln.datagen.build.build_dataset`) writes the settings, builds
+stages 1-2 and picks the unfinished houses exactly as for a local build; this builder sends
+each house's trajectories (stages 3-5) to the cluster as one Ray task. A worker builds the
+house into a temporary folder of its own and returns the files; the driver writes them into
+the dataset, the house's journal and then ``meta/info.json`` last, so a house counts as
+finished only when all of it is on disk, and a rerun resumes at the unfinished houses. The
+dataset equals a local build: every file of a house depends only on (settings, house, its
+episodes).
 """
 
 from __future__ import annotations
 
 import tempfile
+from collections.abc import Callable
+from dataclasses import dataclass
 from pathlib import Path
 
-from tqdm import tqdm
-
 from vlln.cluster.scheduler import DEFAULT_MAX_RETRIES, collect_in_order, connect, remote_function
-from vlln.datagen.build import (
-    BuildConfig,
-    build_house,
-    check_settings,
-    choose_episodes,
-    prepare_episodes,
-)
-from vlln.datagen.house_locks import lock_houses
-from vlln.datagen.layout import house_dir_name
+from vlln.datagen.build import BuildConfig, HouseWork, build_dataset, build_house
+from vlln.datagen.layout import LAST_FILES, TRAJECTORIES_DIR
 from vlln.files import write_bytes_atomic
 from vlln.tasks.episode import Episode
 from vlln.tasks.scenes import SceneCache
-from vlln.tasks.splits import house_seeds
-
-_LAST = ("meta/journal.jsonl", "meta/info.json")  # written after every other file, in order
 
 
 def build_house_files(config: BuildConfig, seed: int, episodes: list[Episode]) -> dict[str, bytes]:
@@ -45,9 +36,49 @@ def build_house_files(config: BuildConfig, seed: int, episodes: list[Episode]) -
             cache.close()
         return {
             path.relative_to(root).as_posix(): path.read_bytes()
-            for path in sorted((root / "trajectories").rglob("*"))
+            for path in sorted((root / TRAJECTORIES_DIR).rglob("*"))
             if path.is_file()
         }
+
+
+def write_house_files(root: Path, files: dict[str, bytes]) -> None:
+    """Write a house's files into the dataset, the journal and ``meta/info.json`` last."""
+    last = [name for name in files if _in_house(name) in LAST_FILES]
+    for name in [n for n in files if n not in last] + sorted(last, key=_last_order):
+        write_bytes_atomic(root / name, files[name])
+
+
+@dataclass
+class RayBuilder:
+    """Builds houses on a Ray cluster (module doc): ``address`` as for
+    :func:`vlln.cluster.scheduler.connect`, each house's task retried ``max_retries`` times
+    when its worker dies."""
+
+    address: str | None = None
+    max_retries: int = DEFAULT_MAX_RETRIES
+    label: str = "on Ray"
+
+    def check(self) -> None:
+        connect(self.address)  # an unreachable cluster fails before any work
+
+    def build(
+        self,
+        root: Path,
+        config: BuildConfig,
+        houses: list[HouseWork],
+        scenes: SceneCache,
+        finished: Callable[[], None],
+    ) -> None:
+        ray = connect(self.address)
+        task = remote_function(build_house_files, self.max_retries)
+        config_ref = ray.put(config)
+        refs = [task.remote(config_ref, house.seed, house.episodes) for house in houses]
+
+        def commit(_: int, files: dict[str, bytes]) -> None:
+            write_house_files(root, files)
+            finished()
+
+        collect_in_order(refs, commit)
 
 
 def build_dataset_ray(
@@ -58,40 +89,14 @@ def build_dataset_ray(
     max_retries: int = DEFAULT_MAX_RETRIES,
     progress: bool = True,
 ) -> Path:
-    """Build (or resume) the dataset into ``out`` on a Ray cluster (module doc)."""
-    root = Path(out)
-    ray = connect(address)  # an unreachable cluster fails before any work
-    check_settings(root, config)
-    seeds = house_seeds(config.split, config.houses)
-    with lock_houses(root, seeds, config.scene_id):  # as a local build does
-        cache = SceneCache(capacity=1)
-        try:
-            by_house = prepare_episodes(root, config, seeds, cache, progress)
-        finally:
-            cache.close()
-        todo = [seed for seed in seeds if not _finished(root, config.scene_id(seed))]
-        task = remote_function(build_house_files, max_retries)
-        config_ref = ray.put(config)
-        refs = []
-        for seed in todo:
-            episodes = by_house.get(config.scene_id(seed), [])
-            refs.append(task.remote(config_ref, seed, choose_episodes(episodes, config, seed)))
-        with tqdm(total=len(todo), desc="houses on Ray", unit="house", disable=not progress) as bar:
+    """Build (or resume) the dataset into ``out`` on a Ray cluster with the build runner."""
+    return build_dataset(out, config, progress=progress, builder=RayBuilder(address, max_retries))
 
-            def commit(_: int, files: dict[str, bytes]) -> None:
-                last = [name for name in files if name.split("/", 2)[-1] in _LAST]
-                for name in [n for n in files if n not in last] + sorted(last, key=_last_order):
-                    write_bytes_atomic(root / name, files[name])
-                bar.update(1)
 
-            collect_in_order(refs, commit)
-    return root
+def _in_house(name: str) -> str:
+    """``trajectories/<house>/meta/info.json`` -> ``meta/info.json``."""
+    return name.split("/", 2)[-1]
 
 
 def _last_order(name: str) -> int:
-    return _LAST.index(name.split("/", 2)[-1])
-
-
-def _finished(root: Path, scene_id: str) -> bool:
-    folder = root / "trajectories" / house_dir_name(scene_id)
-    return (folder / "meta" / "info.json").exists()
+    return LAST_FILES.index(_in_house(name))

@@ -29,7 +29,7 @@ from typing import Any
 
 from vlln.agents.local.backend import TransformersBackend
 from vlln.agents.local.batching import DEFAULT_MAX_BATCH, BatchingModel
-from vlln.agents.local.options import LocalModelSettings, check_vlln_options
+from vlln.agents.local.options import VllnOptions
 from vlln.agents.model.backend import ModelReply
 from vlln.cluster.scheduler import ClusterError, import_ray
 from vlln.errors import ConfigError, VllnError
@@ -80,18 +80,19 @@ class ServerStats:
         )
 
 
-def served_model(config: EvalConfig) -> LocalModelSettings | None:
+def served_model(config: EvalConfig) -> VllnOptions | None:
     """The local model ``config``'s agent runs, to be served, or None for an agent without
-    one; checks the options without loading anything."""
+    one (the config checked its options against :class:`VllnOptions`)."""
     if config.agent != "vlln":
         return None
-    return check_vlln_options(config.agent_options)
+    assert isinstance(config.agent_options, VllnOptions)
+    return config.agent_options
 
 
 class ModelServer:
     """The Ray actor holding one node's copy of the model (module doc)."""
 
-    def __init__(self, settings: LocalModelSettings, max_batch: int) -> None:
+    def __init__(self, settings: VllnOptions, max_batch: int) -> None:
         context = import_ray().get_runtime_context()
         self.node_id = context.get_node_id()
         self.restarted = bool(context.was_current_actor_reconstructed)
@@ -176,7 +177,7 @@ def server_for_this_node(servers: Mapping[str, Any]) -> Any:
 
 
 def start_model_servers(
-    settings: LocalModelSettings, options: ServingOptions, max_retries: int
+    settings: VllnOptions, options: ServingOptions, max_retries: int
 ) -> dict[str, Any]:
     """One loaded server per node that has the resources, as {node id: actor handle}."""
     ray = import_ray()

@@ -41,7 +41,7 @@ def connect(address: str | None) -> Any:
         except ConnectionError as error:
             raise ConfigError(
                 f"cannot reach a Ray cluster at {address!r} ({error}); start one with "
-                "`ray start --head` or pass --ray local for a fresh one on this machine"
+                "`ray start --head` or pass --ray without an address for a local one"
             ) from None
     return ray
 

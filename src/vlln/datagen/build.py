@@ -1,4 +1,8 @@
-"""``vlln data build``: every stage of the pipeline for the first N houses of a split.
+"""``vlln data build``: every stage of the pipeline for the first N houses of a split, with a
+builder that makes the houses' trajectories: :class:`LocalBuilder` in this process, or
+:class:`vlln.cluster.data.RayBuilder` on a cluster. The runner (:func:`build_dataset`) alone
+owns the rest, so both write the same dataset: the settings, the sharding, the house locks,
+stages 1-2, which houses are left to build, and progress.
 
 ::
 
@@ -7,24 +11,25 @@
     <out>/episodes/<split>_*.json.gz      stage 2: IIGN, IGN, ObjectNav episodes and stats
     <out>/trajectories/<house>/           stages 3-5: collected, filtered, written trajectories
 
-``floors`` picks houses of 1, 2 or 3 storeys joined by stairs (the scene ids of houses with
-several storeys end in ``_2f``/``_3f``); a one-storey build records no ``floors`` setting, so
-its ``build.json`` is what it was before houses had storeys.
+(names: :mod:`vlln.datagen.layout`). ``floors`` picks houses of 1, 2 or 3 storeys joined by
+stairs (the scene ids of houses with several storeys end in ``_2f``/``_3f``); a one-storey
+build records no ``floors`` setting, so its ``build.json`` is what it was before houses had
+storeys.
 
 Houses are the unit of sharding (``--shard i/n`` takes every n-th house), of locking (a build
 holds its houses, :mod:`.house_locks`, so two builds never write one house) and of completion
 (a finished house has ``meta/info.json``); within a house the journal makes a killed build resume
 at the next untried episode. Each trajectory draws its randomness from (seed, episode id) only,
-so a resumed, sharded or uninterrupted build writes the same dataset.
+so a resumed, sharded, distributed or uninterrupted build writes the same dataset.
 """
 
 from __future__ import annotations
 
 import json
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Annotated, Any
+from typing import Annotated, Any, Protocol
 
 import numpy as np
 from pydantic import Field, field_validator
@@ -36,7 +41,16 @@ from vlln.datagen.collector.collect import CollectorConfig, collect_trajectory
 from vlln.datagen.collector.visibility import DOWN_TILT
 from vlln.datagen.filtering import FilterConfig, rejection_reason
 from vlln.datagen.house_locks import lock_houses
-from vlln.datagen.layout import FORMAT_VERSION, house_dir_name
+from vlln.datagen.layout import (
+    EPISODES_DIR,
+    FORMAT_VERSION,
+    SCENE_SUMMARY_DIR,
+    SETTINGS_FILE,
+    TRAJECTORIES_DIR,
+    house_dir,
+    house_dir_name,
+    is_finished,
+)
 from vlln.datagen.reader import HouseDataset, house_folders
 from vlln.datagen.trajectory import Trajectory
 from vlln.datagen.writer import HouseWriter
@@ -113,21 +127,95 @@ class BuildConfig(BuildOptions):
         }
 
 
+@dataclass(frozen=True)
+class HouseWork:
+    """One house to build: its split seed and the episodes to attempt in it."""
+
+    seed: int
+    episodes: list[Episode]
+
+
+class HouseBuilder(Protocol):
+    """Makes houses' trajectory folders somewhere (stages 3-5)."""
+
+    @property
+    def label(self) -> str:
+        """How the progress bar names where it builds ("" for this process)."""
+
+    def check(self) -> None:
+        """Fail in one line before any work (no cluster)."""
+
+    def build(
+        self,
+        root: Path,
+        config: BuildConfig,
+        houses: list[HouseWork],
+        scenes: SceneCache,
+        finished: Callable[[], None],
+    ) -> None:
+        """Build ``houses`` into ``root``'s trajectory folders, each complete on disk (its
+        ``meta/info.json`` last) before ``finished`` is called for it. ``scenes`` holds the
+        simulators stages 1-2 used."""
+
+
+@dataclass
+class LocalBuilder:
+    """Builds one house after the other in this process; ``progress`` shows a bar per house."""
+
+    progress: bool = True
+    label: str = ""
+
+    def check(self) -> None:
+        return None
+
+    def build(
+        self,
+        root: Path,
+        config: BuildConfig,
+        houses: list[HouseWork],
+        scenes: SceneCache,
+        finished: Callable[[], None],
+    ) -> None:
+        for house in houses:
+            sim = scenes.get(config.scene_id(house.seed))
+            build_house(root, sim, house.episodes, config, self.progress)
+            finished()
+
+
 def build_dataset(
-    out: str | Path, config: BuildConfig, shard: Shard | None = None, progress: bool = True
+    out: str | Path,
+    config: BuildConfig,
+    shard: Shard | None = None,
+    progress: bool = True,
+    builder: HouseBuilder | None = None,
 ) -> Path:
-    """Run (or resume) every stage into ``out``; returns ``out``."""
+    """Run (or resume) every stage into ``out`` with ``builder`` (by default in this
+    process); returns ``out``."""
     root = Path(out)
+    builder = builder if builder is not None else LocalBuilder(progress)
+    builder.check()
     check_settings(root, config)
     mine = (shard or Shard(0, 1)).take(house_seeds(config.split, config.houses))
     with lock_houses(root, mine, config.scene_id):
         cache = SceneCache(capacity=1)
         try:
             by_house = prepare_episodes(root, config, mine, cache, progress)
-            for seed in tqdm(mine, desc="trajectories", unit="house", disable=not progress):
-                scene_id = config.scene_id(seed)
-                chosen = choose_episodes(by_house.get(scene_id, []), config, seed)
-                build_house(root, cache.get(scene_id), chosen, config, progress)
+            todo = [
+                HouseWork(
+                    seed, choose_episodes(by_house.get(config.scene_id(seed), []), config, seed)
+                )
+                for seed in mine
+                if not is_finished(house_dir(root, config.scene_id(seed)))
+            ]
+            where = f" {builder.label}" if builder.label else ""
+            with tqdm(
+                total=len(mine),
+                initial=len(mine) - len(todo),
+                desc=f"trajectories{where}",
+                unit="house",
+                disable=not progress,
+            ) as bar:
+                builder.build(root, config, todo, cache, lambda: bar.update(1))
         finally:
             cache.close()
     return root
@@ -139,8 +227,8 @@ def prepare_episodes(
     """Stages 1 and 2: scene summaries of ``seeds``, the split's episode files (built once;
     every shard builds the same bytes), and the IIGN episodes grouped by scene."""
     for seed in tqdm(seeds, desc="scene summaries", unit="house", disable=not progress):
-        export_scene_summary(cache.get(config.scene_id(seed)).house, root / "scene_summary")
-    episodes_dir = root / "episodes"
+        export_scene_summary(cache.get(config.scene_id(seed)).house, root / SCENE_SUMMARY_DIR)
+    episodes_dir = root / EPISODES_DIR
     path = episode_path(episodes_dir, config.split, TaskType.IIGN)
     if not path.exists():
         build_split(
@@ -171,7 +259,7 @@ def build_house(
     """Stages 3-5 for one house: collect, filter and write each episode not yet tried."""
     if not episodes:
         return
-    writer = HouseWriter(root / "trajectories", episodes[0].scene_id, sim.config.camera)
+    writer = HouseWriter(root / TRAJECTORIES_DIR, episodes[0].scene_id, sim.config.camera)
     if writer.finished:
         return
     oracle = RuleOracle(seed=config.seed)
@@ -222,7 +310,7 @@ def summarize(root: str | Path) -> BuildSummary:
     """Totals over the finished house folders of ``root`` (those with meta/info.json)."""
     attempted = kept = frames = disk = 0
     for folder in house_folders(root):
-        if not (folder / "meta" / "info.json").exists():
+        if not is_finished(folder):
             continue
         info = HouseDataset(folder).info
         attempted += int(info["attempted"])
@@ -249,7 +337,7 @@ def _episodes_by_scene(episodes: list[Episode]) -> dict[str, list[Episode]]:
 
 def check_settings(root: Path, config: BuildConfig) -> None:
     """Record the settings on the first run; refuse to mix settings in one folder."""
-    path = root / "build.json"
+    path = root / SETTINGS_FILE
     wanted = config.settings()
     if path.exists():
         try:

@@ -1,7 +1,11 @@
 """The on-disk trajectory dataset: one LeRobot-style folder per house, in the reference layout.
+Every reader and writer of a dataset takes its names and paths from here.
 
 ::
 
+    <root>/build.json                           the build's settings (vlln.datagen.build)
+    <root>/scene_summary/<house>/               object_dict.json, region_dict.json
+    <root>/episodes/<split>_*.json.gz           the split's episodes
     trajectories/<house>/                       e.g. trajectories/house_00003/
       meta/info.json          format version, cameras, columns, pose convention, generator
                               settings, totals, rejections by reason (written last)
@@ -29,6 +33,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -44,6 +49,15 @@ from vlln.sim.camera import CameraSpec, Position
 from vlln.tasks.episode import scene_name
 
 FORMAT_VERSION = "vlln-trajectories/2.0"
+SETTINGS_FILE = "build.json"
+SCENE_SUMMARY_DIR = "scene_summary"
+EPISODES_DIR = "episodes"
+TRAJECTORIES_DIR = "trajectories"
+# In a house folder:
+INFO_FILE = "meta/info.json"  # written last: its presence marks a finished house
+EPISODES_FILE = "meta/episodes.jsonl"
+JOURNAL_FILE = "meta/journal.jsonl"
+LAST_FILES = (JOURNAL_FILE, INFO_FILE)  # written after every other file of a house, in order
 CHUNK_SIZE = 1000
 NO_ACTION = -1  # action[0]: no action led to the first frame
 CAMERAS = ("level", "down")
@@ -58,6 +72,16 @@ _OPENCV_TO_OPENGL = np.diag([1.0, -1.0, -1.0])
 def house_dir_name(scene_id: str) -> str:
     """``vlln/house_00003/house_00003.glb`` -> ``house_00003``: one folder per scene."""
     return scene_name(scene_id.rstrip("/"))
+
+
+def house_dir(dataset_root: str | Path, scene_id: str) -> Path:
+    """The trajectory folder of a scene in a dataset."""
+    return Path(dataset_root) / TRAJECTORIES_DIR / house_dir_name(scene_id)
+
+
+def is_finished(house_folder: Path) -> bool:
+    """Whether a house folder is complete (its ``meta/info.json`` is written)."""
+    return (house_folder / INFO_FILE).exists()
 
 
 def camera_setting(spec: CameraSpec, camera: str) -> str:

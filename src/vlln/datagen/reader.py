@@ -19,7 +19,10 @@ from PIL import Image
 
 from vlln.datagen.layout import (
     CAMERAS,
+    EPISODES_FILE,
     FORMAT_VERSION,
+    INFO_FILE,
+    TRAJECTORIES_DIR,
     camera_setting,
     data_path,
     frame_image_path,
@@ -33,7 +36,7 @@ class HouseDataset:
 
     def __init__(self, root: str | Path) -> None:
         self.root = Path(root)
-        info_path = self.root / "meta" / "info.json"
+        info_path = self.root / INFO_FILE
         self.info: dict[str, Any] = {}
         self.settings = {camera: camera_setting(CameraSpec(), camera) for camera in CAMERAS}
         if info_path.exists():
@@ -44,10 +47,10 @@ class HouseDataset:
                     f"{FORMAT_VERSION!r}; rebuild the data with this version"
                 )
             self.settings = _settings(self.info, info_path)
-        episodes_path = self.root / "meta" / "episodes.jsonl"
+        episodes_path = self.root / EPISODES_FILE
         if not episodes_path.exists():
             raise DataFormatError(
-                f"{self.root} is not a finished trajectory folder (no meta/episodes.jsonl); "
+                f"{self.root} is not a finished trajectory folder (no {EPISODES_FILE}); "
                 "run or resume `vlln data build` to finish it"
             )
         lines = episodes_path.read_text(encoding="utf-8").splitlines()
@@ -85,6 +88,6 @@ def _settings(info: dict[str, Any], info_path: Path) -> dict[str, str]:
 
 def house_folders(dataset_root: str | Path) -> Iterator[Path]:
     """The house folders under ``<root>/trajectories`` in name order (finished or not)."""
-    base = Path(dataset_root) / "trajectories"
+    base = Path(dataset_root) / TRAJECTORIES_DIR
     if base.is_dir():
         yield from sorted(p for p in base.iterdir() if p.is_dir())

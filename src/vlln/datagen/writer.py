@@ -18,6 +18,9 @@ from typing import Any
 from vlln.datagen.goals import GoalFinder
 from vlln.datagen.layout import (
     CAMERAS,
+    EPISODES_FILE,
+    INFO_FILE,
+    JOURNAL_FILE,
     camera_setting,
     data_path,
     episode_row,
@@ -25,6 +28,7 @@ from vlln.datagen.layout import (
     frame_table,
     house_dir_name,
     info_document,
+    is_finished,
 )
 from vlln.datagen.trajectory import Trajectory
 from vlln.errors import DataFormatError
@@ -52,11 +56,11 @@ class HouseWriter:
         remove_leftover_temp_files(self.root)  # a killed build's; each house has one writer
         self.scene_id = scene_id
         self.camera = camera
-        self.attempts = read_journal(self.root / "meta" / "journal.jsonl")
+        self.attempts = read_journal(self.root / JOURNAL_FILE)
 
     @property
     def finished(self) -> bool:
-        return (self.root / "meta" / "info.json").exists()
+        return is_finished(self.root)
 
     @property
     def next_index(self) -> int:
@@ -86,7 +90,7 @@ class HouseWriter:
         rows = [a.row for a in self.attempts.values() if a.row is not None]
         rows.sort(key=lambda row: int(row["episode_index"]))
         text = "".join(json.dumps(row, sort_keys=True) + "\n" for row in rows)
-        write_text_atomic(self.root / "meta" / "episodes.jsonl", text)
+        write_text_atomic(self.root / EPISODES_FILE, text)
         rejections: dict[str, int] = {}
         for attempt in self.attempts.values():
             if attempt.reason is not None:
@@ -100,7 +104,7 @@ class HouseWriter:
             "rejections": dict(sorted(rejections.items())),
             **info,
         }
-        write_text_atomic(self.root / "meta" / "info.json", json.dumps(document, indent=2) + "\n")
+        write_text_atomic(self.root / INFO_FILE, json.dumps(document, indent=2) + "\n")
 
     # ----------------------------------------------------------------- internals
     def _write(self, relative: str, data: bytes) -> None:
@@ -109,7 +113,7 @@ class HouseWriter:
         path.write_bytes(data)
 
     def _journal(self, attempt: Attempt) -> None:
-        path = self.root / "meta" / "journal.jsonl"
+        path = self.root / JOURNAL_FILE
         path.parent.mkdir(parents=True, exist_ok=True)
         line: dict[str, Any] = {
             "episode_id": attempt.episode_id,

@@ -10,11 +10,23 @@ part of the run.
 from __future__ import annotations
 
 import re
-from dataclasses import asdict, dataclass, field
-from typing import Any
+from pathlib import Path
+from typing import Annotated, Any, ClassVar, Self
 
-from vlln.agents.registry import resolve_detector
-from vlln.errors import ConfigError, DataFormatError
+from pydantic import (
+    AfterValidator,
+    BeforeValidator,
+    Field,
+    PlainSerializer,
+    field_validator,
+    model_validator,
+)
+from pydantic_settings import CLI_SUPPRESS, NoDecode
+
+from vlln.agents.options import AgentOptions
+from vlln.config import Config
+from vlln.errors import ConfigError
+from vlln.eval.run_dir import RUN_FACTS
 from vlln.eval.sharding import Shard
 from vlln.tasks.spec import MAX_DIALOG_BUDGET, TaskType
 from vlln.tasks.splits import SPLIT_SIZES, SPLITS
@@ -24,46 +36,116 @@ from vlln.world.generator.presets import DEFAULT_PRESET, SMALL, preset
 DEFAULT_DIALOG_BUDGET = TaskType.IIGN.default_budget
 """Answered questions per IIGN episode (docs/reference-facts.md §1)."""
 
+
 _BUDGET_RANGE = re.compile(r"^(\d+)-(\d+)$")
 
 
-@dataclass(frozen=True)
-class EvalConfig:
+def _budgets(value: Any) -> Any:
+    """Budgets as given: ``"0-5"``, ``"0,5"``, ``"3"``, a number, or a list of those."""
+    if isinstance(value, str):
+        return parse_budgets(value)
+    if isinstance(value, int):
+        return (value,)
+    if isinstance(value, list | tuple):
+        parts = [_budgets(part) if isinstance(part, str | int) else (part,) for part in value]
+        return tuple(budget for part in parts for budget in part)  # pydantic checks each
+    return value
+
+
+def _shard(value: Any) -> Shard:
+    if isinstance(value, Shard):
+        return value
+    if not isinstance(value, str):
+        raise ConfigError(f"cannot read shard {value!r}; write i/n, e.g. 0/4")
+    return Shard.parse(value)
+
+
+def _absolute(path: str | None) -> str | None:
+    """A path as an absolute one, so that a run directory names the same file from anywhere."""
+    return None if path is None else str(Path(path).expanduser().resolve())
+
+
+def by_task(values: dict[str, Any]) -> tuple[int, ...]:  # named in --help
+    """The default budgets of the (already checked) task: 5 on IIGN, 0 otherwise."""
+    task = values.get("task")
+    return default_budgets(task) if task else (DEFAULT_DIALOG_BUDGET,)
+
+
+# NoDecode: the command line's text reaches the validators as written ("0-5", "1/4").
+Budgets = Annotated[tuple[int, ...], NoDecode, BeforeValidator(_budgets)]
+ShardSetting = Annotated[Shard, NoDecode, PlainSerializer(str), BeforeValidator(_shard)]
+AbsolutePath = Annotated[str | None, AfterValidator(_absolute)]
+
+
+class EvalConfig(Config):
     """One evaluation run: which agent plays which episodes of which task, at which budgets.
 
     Episodes come either from a built-in ``split`` of procedural houses (its first ``houses``;
     by default one full cycle of the split: 61/15/14 houses for train/val/test, the paper's
     scene counts) or from a released-format ``episode_file``; exactly one is set.
-    ``episodes`` keeps the first N (all when ``None``) after grouping by scene.
-    ``detector`` names the perception of agents that detect objects (the frontier agent's
-    default is the ground-truth detector); other agents take none. ``scenes`` is the folder of
-    scanned scenes the episodes name (``--scenes``), kept so that ``vlln video`` and ``vlln
-    report`` find them again.
+    Fields are in ``run.json``'s key order.
     """
 
-    agent: str
-    task: str
-    split: str | None = "test"
-    episode_file: str | None = None
-    episodes: int | None = None
-    budgets: tuple[int, ...] = (DEFAULT_DIALOG_BUDGET,)
-    seed: int = 0
-    houses: int | None = None
-    shard: Shard = field(default_factory=lambda: Shard(0, 1))
-    max_steps: int = 500
-    # Settings of agents that take them (openai-vlm: server, model, key variable, retries);
-    # never a secret. Run files written before this field read as no options.
-    agent_options: dict[str, str] = field(default_factory=dict)
-    detector: str | None = None
-    # Houses of a built-in split: ``mp3d`` (the benchmark's) or ``small`` (demo, fast
-    # tests). Run files written before presets existed read as ``small``, the houses they
-    # were played on.
-    preset: str = DEFAULT_PRESET
-    scenes: str | None = None
+    file_keys: ClassVar[tuple[str, ...]] = RUN_FACTS
 
-    def __post_init__(self) -> None:
+    agent: str
+    """agent name (random, expert, frontier, openai-vlm, vlln) or your own class as
+    package.module:Class (docs/own-agent.md)"""
+    task: str
+    """iign, ign or objectnav"""
+    split: str | None = "test"
+    """built-in split: train, val, test or test500 (the paper's 500 test episodes)"""
+    episode_file: AbsolutePath = None
+    """released-format episode file (.json.gz), instead of a split"""
+    episodes: int | None = None
+    """first N episodes, after grouping by scene (none: all)"""
+    budgets: Budgets = Field(default_factory=by_task)
+    """dialog budgets, e.g. 0-5 or 0,5 (SR per budget, MSP); by default 5 on IIGN, else 0"""
+    seed: int = 0
+    """base seed of agents and oracle"""
+    houses: int | None = None
+    """houses of the split (none: all of it, 61/15/14)"""
+    shard: ShardSetting = Shard(0, 1)
+    """i/n: every episode whose index mod n is i"""
+    max_steps: int = 500
+    """counted-step cap"""
+    agent_options: Annotated[AgentOptions, CLI_SUPPRESS, PlainSerializer(AgentOptions.to_json)] = (
+        AgentOptions()
+    )
+    """settings of agents that take them (openai-vlm: server, model, key variable, retries;
+    vlln: model folder, device), never a secret; on the command line the model flags"""
+    detector: str | None = None
+    """object detector of agents that detect objects: truth (the frontier agent's default,
+    privileged) or noisy; other agents take none"""
+    preset: str = DEFAULT_PRESET
+    """houses of a built-in split: mp3d (the benchmark's, calibrated to Matterport3D) or small
+    (demo, fast tests)"""
+    scenes: AbsolutePath = None
+    """folder of scanned scenes (<scenes>/<scene>/) the episode file names"""
+
+    @model_validator(mode="before")
+    @classmethod
+    def _defaults_from_others(cls, data: Any) -> Any:
+        """An episode file replaces the default split; the agent options are checked against
+        the agent's own options class (:data:`vlln.agents.registry.OPTIONS`)."""
+        if not isinstance(data, dict):
+            return data
+        from vlln.agents.registry import agent_options
+
+        data = dict(data)
+        if data.get("episode_file") is not None and "split" not in data:
+            data["split"] = None
+        data["agent_options"] = agent_options(str(data.get("agent")), data.get("agent_options"))
+        return data
+
+    @field_validator("task")
+    @classmethod
+    def _task(cls, task: str) -> str:
+        return TaskType.parse(task).value
+
+    @model_validator(mode="after")
+    def _check(self) -> Self:
         task = TaskType.parse(self.task)
-        object.__setattr__(self, "task", task.value)
         if (self.split is None) == (self.episode_file is None):
             raise ConfigError("give exactly one episode source: a split or an episode file")
         known = (*SPLITS, TEST_PROTOCOL_SPLIT)
@@ -71,7 +153,7 @@ class EvalConfig:
             raise ConfigError(f"unknown split {self.split!r}; choose one of: {', '.join(known)}")
         if self.split == TEST_PROTOCOL_SPLIT:
             episodes = TEST_PROTOCOL_EPISODES if self.episodes is None else self.episodes
-            object.__setattr__(self, "episodes", episodes)
+            self._fill("episodes", episodes)
             if episodes > TEST_PROTOCOL_EPISODES or self.houses not in (None, 14):
                 raise ConfigError(
                     f"split {TEST_PROTOCOL_SPLIT} is {TEST_PROTOCOL_EPISODES} episodes on the 14 "
@@ -80,51 +162,53 @@ class EvalConfig:
         if self.episodes is not None and self.episodes < 1:
             raise ConfigError(f"--episodes must be at least 1, got {self.episodes}")
         if self.split is not None and self.houses is None:
-            object.__setattr__(self, "houses", SPLIT_SIZES[source_split(self.split)])
+            self._fill("houses", SPLIT_SIZES[source_split(self.split)])
         if self.episode_file is not None and self.houses is not None:
             raise ConfigError("--houses applies to built-in splits, not to an episode file")
         if self.houses is not None and self.houses < 1:
             raise ConfigError(f"--houses must be at least 1, got {self.houses}")
-        if not all(isinstance(v, str) for v in self.agent_options.values()):
-            raise ConfigError("agent options are NAME=VALUE strings")
         if self.max_steps < 1:
             raise ConfigError(f"--max-steps must be at least 1, got {self.max_steps}")
-        if not self.budgets:
-            raise ConfigError("give at least one dialog budget")
-        if any(budget < 0 for budget in self.budgets):
-            raise ConfigError(f"dialog budgets must be >= 0, got {list(self.budgets)}")
-        if any(budget > MAX_DIALOG_BUDGET for budget in self.budgets):
-            raise ConfigError(_budget_range_error(", ".join(map(str, self.budgets))))
-        if len(set(self.budgets)) != len(self.budgets):
-            raise ConfigError(f"dialog budgets repeat: {list(self.budgets)}")
-        if not task.has_dialog and any(budget > 0 for budget in self.budgets):
-            raise ConfigError(
-                f"task {task.value} has no dialog, so its only budget is 0 "
-                f"(got {list(self.budgets)}); drop --budget/--budgets or use --task iign or ign"
-            )
-        object.__setattr__(self, "detector", resolve_detector(self.agent, self.detector))
+        _check_budgets(self.budgets, task)
+        from vlln.agents.registry import resolve_detector
+
+        self._fill("detector", resolve_detector(self.agent, self.detector))
         preset(self.preset)
+        return self
 
-    def to_json(self) -> dict[str, Any]:
-        data = asdict(self)
-        data["budgets"] = list(self.budgets)
-        data["shard"] = str(self.shard)
-        data["agent_options"] = dict(sorted(self.agent_options.items()))
-        return data
+    def _fill(self, name: str, value: Any) -> None:
+        """Set a setting that its default leaves to the others (the model is frozen)."""
+        object.__setattr__(self, name, value)
 
-    @staticmethod
-    def from_json(data: Any, where: str) -> EvalConfig:
-        """Parse a ``run.json`` object; ``where`` names the file in errors."""
-        if not isinstance(data, dict):
-            raise DataFormatError(f"{where}: expected a JSON object of run arguments")
-        try:
-            values = dict(data)
-            values["budgets"] = tuple(values["budgets"])
-            values["shard"] = Shard.parse(values["shard"])
-            values.setdefault("preset", SMALL.name)
-            return EvalConfig(**values)
-        except (KeyError, TypeError, ConfigError) as error:
-            raise DataFormatError(f"{where}: malformed run arguments ({error})") from None
+    @classmethod
+    def from_json(cls, data: Any, where: str) -> Self:
+        """Read a ``run.json``; files written before presets existed were played on the
+        ``small`` houses."""
+        if isinstance(data, dict):
+            data = {"preset": SMALL.name, **data}
+        return super().from_json(data, where)
+
+    def run_settings(self) -> EvalConfig:
+        """The settings of the run alone (a command's config also holds how to run it)."""
+        if type(self) is EvalConfig:
+            return self
+        return EvalConfig(**{name: getattr(self, name) for name in EvalConfig.model_fields})
+
+
+def _check_budgets(budgets: tuple[int, ...], task: TaskType) -> None:
+    if not budgets:
+        raise ConfigError("give at least one dialog budget")
+    if any(budget < 0 for budget in budgets):
+        raise ConfigError(f"dialog budgets must be >= 0, got {list(budgets)}")
+    if any(budget > MAX_DIALOG_BUDGET for budget in budgets):
+        raise ConfigError(_budget_range_error(", ".join(map(str, budgets))))
+    if len(set(budgets)) != len(budgets):
+        raise ConfigError(f"dialog budgets repeat: {list(budgets)}")
+    if not task.has_dialog and any(budget > 0 for budget in budgets):
+        raise ConfigError(
+            f"task {task.value} has no dialog, so its only budget is 0 "
+            f"(got {list(budgets)}); drop --budget/--budgets or use --task iign or ign"
+        )
 
 
 def default_budgets(task: str) -> tuple[int, ...]:

@@ -17,9 +17,8 @@ from dataclasses import dataclass
 from typing import Any
 
 from vlln.eval.config import EvalConfig
+from vlln.eval.run_dir import PLAN_ALL_SHARDS, PLAN_EPISODES
 from vlln.tasks.record import EpisodeRecord
-
-PLAN_FACT = "plan"  # the key of the plan in run.json
 
 
 @dataclass(frozen=True)
@@ -46,8 +45,8 @@ class RunPlan:
 
     def to_json(self) -> dict[str, Any]:
         return {
-            "episodes": [list(pair) for pair in sorted(self.episodes)],
-            "all_shards": self.all_shards,
+            PLAN_EPISODES: [list(pair) for pair in sorted(self.episodes)],
+            PLAN_ALL_SHARDS: self.all_shards,
         }
 
     @staticmethod
@@ -56,7 +55,7 @@ class RunPlan:
         or not in this form."""
         if not isinstance(data, Mapping):
             return None
-        episodes, all_shards = data.get("episodes"), data.get("all_shards")
+        episodes, all_shards = data.get(PLAN_EPISODES), data.get(PLAN_ALL_SHARDS)
         if not isinstance(episodes, list) or type(all_shards) is not int:
             return None
         pairs = [tuple(pair) for pair in episodes if isinstance(pair, list)]

@@ -15,7 +15,7 @@ from collections.abc import Iterable
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
-REFUSED_FILE = "episodes.refused.jsonl"
+from vlln.eval.run_dir import REFUSED_FILE
 
 
 @dataclass(frozen=True)

@@ -1,15 +1,6 @@
 """The results directory of one evaluation run, built so that nothing finished is ever lost.
 
-Layout::
-
-    DIR/run.json        the run's arguments (EvalConfig); a restart must match them
-    DIR/episodes.jsonl  one EpisodeRecord.to_json() per line, in the order they finished
-    DIR/summary.json    every metric, recomputed from episodes.jsonl (see vlln.eval.summary)
-    DIR/summary.md      the same as Markdown tables
-    DIR/.lock           held while a process writes here, so two runs cannot interleave
-
-    DIR/episodes.skipped.jsonl  lines a resume set aside: invalid, repeated or unplanned
-    DIR/episodes.refused.jsonl  episodes refused as unplayable in their scene (vlln.eval.refusals)
+Layout: :mod:`vlln.eval.run_dir`.
 
 Each record is appended with one write, flushed and fsynced, so a kill loses at most the
 episode in flight. That episode may leave a partial last line; reading for a restart cuts it
@@ -35,19 +26,21 @@ from typing import IO, Any
 
 from vlln.errors import ConfigError, DataFormatError
 from vlln.eval.config import EvalConfig, describe_differences
-from vlln.eval.plan import PLAN_FACT, RunPlan, missing_shards
+from vlln.eval.plan import RunPlan, missing_shards
 from vlln.eval.refusals import Refusal, read_refusals
+from vlln.eval.run_dir import (
+    EPISODES_FILE,
+    LOCK_FILE,
+    PLAN_FACT,
+    PLANNED_FACT,
+    PROVENANCE_FACT,
+    RUN_FILE,
+    SKIPPED_FILE,
+    SUMMARY_JSON,
+    SUMMARY_MD,
+)
 from vlln.files import check_output_folder, parse_json, write_bytes_atomic, write_text_atomic
 from vlln.tasks.record import EpisodeRecord
-
-RUN_FILE = "run.json"
-EPISODES_FILE = "episodes.jsonl"
-SKIPPED_FILE = "episodes.skipped.jsonl"
-# in run.json, but not arguments of the run
-RUN_FACTS = ("planned_episodes", PLAN_FACT, "provenance")
-SUMMARY_JSON = "summary.json"
-SUMMARY_MD = "summary.md"
-LOCK_FILE = ".lock"
 
 RecordKey = tuple[str, str, int, str, str]
 
@@ -258,8 +251,7 @@ class RunDirectory:
         data = self.stored_run()
         if data is None:
             return None
-        arguments = {name: value for name, value in data.items() if name not in RUN_FACTS}
-        return EvalConfig.from_json(arguments, str(self.run_path))
+        return EvalConfig.from_json(data, str(self.run_path))
 
     def stored_scenes(self) -> str | None:
         """The folder of scanned scenes the run was made with (``--scenes``), if any."""
@@ -271,7 +263,7 @@ class RunDirectory:
 
     def stored_planned(self) -> int | None:
         """Episode lines the run plans (None when its run.json predates the count)."""
-        return _stored_count(self.stored_run(), "planned_episodes")
+        return _stored_count(self.stored_run(), PLANNED_FACT)
 
     def stored_max_steps(self) -> int | None:
         """The run's step cap (None for a folder without run.json, e.g. a web study)."""
@@ -301,14 +293,14 @@ class RunDirectory:
         if plan is not None:
             planned = plan.lines
         facts = {
-            "planned_episodes": planned,
+            PLANNED_FACT: planned,
             PLAN_FACT: None if plan is None else plan.to_json(),
-            "provenance": provenance,
+            PROVENANCE_FACT: provenance,
         }
         stored = self.stored_config()
         if stored is not None:
             differences = describe_differences(stored, config)
-            stored_provenance = (self.stored_run() or {}).get("provenance")
+            stored_provenance = (self.stored_run() or {}).get(PROVENANCE_FACT)
             if stored_provenance not in (None, provenance) and provenance is not None:
                 differences.append(f"provenance: {stored_provenance} there, {provenance} now")
             if differences:

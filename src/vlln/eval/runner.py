@@ -1,85 +1,115 @@
-"""The evaluation runner: plays an agent over a fixed list of episodes, one line per episode.
+"""The evaluation runner: plays an agent over a fixed list of episodes, one line per episode,
+with an executor that plays the work: :class:`LocalExecutor` in this process, or
+:class:`vlln.cluster.evaluation.RayExecutor` on a cluster. The runner alone owns the rest, so
+both write the same folder: the plan and its storage in ``run.json``, the check that a resumed
+folder holds the same agent and arguments, the done-set, the writer, refusals, progress, and
+the summary with the run's health line.
 
 Order: the episodes of the source (a built-in split or an episode file) are grouped by scene,
 keeping first appearance, so one simulator serves a whole house; ``--episodes N`` keeps N of
 them spread evenly over the scenes (:func:`spread_over_scenes`), ``--shard i/n`` takes every
-n-th of them, and each episode is played at
-every dialog budget before the next one (the geodesic field of its goals is reused).
+n-th of them, and each episode is played at every dialog budget before the next one (the
+geodesic field of its goals is reused). An executor hands results back in that order, so the
+episode lines are in plan order whoever played them; how each line is played and why it does
+not depend on what ran before is :mod:`vlln.eval.play`.
 
-Determinism: for every (episode, budget) the agent and the oracle are made afresh with seeds
-derived from (``--seed``, scene, episode) by a hash, the same at every budget, so an episode
-line depends on nothing that ran before it: one process, many shards, or a resumed run give
-identical lines. Where the agent allows it, an episode's budgets are played together by
-prefix sharing (:mod:`vlln.eval.sweep`), which gives the same lines.
-
-Simulators: the plan never returns to a scene it has left, so the previous house's simulator
-is closed before the next one is built, and memory stays that of one house.
-
-Robustness: an exception inside the agent's ``reset`` or ``act`` ends that episode, recorded
-with end reason ``error`` and the exception text, and the run goes on; outputs that are not
-actions are failed actions, which the environment records and caps. An episode the
-environment refuses (its start or goals not reachable on their own storeys,
-:mod:`vlln.tasks.refusal`) is named with the reason in one line on stderr, kept in
-``episodes.refused.jsonl`` (:mod:`vlln.eval.refusals`) and counted by the run's health; the run
-goes on with the others. Finished episodes are on
-disk before the next one starts (see :mod:`vlln.eval.results`), and a restart skips them.
+Robustness: an episode the environment refuses (:mod:`vlln.tasks.refusal`) is named with the
+reason in one line on stderr, kept in ``episodes.refused.jsonl`` (:mod:`vlln.eval.refusals`)
+and counted by the run's health; the run goes on with the others. Finished episodes are on
+disk before the next result is taken (see :mod:`vlln.eval.results`), and a restart skips them.
 """
 
 from __future__ import annotations
 
-import hashlib
 import os
 import sys
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from functools import partial
 from pathlib import Path
+from typing import Protocol
 
 from tqdm import tqdm
 
-from vlln.agents.protocol import Agent, RecordsModelCalls, reported_stop_reason
 from vlln.agents.registry import make_agent
 from vlln.errors import ConfigError, EpisodeRefusedError
 from vlln.eval.config import EvalConfig
 from vlln.eval.cost import eval_cost_line
 from vlln.eval.health import RunHealth, run_health
 from vlln.eval.plan import RunPlan
+from vlln.eval.play import (
+    AgentFactory,
+    OracleFactory,
+    Played,
+    WorkItem,
+    play_in_order,
+)
 from vlln.eval.refusals import Refusal, append_refusals, read_refusals
-from vlln.eval.results import RecordKey, RunDirectory, SkippedLine, load_runs, record_key
+from vlln.eval.results import RunDirectory, SkippedLine, load_runs, record_key
 from vlln.eval.summary import GroupSummary, summarize_run, summary_json, summary_markdown
-from vlln.eval.sweep import can_sweep, describe_error, play_sweep
 from vlln.oracle.rule_oracle import RuleOracle
-from vlln.tasks.env import NavigationEnv
 from vlln.tasks.episode import Episode, read_episodes
 from vlln.tasks.metrics import success
-from vlln.tasks.oracle_protocol import Oracle
 from vlln.tasks.record import EpisodeRecord, agent_label
 from vlln.tasks.scenes import SceneCache
-from vlln.tasks.spec import TaskConfig, TaskType
 from vlln.tasks.split_files import load_or_build_split
 from vlln.tasks.test_protocol import source_split
 
-AgentFactory = Callable[[str, int, str | None], Agent]  # (name, seed, detector)
-OracleFactory = Callable[[int], Oracle]
+Commit = Callable[[list[Played]], None]
 
 
-@dataclass(frozen=True)
-class WorkItem:
-    """One episode to play at one dialog budget."""
+class Executor(Protocol):
+    """Plays the runner's work somewhere and hands every result back, in plan order."""
 
-    episode: Episode
-    budget: int
+    @property
+    def label(self) -> str:
+        """How the progress bar names where it plays ("" for this process)."""
 
-    def key(self, config: EvalConfig) -> RecordKey:
-        """The key its record will have (see :func:`vlln.eval.results.record_key`)."""
-        return (
-            agent_label(config.agent, config.detector),
-            config.task,
-            self.budget,
-            self.episode.scene_id,
-            self.episode.episode_id,
-        )
+    @property
+    def oracle_factory(self) -> OracleFactory:
+        """Who answers the agent's questions (named in run.json's provenance)."""
+
+    def check(self, config: EvalConfig) -> None:
+        """Fail in one line before any work (the agent cannot be made, no cluster)."""
+
+    def play(self, config: EvalConfig, items: list[WorkItem], commit: Commit) -> None:
+        """Play ``items`` and call ``commit`` with their results in order, each once, as soon
+        as they and every earlier one are in."""
+
+
+@dataclass
+class LocalExecutor:
+    """Plays in this process, one episode after the other. ``scenes`` shares simulators
+    between calls (it is then not closed here); ``sweep`` plays an episode's budgets together
+    by prefix sharing where the agent allows it (the same records, in less time);
+    ``agent_factory`` defaults to the registry with the run's agent options."""
+
+    scenes: SceneCache | None = None
+    agent_factory: AgentFactory | None = None
+    oracle_factory: OracleFactory = RuleOracle
+    sweep: bool = True
+    label: str = ""
+
+    def _factory(self, config: EvalConfig) -> AgentFactory:
+        if self.agent_factory is not None:
+            return self.agent_factory
+        return partial(make_agent, options=config.agent_options)
+
+    def check(self, config: EvalConfig) -> None:
+        self._factory(config)(config.agent, config.seed, config.detector)
+
+    def play(self, config: EvalConfig, items: list[WorkItem], commit: Commit) -> None:
+        cache = self.scenes if self.scenes is not None else SceneCache(scenes_dir=config.scenes)
+        factory = self._factory(config)
+        try:
+            for played in play_in_order(
+                items, config, cache, factory, self.oracle_factory, self.sweep
+            ):
+                commit(played)
+        finally:
+            if self.scenes is None:
+                cache.close()
 
 
 @dataclass(frozen=True)
@@ -154,14 +184,6 @@ def plan_of(items: Sequence[WorkItem], episodes: Sequence[Episode], config: Eval
     return RunPlan.of(pairs, config, chosen * len(config.budgets))
 
 
-def derive_seed(seed: int, role: str, scene_id: str, episode_id: str) -> int:
-    """A 63-bit seed for ``role`` (agent, oracle) in one episode, the same at every budget:
-    budgets differ only by their refusals (common random numbers for the MSP's differences,
-    and what lets :mod:`vlln.eval.sweep` share prefixes)."""
-    text = f"{seed}|{role}|{scene_id}|{episode_id}"
-    return int.from_bytes(hashlib.sha256(text.encode("utf-8")).digest()[:8], "big") >> 1
-
-
 def default_cache_dir() -> Path:
     """Where built splits are kept: ``$XDG_CACHE_HOME/vlln/episodes`` (~/.cache by default)."""
     base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
@@ -191,33 +213,6 @@ def load_episodes(
     )
 
 
-def play_episode(
-    env: NavigationEnv, agent: Agent, agent_name: str, episode_index: int = 0
-) -> EpisodeRecord:
-    """Play one episode to its end; an exception in the agent ends it as an error. A model
-    agent's calls go into the record."""
-    observation, _ = env.reset(options={"episode_index": episode_index})
-
-    def record(error: str | None = None) -> EpisodeRecord:
-        calls = agent.model_calls() if isinstance(agent, RecordsModelCalls) else []
-        return env.record(
-            agent_name, error=error, model_calls=calls, stop_reason=reported_stop_reason(agent)
-        )
-
-    try:
-        agent.reset(env.episode_info())
-    except Exception as error:
-        return record(describe_error(error, "reset"))
-    while True:
-        try:
-            action = agent.act(observation)
-        except Exception as error:
-            return record(describe_error(error, "act"))
-        observation, _, terminated, truncated, _ = env.step(action)
-        if terminated or truncated:
-            return record()
-
-
 def run_evaluation(
     config: EvalConfig,
     out: Path,
@@ -231,79 +226,91 @@ def run_evaluation(
     sweep: bool = True,
     provenance: dict[str, str | None] | None = None,
 ) -> RunOutcome:
-    """Play ``config`` into the run directory ``out``, resuming what is already there.
+    """Play ``config`` in this process into the run directory ``out``, resuming what is
+    already there (:class:`LocalExecutor` says what the playing options do)."""
+    executor = LocalExecutor(scenes, agent_factory, oracle_factory, sweep)
+    return evaluate(
+        config,
+        out,
+        executor,
+        cache_dir=cache_dir,
+        stop_after=stop_after,
+        progress=progress,
+        provenance=provenance,
+    )
 
-    ``stop_after`` plays at most that many episodes in this call (a later call continues);
-    ``scenes`` shares simulators between calls (it is then not closed here); ``sweep`` plays
-    an episode's budgets together by prefix sharing where the agent allows it
-    (:mod:`vlln.eval.sweep`; the same records, in less time); ``agent_factory`` defaults to
-    the registry with the run's agent options; ``provenance`` (agent, oracle, backend, model)
-    goes into run.json, by default the rule oracle's.
+
+def evaluate(
+    config: EvalConfig,
+    out: Path,
+    executor: Executor,
+    *,
+    cache_dir: Path | None = None,
+    stop_after: int | None = None,
+    progress: bool = True,
+    provenance: dict[str, str | None] | None = None,
+) -> RunOutcome:
+    """Play ``config`` with ``executor`` into the run directory ``out``, resuming what is
+    already there.
+
+    ``stop_after`` plays at most that many episode lines in this call (a later call
+    continues); ``provenance`` (agent, oracle, backend, model) goes into run.json, by default
+    that of the executor's oracle.
     """
     if stop_after is not None and stop_after < 0:
         raise ConfigError(f"stop_after must be >= 0, got {stop_after}")
-    RunDirectory(out).check_is_directory()
-    if agent_factory is None:
-        agent_factory = partial(make_agent, options=config.agent_options)
-    agent_factory(config.agent, config.seed, config.detector)  # fail before any work
+    run_dir = RunDirectory(out)
+    run_dir.check_is_directory()
+    executor.check(config)
     episodes = load_episodes(config, cache_dir, progress)
     items = plan_work(episodes, config)
     plan = plan_of(items, episodes, config)
-    run_dir = RunDirectory(out)
-    run_dir.prepare(
-        config, provenance=provenance or default_provenance(config, oracle_factory), plan=plan
-    )
-    task = TaskType.parse(config.task)
-    own_scenes = scenes is None
-    cache = scenes if scenes is not None else SceneCache(scenes_dir=config.scenes)
+    provenance = provenance or default_provenance(config, executor.oracle_factory)
+    run_dir.prepare(config, provenance=provenance, plan=plan)
     played = 0
     started = time.perf_counter()
-    try:
-        with run_dir.writing(plan) as writer:
-            _check_same_agent(writer.records, config, out)
-            repaired = list(writer.skipped)
-            done = {record_key(record) for record in writer.records}
-            done |= {refusal.key() for refusal in read_refusals(out)}
-            remaining = [item for item in items if item.key(config) not in done]
-            todo = remaining if stop_after is None else remaining[:stop_after]
-            if progress:
-                done_lines = len(items) - len(remaining)
-                basis = config.preset if config.episode_file is None else "small"
-                line = eval_cost_line(len(items), done_lines, config.agent, basis)
-                print(line, file=sys.stderr)
-            bar = tqdm(
-                total=len(items),
-                initial=len(items) - len(remaining),
-                desc=f"{config.agent} {config.task}",
-                unit="ep",
-                file=sys.stderr,
-                disable=not progress,
-                dynamic_ncols=True,
-            )
-            with bar:
-                scene: str | None = None
-                for group in by_episode(todo):
-                    if scene is not None and group[0].episode.scene_id != scene:
-                        cache.close()  # episodes come grouped by scene: free the last house
-                    scene = group[0].episode.scene_id
-                    try:
-                        plays = _play_group(
-                            group, config, task, cache, agent_factory, oracle_factory, sweep
-                        )
-                    except EpisodeRefusedError as refused:
-                        tqdm.write(f"refused: {refused}", file=sys.stderr)
-                        append_refusals(out, _refusals(group, config, refused.reason))
-                        bar.update(len(group))
-                        continue
-                    for record in plays:
-                        writer.append(record)
-                        played += 1
-                        bar.update(1)
-                    bar.set_postfix(sr=f"{_success_rate(writer.records):.1f}%")
-            records = list(writer.records)
-    finally:
-        if own_scenes:
-            cache.close()
+    with run_dir.writing(plan) as writer:
+        _check_same_agent(writer.records, config, out)
+        repaired = list(writer.skipped)
+        done = {record_key(record) for record in writer.records}
+        done |= {refusal.key() for refusal in read_refusals(out)}
+        remaining = [item for item in items if item.key(config) not in done]
+        todo = remaining if stop_after is None else remaining[:stop_after]
+        if progress:
+            basis = config.preset if config.episode_file is None else "small"
+            line = eval_cost_line(len(items), len(items) - len(remaining), config.agent, basis)
+            print(line, file=sys.stderr)
+        where = f" {executor.label}" if executor.label else ""
+        bar = tqdm(
+            total=len(items),
+            initial=len(items) - len(remaining),
+            desc=f"{config.agent} {config.task}{where}",
+            unit="ep",
+            file=sys.stderr,
+            disable=not progress,
+            dynamic_ncols=True,
+        )
+
+        def commit(results: list[Played]) -> None:
+            """Write what came back: records appended, refusals kept and named; a result
+            already in the folder (a chunk run twice) is not written again."""
+            nonlocal played
+            fresh = [result for result in results if _key(result) not in done]
+            refusals = [result for result in fresh if isinstance(result, Refusal)]
+            for named in dict.fromkeys((r.episode_id, r.scene_id, r.reason) for r in refusals):
+                tqdm.write(f"refused: {EpisodeRefusedError(*named)}", file=sys.stderr)
+            append_refusals(out, refusals)
+            for result in fresh:
+                done.add(_key(result))
+                if isinstance(result, EpisodeRecord):
+                    writer.append(result)
+                    played += 1
+                bar.update(1)
+            bar.set_postfix(sr=f"{_success_rate(writer.records):.1f}%")
+
+        with bar:
+            executor.play(config, todo, commit)
+        records = list(writer.records)
     seconds = time.perf_counter() - started
     return finish_run(out, len(items), played, seconds, records, repaired)
 
@@ -340,92 +347,8 @@ def default_provenance(config: EvalConfig, oracle_factory: OracleFactory) -> dic
     }
 
 
-def play_items(
-    items: Sequence[WorkItem],
-    config: EvalConfig,
-    scenes: SceneCache,
-    agent_factory: AgentFactory | None = None,
-    oracle_factory: OracleFactory = RuleOracle,
-    sweep: bool = True,
-) -> list[EpisodeRecord]:
-    """The records of ``items`` in order, as :func:`run_evaluation` plays them (without
-    writing them anywhere): what a remote worker runs for its chunk."""
-    if agent_factory is None:
-        agent_factory = partial(make_agent, options=config.agent_options)
-    task = TaskType.parse(config.task)
-    return [
-        record
-        for group in by_episode(items)
-        for record in _play_group(group, config, task, scenes, agent_factory, oracle_factory, sweep)
-    ]
-
-
-def by_episode(items: Sequence[WorkItem]) -> list[list[WorkItem]]:
-    """Consecutive items of one episode (its budgets) as groups, in order."""
-    groups: list[list[WorkItem]] = []
-    for item in items:
-        if groups and groups[-1][0].episode is item.episode:
-            groups[-1].append(item)
-        else:
-            groups.append([item])
-    return groups
-
-
-def _play_group(
-    group: list[WorkItem],
-    config: EvalConfig,
-    task: TaskType,
-    scenes: SceneCache,
-    agent_factory: AgentFactory,
-    oracle_factory: OracleFactory,
-    sweep: bool,
-) -> list[EpisodeRecord]:
-    """The records of one episode's budgets: by one sweep where possible, else one by one."""
-    episode = group[0].episode
-    budgets = [item.budget for item in group]
-    seed = derive_seed(config.seed, "agent", *_ids(episode))
-    agent = agent_factory(config.agent, seed, config.detector)
-    task_config = TaskConfig(task=task, max_steps=config.max_steps, dialog_budget=max(budgets))
-    oracle = None
-    if task_config.dialog_enabled:
-        oracle = oracle_factory(derive_seed(config.seed, "oracle", *_ids(episode)))
-    oracle_copies = oracle is None or getattr(oracle, "snapshottable", False)
-    if not (sweep and oracle_copies and can_sweep(agent, budgets)):
-        return [
-            _play_item(item, config, task, scenes, agent_factory, oracle_factory) for item in group
-        ]
-    env = NavigationEnv([episode], task_config, scenes, oracle, privileged=agent.privileged)
-    records = play_sweep(env, agent, config.agent, budgets)
-    return [replace(records[budget], detector=config.detector) for budget in budgets]
-
-
-def _refusals(group: list[WorkItem], config: EvalConfig, reason: str) -> list[Refusal]:
-    """The refusal of each budget of one refused episode."""
-    return [Refusal(*item.key(config), reason) for item in group]
-
-
-def _ids(episode: Episode) -> tuple[str, str]:
-    return episode.scene_id, episode.episode_id
-
-
-def _play_item(
-    item: WorkItem,
-    config: EvalConfig,
-    task: TaskType,
-    scenes: SceneCache,
-    agent_factory: AgentFactory,
-    oracle_factory: OracleFactory,
-) -> EpisodeRecord:
-    episode = item.episode
-
-    def seed_for(role: str) -> int:
-        return derive_seed(config.seed, role, *_ids(episode))
-
-    agent = agent_factory(config.agent, seed_for("agent"), config.detector)
-    task_config = TaskConfig(task=task, max_steps=config.max_steps, dialog_budget=item.budget)
-    oracle = oracle_factory(seed_for("oracle")) if task_config.dialog_enabled else None
-    env = NavigationEnv([episode], task_config, scenes, oracle, privileged=agent.privileged)
-    return replace(play_episode(env, agent, config.agent), detector=config.detector)
+def _key(result: Played) -> tuple[str, str, int, str, str]:
+    return result.key() if isinstance(result, Refusal) else record_key(result)
 
 
 def _check_same_agent(records: Sequence[EpisodeRecord], config: EvalConfig, out: Path) -> None:

@@ -74,10 +74,6 @@ class Conversation:
         if not self.turns or self.turns[0].role != "human":
             raise ConfigError("a conversation starts with a human turn")
 
-    def as_sharegpt(self) -> list[dict[str, str]]:
-        """The turns as ``{"from": role, "value": text}`` records (the training layout)."""
-        return [{"from": turn.role, "value": turn.text} for turn in self.turns]
-
     def parts(self) -> list[tuple[Role, list[str | ImageRef]]]:
         """Each turn as text pieces and images in order, for chat APIs that take both."""
         images = iter(self.images)

@@ -3,7 +3,6 @@ model's chat template, loss only on the assistant's tokens."""
 
 from __future__ import annotations
 
-import json
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -11,7 +10,7 @@ from typing import Any
 from PIL import Image
 
 from vlln.agents.local.encoding import ChatEncoder
-from vlln.datagen.sft.export import SFT_FILE, SUMMARY_FILE
+from vlln.datagen.sft.records import SFT_FILE, SUMMARY_FILE, SftRecord
 from vlln.errors import DataFormatError
 from vlln.prompt import IMAGE_TAG, Turn
 
@@ -38,7 +37,7 @@ def read_export(data_dir: Path) -> list[SftSample]:
         for number, line in enumerate(lines, 1):
             where = f"{data_dir / SFT_FILE}, line {number}"
             try:
-                samples.append(_sample(json.loads(line), data_dir))
+                samples.append(_sample(SftRecord.from_line(line), data_dir))
             except (ValueError, KeyError, TypeError) as error:
                 raise DataFormatError(f"{where}: {error}") from error
     if not samples:
@@ -46,20 +45,18 @@ def read_export(data_dir: Path) -> list[SftSample]:
     return samples
 
 
-def _sample(record: dict[str, Any], data_dir: Path) -> SftSample:
-    turns = tuple(Turn(turn["from"], turn["value"]) for turn in record["conversations"])
-    if any(turn.role not in ("human", "gpt") for turn in turns):
-        raise ValueError("a turn's 'from' must be 'human' or 'gpt'")
+def _sample(record: SftRecord, data_dir: Path) -> SftSample:
+    turns = record.turns
     if not any(turn.role == "gpt" for turn in turns):
         raise ValueError("the conversation has no 'gpt' turn to learn")
-    images = tuple(data_dir / path for path in record["images"])
+    images = tuple(data_dir / path for path in record.images)
     tags = sum(turn.text.count(IMAGE_TAG) for turn in turns)
     if tags != len(images):
         raise ValueError(f"{tags} <image> tags but {len(images)} images")
     missing = [str(path) for path in images if not path.is_file()]
     if missing:
         raise ValueError(f"missing image {missing[0]}; re-run the export")
-    return SftSample(str(record["id"]), images, turns)
+    return SftSample(record.sample_id, images, turns)
 
 
 class SftCollator:

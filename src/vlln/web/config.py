@@ -18,7 +18,8 @@ from pydantic import (
     model_validator,
 )
 
-from vlln.agents.registry import AGENTS, CONFIGURED_AGENTS
+from vlln.agents.options import AgentOptions
+from vlln.agents.registry import AGENTS, CONFIGURED_AGENTS, agent_options
 from vlln.config import Config
 from vlln.errors import ConfigError
 from vlln.oracle.llm.openai_client import OpenAISettings
@@ -98,7 +99,10 @@ class WebConfig(WebLimits):
     dialog_budget: int = TaskType.IIGN.default_budget
     token: str | None = None
     llm: SkipValidation[OpenAISettings | None] = None
-    agent_options: Mapping[str, Mapping[str, str]] = Field(default_factory=dict)
+    agent_options: SkipValidation[Mapping[str, AgentOptions | Mapping[str, str]]] = Field(
+        default_factory=dict
+    )
+    """Options of agents that take them, by agent; read into the agent's options class."""
 
     @field_validator("episodes")
     @classmethod
@@ -127,6 +131,13 @@ class WebConfig(WebLimits):
                 f"IIGN takes a budget of 0 to {MAX_DIALOG_BUDGET} (the paper's), the other tasks 0"
             )
         return self
+
+    @field_validator("agent_options")
+    @classmethod
+    def _typed_agent_options(
+        cls, value: Mapping[str, AgentOptions | Mapping[str, str]]
+    ) -> dict[str, AgentOptions]:
+        return {name: agent_options(name, given) for name, given in value.items()}
 
     @property
     def agents(self) -> tuple[str, ...]:

@@ -23,8 +23,8 @@ import numpy as np
 
 from vlln.agents.protocol import Agent, reported_stop_reason
 from vlln.agents.registry import make_agent
+from vlln.eval.play import derive_seed
 from vlln.eval.results import RecordKey
-from vlln.eval.runner import derive_seed
 from vlln.sim.agent import Action
 from vlln.tasks.env import NavigationEnv, Observation
 from vlln.tasks.episode import Episode

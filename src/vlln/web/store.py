@@ -22,6 +22,7 @@ from typing import Any
 
 from vlln.errors import ConfigError, DataFormatError
 from vlln.eval.results import RecordKey, RecordWriter, RunDirectory, record_key
+from vlln.eval.run_dir import episodes_file
 from vlln.files import parse_json, write_text_atomic
 from vlln.tasks.episode import Episode
 from vlln.tasks.record import EpisodeRecord
@@ -291,7 +292,7 @@ class SessionStore:
                     + "; ".join(changed)
                     + "); use another --out, or the same settings"
                 )
-        elif (config.out / "episodes.jsonl").exists():
+        elif episodes_file(config.out).exists():
             raise ConfigError(
                 f"{config.out} holds episode records from another command; use another --out"
             )

@@ -18,10 +18,11 @@ from tests.datagen.sft.conftest import CATEGORY, HandDataset
 from tests.datagen.sft.samples import episode_samples, read_samples, sample_key
 from tests.oracle.llm.chat_server import chat_server, completion
 
-from vlln.agents.model.options import openai_vlm_agent
+from vlln.agents.model.options import OpenAIVLMOptions, openai_vlm_agent
 from vlln.datagen.layout import DOWN_TILT_DEG
 from vlln.datagen.reader import HouseDataset
 from vlln.datagen.sft import SftConfig, export_sft
+from vlln.datagen.sft.records import sharegpt
 from vlln.prompt import (
     QUESTION_LIMIT_ANSWER,
     Conversation,
@@ -126,7 +127,7 @@ def test_conversations_are_the_prompt_the_agent_builds(
                 )
                 for left in range(7)
             ]
-            matches = [c for c in candidates if c.as_sharegpt() == sample["conversations"]]
+            matches = [c for c in candidates if sharegpt(c.turns) == sample["conversations"]]
             assert matches, sample["id"]
             prefix = f"images/{hand_dataset.house}/episode_{episode:06d}"
             paths = [f"{prefix}/{ref.camera}_{ref.frame:06d}.jpg" for ref in matches[0].images]
@@ -322,7 +323,7 @@ def test_the_model_agent_is_shown_the_exported_images_byte_for_byte(
     script = [completion("<move>↓"), completion("<move>320 240")]
     with chat_server(script) as server:
         options = {"base_url": server.base_url, "model": "images-test", "max_retries": "0"}
-        agent = openai_vlm_agent(0, options)
+        agent = openai_vlm_agent(0, OpenAIVLMOptions.parse("openai-vlm", options))
         agent.reset(info)
         assert agent.act(views[0]) == Action.LOOK_DOWN
         assert isinstance(agent.act(views[1]), PixelGoal)

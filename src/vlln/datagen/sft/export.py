@@ -2,9 +2,8 @@
 
 ::
 
-    <out>/sft.jsonl        one sample per line, in house, episode and sample order:
-                           {"id", "images": [paths in <image> order], "conversations":
-                            [{"from": "human" | "gpt", "value": ...}, ...]}
+    <out>/sft.jsonl        one sample per line, in house, episode and sample order
+                           (the line's schema: :mod:`vlln.datagen.sft.records`)
     <out>/images/<house>/episode_<i>/{level,down}_<frame>.jpg   level 384x384, down 640x480
     <out>/export.json      format, settings, houses and counts; written last, so its presence
                            marks a complete export
@@ -39,6 +38,7 @@ from vlln import __version__
 from vlln.datagen.reader import HouseDataset
 from vlln.datagen.sft.config import SftConfig
 from vlln.datagen.sft.images import IMAGES_DIR, ImageStore
+from vlln.datagen.sft.records import SFT_FILE, SUMMARY_FILE, SftRecord
 from vlln.datagen.sft.sampling import SamplePlan, plan_samples
 from vlln.datagen.sft.source import SourceTrajectory, open_houses, read_trajectories
 from vlln.errors import ConfigError, DataFormatError
@@ -55,8 +55,6 @@ from vlln.prompt import (
 )
 
 FORMAT_VERSION = "vlln-sft/2.0"
-SFT_FILE = "sft.jsonl"
-SUMMARY_FILE = "export.json"
 _OWN_ENTRIES = {SFT_FILE, SUMMARY_FILE, IMAGES_DIR}
 
 
@@ -176,13 +174,11 @@ def _export_trajectory(
             answers_left = int(rng.integers(0, config.max_answers + 1))
             conversation = sample_conversation(trajectory, plan, answers_left, config)
             paths = [store.add(house, trajectory.episode_index, ref) for ref in conversation.images]
-            record = {
-                "id": f"{trajectory.house}/episode_{trajectory.episode_index:06d}/"
-                f"frame_{plan.frame:06d}/{plan.kind}/{copy}",
-                "images": paths,
-                "conversations": conversation.as_sharegpt(),
-            }
-            sink.write(json.dumps(record, ensure_ascii=False) + "\n")
+            sample_id = (
+                f"{trajectory.house}/episode_{trajectory.episode_index:06d}/"
+                f"frame_{plan.frame:06d}/{plan.kind}/{copy}"
+            )
+            sink.write(SftRecord(sample_id, tuple(paths), conversation.turns).line())
             summary.samples += 1
             summary.by_kind[kind] += 1
 

@@ -15,6 +15,7 @@ from typing import Any
 
 from PIL import Image
 
+from vlln.datagen.layout import EPISODES_FILE, TRAJECTORIES_DIR
 from vlln.datagen.reader import HouseDataset, house_folders, instruction_of
 from vlln.errors import ConfigError, DataFormatError
 from vlln.prompt import DOWN_IMAGE_SIZE, DialogExchange
@@ -39,10 +40,10 @@ def open_houses(dataset_root: str | Path) -> list[HouseDataset]:
     root = Path(dataset_root)
     if not root.is_dir():
         raise ConfigError(f"{root} is not a folder; give the folder that `vlln data build` wrote")
-    folders = [f for f in house_folders(root) if (f / "meta" / "episodes.jsonl").exists()]
+    folders = [f for f in house_folders(root) if (f / EPISODES_FILE).exists()]
     if not folders:
         raise DataFormatError(
-            f"{root} is not a trajectory dataset: no trajectories/<house>/meta/episodes.jsonl; "
+            f"{root} is not a trajectory dataset: no {TRAJECTORIES_DIR}/<house>/{EPISODES_FILE}; "
             "build one with `vlln data build`, or finish the build"
         )
     return [HouseDataset(folder) for folder in folders]

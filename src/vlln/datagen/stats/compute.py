@@ -16,6 +16,13 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
 
+from vlln.datagen.layout import (
+    EPISODES_DIR,
+    INFO_FILE,
+    JOURNAL_FILE,
+    TRAJECTORIES_DIR,
+    is_finished,
+)
 from vlln.datagen.reader import HouseDataset, house_folders
 from vlln.datagen.stats.episodes import EpisodeStageStats, read_episode_stage
 from vlln.errors import DataFormatError
@@ -159,17 +166,17 @@ def dataset_stats(root: str | Path) -> DatasetStats:
     folders = list(house_folders(base))
     if not folders:
         raise DataFormatError(
-            f"{base} has no house folders under trajectories/; is it a dataset built by "
+            f"{base} has no house folders under {TRAJECTORIES_DIR}/; is it a dataset built by "
             "`vlln data build` (run the build first)?"
         )
     tally = _Tally()
     in_progress: list[HouseProgress] = []
     for folder in folders:
-        if (folder / "meta" / "info.json").exists():
+        if is_finished(folder):
             tally.add_house(HouseDataset(folder))
         else:
             in_progress.append(_progress(folder))
-    return tally.finish(str(base), in_progress, read_episode_stage(base / "episodes"))
+    return tally.finish(str(base), in_progress, read_episode_stage(base / EPISODES_DIR))
 
 
 @dataclass
@@ -192,7 +199,7 @@ class _Tally:
     per_house: dict[str, int] = field(default_factory=dict)
 
     def add_house(self, house: HouseDataset) -> None:
-        info_path = house.root / "meta" / "info.json"
+        info_path = house.root / INFO_FILE
         try:
             attempted = int(house.info["attempted"])
             rejections = {str(k): int(v) for k, v in house.info["rejections"].items()}
@@ -280,7 +287,7 @@ class _Tally:
 def _progress(folder: Path) -> HouseProgress:
     """Attempts in an unfinished house's journal; a torn last line (a write under way) is
     skipped, and the file is only read, never repaired, since a build may be writing it."""
-    journal = folder / "meta" / "journal.jsonl"
+    journal = folder / JOURNAL_FILE
     attempts: dict[str, bool] = {}
     if journal.exists():
         for line in journal.read_text(encoding="utf-8").splitlines():
