@@ -67,6 +67,7 @@ def test_the_commands_with_settings_are_generated_from_their_configs() -> None:
         "data episodes",
         "data stats",
         "oracle classify-report",
+        "oracle train-classifier",
         "train tiny-model",
         "world show",
         "world export",

@@ -102,7 +102,7 @@ def test_one_plan_on_both_executors_writes_the_same_folder_refusals_included(
     again = run_ray_evaluation(config, tmp_path / "ray", progress=False)
     assert again.played == 0 and again.complete  # refusals are not played again
     with pytest.raises(ConfigError, match="other arguments"):
-        run_ray_evaluation(replace(config, max_steps=61), tmp_path / "ray", progress=False)
+        run_ray_evaluation(config.replace(max_steps=61), tmp_path / "ray", progress=False)
 
 
 def test_a_killed_worker_is_retried_and_the_folder_equals_a_local_run(
@@ -154,4 +154,4 @@ def test_data_build_on_ray_equals_a_local_build(cluster: None, tmp_path: Path) -
     assert files(remote) == files(local)
     assert any(name.endswith(INFO_FILE) for name in files(remote))
     with pytest.raises(ConfigError, match="other settings"):  # the runner's check, on Ray too
-        build_dataset_ray(tmp_path / "ray", replace(config, seed=1), progress=False)
+        build_dataset_ray(tmp_path / "ray", config.replace(seed=1), progress=False)

@@ -131,14 +131,23 @@ def test_classifier_report_measures_a_given_file(tmp_path: Path) -> None:
         tmp_path,
         [
             json.dumps({"question": "What colour is it?", "type": "attribute"}),
-            json.dumps({"question": "How far is it?", "type": "attribute"}),
+            json.dumps({"question": "How far is it?", "type": "attribute", "topic": "size"}),
         ],
     )
-    accuracy, table = classifier_report(path)
-    assert accuracy == 0.5
-    assert "| attribute | 1 | 0 | 0 | 1 | 0.500 |" in table
+    report = classifier_report(path)
+    assert report["accuracy"] == 0.5
+    assert report["confusion"]["attribute"] == {
+        "attribute": 1,
+        "route": 0,
+        "disambiguation": 0,
+        "other": 1,
+    }
+    assert "| attribute | 1 | 0 | 0 | 1 | 0.500 |" in report["table"]
+    # Only the second question gives a topic, and its type is already wrong.
+    assert report["topic_accuracy"] == {"attribute": {"questions": 1, "accuracy": 0.0}}
 
 
 def test_classifier_report_defaults_to_the_heldout_set() -> None:
-    heldout_accuracy, _ = classifier_report(None)
-    assert 0.0 < heldout_accuracy <= 1.0
+    report = classifier_report(None)
+    assert report["questions"] == len(load_packaged_question_set("heldout"))
+    assert 0.0 < report["accuracy"] <= 1.0

@@ -15,7 +15,7 @@ import math
 import numpy as np
 import pytest
 
-from vlln.oracle.normalisation import MATERIAL_SYNONYMS
+from vlln.oracle.classifier.entities import MATERIAL_SYNONYMS
 from vlln.sim.camera import CameraSpec
 from vlln.sim.renderer import Renderer
 from vlln.world.catalogue import (

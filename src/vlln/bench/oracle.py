@@ -75,7 +75,7 @@ def run_oracle_benchmark(
 
 
 def _classify_us(texts: list[str]) -> float:
-    """Mean time to analyse one question, after a first pass has filled the typo cache."""
+    """Mean time to analyse one question, after a first pass has loaded the classifier."""
     for text in texts:
         analyse_question(text)
 

@@ -1,7 +1,8 @@
-"""``vlln oracle ...``: serve the oracle, measure its classifier."""
+"""``vlln oracle ...``: serve the oracle, train and measure its question classifier."""
 
 from __future__ import annotations
 
+import json
 from typing import TYPE_CHECKING
 
 from vlln.cli.generated import add_config_command
@@ -9,7 +10,11 @@ from vlln.cli.options import Commands
 from vlln.extras import SERVE_PACKAGES, require_extra
 
 if TYPE_CHECKING:
-    from vlln.cli.oracle_settings import ClassifyReportCommand, ServeCommand
+    from vlln.cli.oracle_settings import (
+        ClassifyReportCommand,
+        ServeCommand,
+        TrainClassifierCommand,
+    )
 
 
 def _serve_command() -> type[ServeCommand]:
@@ -22,6 +27,12 @@ def _classify_report_command() -> type[ClassifyReportCommand]:
     from vlln.cli.oracle_settings import ClassifyReportCommand
 
     return ClassifyReportCommand
+
+
+def _train_classifier_command() -> type[TrainClassifierCommand]:
+    from vlln.cli.oracle_settings import TrainClassifierCommand
+
+    return TrainClassifierCommand
 
 
 def _oracle_serve(command: ServeCommand) -> int:
@@ -50,10 +61,29 @@ def _oracle_serve(command: ServeCommand) -> int:
 
 
 def _oracle_classify_report(command: ClassifyReportCommand) -> int:
+    from vlln.oracle.classifier.model import packaged_classifier
     from vlln.oracle.question_set import classifier_report
 
-    accuracy, table = classifier_report(command.questions)
-    print(f"accuracy: {accuracy:.1%}\n\n{table}")
+    report = classifier_report(command.questions)
+    report["classifier"] = packaged_classifier().meta
+    if command.as_json:
+        print(json.dumps({k: v for k, v in report.items() if k != "table"}, indent=2))
+        return 0
+    print(f"type accuracy: {report['accuracy']:.1%} of {report['questions']} questions")
+    for kind, topic in report["topic_accuracy"].items():
+        print(f"{kind} topic accuracy: {topic['accuracy']:.1%} of {topic['questions']}")
+    print(f"\n{report['table']}")
+    return 0
+
+
+def _oracle_train_classifier(command: TrainClassifierCommand) -> int:
+    from vlln.oracle.classifier.model import load_classifier, packaged_artefact_path
+    from vlln.oracle.classifier.training import train_packaged, write_artefact
+
+    path = command.out or packaged_artefact_path()
+    write_artefact(train_packaged(command.seed), path)
+    meta = load_classifier(path).meta
+    print(f"wrote {path} (training data {meta['training_digest'][:12]}, seed {command.seed})")
     return 0
 
 
@@ -70,4 +100,11 @@ def add_oracle_commands(commands: Commands) -> None:
         _classify_report_command,
         _oracle_classify_report,
         help="accuracy and confusion matrix of the offline classifier",
+    )
+    add_config_command(
+        oracle,
+        "train-classifier",
+        _train_classifier_command,
+        _oracle_train_classifier,
+        help="fit the offline question classifier on the packaged training questions",
     )

@@ -1,12 +1,13 @@
 """The settings of ``vlln oracle serve`` (the service's limits and where and how it listens)
-and ``vlln oracle classify-report``. Imported when one of these commands is used."""
+and of ``vlln oracle classify-report`` and ``train-classifier``. Imported when one of these
+commands is used."""
 
 from __future__ import annotations
 
 from pathlib import Path
 from typing import Annotated
 
-from pydantic import Field
+from pydantic import AliasChoices, Field
 
 from vlln.config import Config
 from vlln.oracle_service.config import DEFAULT_HOST, DEFAULT_PORT, ServiceLimits
@@ -35,3 +36,14 @@ class ClassifyReportCommand(Config):
 
     questions: Path | None = None
     """a JSON Lines question set (none: the held-out set)"""
+    as_json: Annotated[bool, Field(validation_alias=AliasChoices("json", "as_json"))] = False
+    """print the figures as JSON"""
+
+
+class TrainClassifierCommand(Config):
+    """``vlln oracle train-classifier``: fit the offline question classifier."""
+
+    seed: int = 0
+    """seed of the typo copies"""
+    out: Path | None = None
+    """where to write it (none: the packaged artefact)"""

@@ -1,13 +1,17 @@
 """Labelled navigator questions, and how well the offline classifier types them.
 
-The classifier is a set of hand-tuned patterns, so its accuracy means something only on
-questions it was not tuned on. Two sets ship with the package: ``train`` (patterns are tuned
-against it) and ``heldout`` (written separately and frozen; it is only ever measured, never
-tuned against). Both are JSON Lines, one question a line::
+The classifier is learned (:mod:`vlln.oracle.classifier`), so its accuracy means something
+only on questions it was not trained on. Three sets ship with the package: ``train`` (navigator
+questions) and ``extra`` (questions written from templates: every topic, typos, chat
+spellings, word orders) are what it is trained on; ``heldout`` is written separately and
+frozen, only ever measured, never trained on. All are JSON Lines, one question a line::
 
     {"question": "Which way is the sofa?", "type": "route", "route_kind": "orientation"}
+    {"question": "What colour is it?", "type": "attribute", "topic": "color"}
 
-``route_kind`` is required for route questions and forbidden otherwise.
+``route_kind`` is required for route questions and forbidden otherwise; ``topic`` (an
+:class:`AttributeTopic` or :class:`OtherTopic`) is optional for attribute and other questions
+and forbidden otherwise. Training needs every topic; the held-out set has none.
 """
 
 from __future__ import annotations
@@ -17,16 +21,27 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from importlib.resources import files
 from pathlib import Path
+from typing import Any
 
 from vlln.errors import ConfigError, DataFormatError
-from vlln.oracle.classify import RouteKind, classify_question
+from vlln.oracle.classify import analyse_question, classify_question
+from vlln.oracle.topics import AttributeTopic, OtherTopic, RouteKind, Topic, label_of
 from vlln.tasks.oracle_protocol import QuestionType
 
-PACKAGED_SETS = ("train", "heldout")
-# A held-out set stops being held out once patterns are tuned on its errors; each replacement
-# is a new file, written without looking at the classifier.
-_PACKAGED_FILES = {"train": "questions_train.jsonl", "heldout": "questions_heldout_v6.jsonl"}
-_FIELDS = frozenset({"question", "type", "route_kind"})
+PACKAGED_SETS = ("train", "extra", "heldout")
+TRAINING_SETS = ("train", "extra")
+# A held-out set stops being held out once the classifier is trained on it or tuned on its
+# errors; each replacement is a new file, written without looking at the classifier.
+_PACKAGED_FILES = {
+    "train": "questions_train.jsonl",
+    "extra": "questions_extra.jsonl",
+    "heldout": "questions_heldout_v6.jsonl",
+}
+_FIELDS = frozenset({"question", "type", "route_kind", "topic"})
+_TOPICS: dict[QuestionType, type[AttributeTopic] | type[OtherTopic]] = {
+    QuestionType.ATTRIBUTE: AttributeTopic,
+    QuestionType.OTHER: OtherTopic,
+}
 
 
 @dataclass(frozen=True)
@@ -36,10 +51,19 @@ class LabelledQuestion:
     question: str
     question_type: QuestionType
     route_kind: RouteKind | None = None
+    topic: AttributeTopic | OtherTopic | None = None
+
+    @property
+    def label(self) -> str | None:
+        """The classifier label (``attribute:color``), or None when the topic is not given."""
+        topic: Topic | None = self.route_kind or self.topic
+        if topic is None and self.question_type != QuestionType.DISAMBIGUATION:
+            return None
+        return label_of(self.question_type, topic)
 
 
 def packaged_question_set_path(name: str) -> Path:
-    """Where the packaged set ``name`` ("train" or "heldout") lives."""
+    """Where the packaged set ``name`` ("train", "extra" or "heldout") lives."""
     if name not in PACKAGED_SETS:
         raise ConfigError(f"unknown question set {name!r}; choose one of {PACKAGED_SETS}")
     resource = files("vlln.oracle").joinpath("data", _PACKAGED_FILES[name])
@@ -47,7 +71,7 @@ def packaged_question_set_path(name: str) -> Path:
 
 
 def load_packaged_question_set(name: str) -> list[LabelledQuestion]:
-    """The packaged set ``name`` ("train" or "heldout")."""
+    """The packaged set ``name`` ("train", "extra" or "heldout")."""
     return load_question_set(packaged_question_set_path(name))
 
 
@@ -88,10 +112,18 @@ def _parse_row(line: str, where: str) -> LabelledQuestion:
         raise DataFormatError(f"{where}: 'type' must be one of {types}, got {row.get('type')!r}")
     question_type = QuestionType(row["type"])
     kind = row.get("route_kind")
+    topics = _TOPICS.get(question_type)
+    if row.get("topic") is not None:
+        if topics is None:
+            raise DataFormatError(f"{where}: 'topic' is only for attribute and other questions")
+        if row["topic"] not in [t.value for t in topics]:
+            names = [t.value for t in topics]
+            raise DataFormatError(f"{where}: 'topic' must be one of {names}, got {row['topic']!r}")
     if question_type != QuestionType.ROUTE:
         if kind is not None:
             raise DataFormatError(f"{where}: 'route_kind' is only for route questions")
-        return LabelledQuestion(question, question_type)
+        topic = None if topics is None or row.get("topic") is None else topics(row["topic"])
+        return LabelledQuestion(question, question_type, topic=topic)
     kinds = [k.value for k in RouteKind]
     if kind not in kinds:
         raise DataFormatError(f"{where}: a route question needs 'route_kind' in {kinds}")
@@ -147,9 +179,32 @@ def evaluate_classifier(
     return confusion_matrix([q.question_type for q in questions], predicted)
 
 
-def classifier_report(path: str | Path | None = None) -> tuple[float, str]:
-    """Accuracy and Markdown confusion table of the offline classifier on a labelled file
-    (the packaged held-out set when ``path`` is None)."""
+def predicted_label(text: str) -> str:
+    """The label (type and topic) the offline classifier gives ``text``."""
+    analysis = analyse_question(text)
+    topic: Topic | None = analysis.route_kind or analysis.attribute or analysis.other
+    return label_of(analysis.question_type, topic)
+
+
+def classifier_report(path: str | Path | None = None) -> dict[str, Any]:
+    """Accuracy on type, confusion matrix and, where the set gives topics, per-type topic
+    accuracy of the offline classifier on a labelled file (the held-out set when ``path`` is
+    None)."""
     questions = load_packaged_question_set("heldout") if path is None else load_question_set(path)
     matrix = evaluate_classifier(questions)
-    return accuracy_of(matrix), markdown_confusion_table(matrix)
+    topics: dict[str, dict[str, float]] = {}
+    for question_type in QuestionType:
+        labelled = [q for q in questions if q.question_type == question_type and q.label]
+        if labelled and question_type != QuestionType.DISAMBIGUATION:
+            right = sum(predicted_label(q.question) == q.label for q in labelled)
+            topics[question_type.value] = {
+                "questions": len(labelled),
+                "accuracy": right / len(labelled),
+            }
+    return {
+        "questions": len(questions),
+        "accuracy": accuracy_of(matrix),
+        "confusion": {t.value: {p.value: n for p, n in row.items()} for t, row in matrix.items()},
+        "topic_accuracy": topics,
+        "table": markdown_confusion_table(matrix),
+    }

@@ -1,0 +1,160 @@
+"""Loading the question classifier's artefact and labelling questions with it.
+
+The artefact is gzipped JSON: for each of the two TF-IDF feature sets (word 1-2-grams and
+character 2-5-grams within word boundaries) its vocabulary and idf weights, then the linear
+model's weights per label. Plain numbers rather than a pickle, so that a newer scikit-learn
+still reads it. At load, scikit-learn builds each feature set's analyser (the n-gram
+splitting, with the fitted settings), and the weighting and the linear model are a few array
+operations: the same numbers as the fitted vectoriser, without its per-call overhead of
+about a millisecond.
+"""
+
+from __future__ import annotations
+
+import gzip
+import json
+import math
+import re
+import zlib
+from collections import Counter
+from collections.abc import Callable
+from dataclasses import dataclass
+from functools import cache
+from importlib.resources import files
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from vlln.errors import DataFormatError
+from vlln.oracle.topics import LABELS
+
+if TYPE_CHECKING:
+    from sklearn.feature_extraction.text import TfidfVectorizer
+
+FORMAT = 1  # bump when the artefact's layout changes; older files are then refused
+ARTEFACT_NAME = "question_classifier.json.gz"
+RETRAIN = "rebuild it with `vlln oracle train-classifier`"
+# The two feature sets (scikit-learn TfidfVectorizer settings), in the order they are joined.
+FEATURE_SETS: dict[str, dict[str, Any]] = {
+    "word": {"analyzer": "word", "ngram_range": (1, 2), "token_pattern": r"(?u)\b\w+\b"},
+    "char": {"analyzer": "char_wb", "ngram_range": (2, 5)},
+}
+TFIDF_SETTINGS: dict[str, Any] = {"sublinear_tf": True, "norm": "l2"}
+_WORD = re.compile(r"[a-z0-9]+")
+
+
+def prepared(text: str) -> str:
+    """The text the features are read from: lower-case letters and digits, one space between
+    words (case, punctuation and spacing say nothing about the intent)."""
+    return " ".join(_WORD.findall(text.lower()))
+
+
+def vectoriser(name: str, **extra: Any) -> TfidfVectorizer:
+    """A TF-IDF vectoriser with the settings of feature set ``name``."""
+    # Imported here: scikit-learn takes a second to import, which only classifying needs.
+    from sklearn.feature_extraction.text import TfidfVectorizer
+
+    return TfidfVectorizer(**FEATURE_SETS[name], **TFIDF_SETTINGS, preprocessor=prepared, **extra)
+
+
+def packaged_artefact_path() -> Path:
+    """Where the shipped artefact lives (package data of :mod:`vlln.oracle`)."""
+    return Path(str(files("vlln.oracle").joinpath("data", ARTEFACT_NAME)))
+
+
+@dataclass(frozen=True)
+class _FeatureSet:
+    analyse: Callable[[str], list[str]]
+    index: dict[str, int]  # n-gram -> column within this set
+    idf: NDArray[np.float64]
+    offset: int  # first column of this set in the joined features
+
+
+@dataclass(frozen=True)
+class QuestionClassifier:
+    """Labels a question (``attribute:color``, ``route:step``, ...) by a linear model."""
+
+    labels: tuple[str, ...]
+    feature_sets: tuple[_FeatureSet, ...]
+    weights: NDArray[np.float64]  # (features, labels)
+    bias: NDArray[np.float64]  # (labels,)
+    meta: dict[str, Any]  # format, versions, training-data digest, seed
+
+    def scores(self, text: str) -> NDArray[np.float64]:
+        """The linear model's score of every label (the highest is the prediction)."""
+        columns: list[int] = []
+        values: list[float] = []
+        for part in self.feature_sets:
+            counts = Counter(part.index[g] for g in part.analyse(text) if g in part.index)
+            if not counts:
+                continue
+            cols = np.fromiter(counts, np.int64, len(counts))
+            tf = 1.0 + np.log(np.fromiter(counts.values(), np.float64, len(counts)))
+            weighted = tf * part.idf[cols]
+            columns.extend((cols + part.offset).tolist())
+            values.extend((weighted / math.sqrt(float(weighted @ weighted))).tolist())
+        if not columns:
+            return self.bias.copy()
+        return np.asarray(values) @ self.weights[columns] + self.bias
+
+    def predict(self, text: str) -> str:
+        """The best label of ``text``."""
+        return self.labels[int(np.argmax(self.scores(text)))]
+
+
+@cache
+def packaged_classifier() -> QuestionClassifier:
+    """The shipped classifier, read once per process."""
+    return load_classifier(packaged_artefact_path())
+
+
+def load_classifier(path: Path) -> QuestionClassifier:
+    """Read an artefact; raises :class:`DataFormatError` (one line, naming the fix) when it is
+    missing, damaged or of another format."""
+    try:
+        raw = json.loads(gzip.decompress(path.read_bytes()))
+    except FileNotFoundError as error:
+        raise DataFormatError(f"the question classifier {path} is missing; {RETRAIN}") from error
+    except (OSError, EOFError, zlib.error, ValueError) as error:
+        raise DataFormatError(
+            f"the question classifier {path} is damaged ({error}); {RETRAIN}"
+        ) from error
+    if not isinstance(raw, dict) or raw.get("format") != FORMAT:
+        found = raw.get("format") if isinstance(raw, dict) else None
+        raise DataFormatError(
+            f"the question classifier {path} has format {found!r}, this vlln reads format "
+            f"{FORMAT}; {RETRAIN}"
+        )
+    try:
+        return _from_json(raw)
+    except (KeyError, TypeError, ValueError) as error:
+        raise DataFormatError(
+            f"the question classifier {path} is damaged ({type(error).__name__}: {error}); "
+            f"{RETRAIN}"
+        ) from error
+
+
+def _from_json(raw: dict[str, Any]) -> QuestionClassifier:
+    labels = tuple(raw["labels"])
+    if set(labels) != set(LABELS):
+        raise ValueError(f"its labels {labels} are not this vlln's {LABELS}")
+    parts = []
+    offset = 0
+    for name in FEATURE_SETS:
+        stored = raw["features"][name]
+        vocabulary = list(stored["vocabulary"])
+        idf = np.asarray(stored["idf"], np.float64)
+        if len(idf) != len(vocabulary):
+            raise ValueError(f"{name}: {len(vocabulary)} n-grams but {len(idf)} idf weights")
+        index = {gram: i for i, gram in enumerate(vocabulary)}
+        parts.append(_FeatureSet(vectoriser(name).build_analyzer(), index, idf, offset))
+        offset += len(vocabulary)
+    weights = np.asarray(raw["weights"], np.float64).reshape(len(labels), -1).T
+    bias = np.asarray(raw["bias"], np.float64)
+    if weights.shape[0] != offset or bias.shape != (len(labels),):
+        raise ValueError(f"weights {weights.shape} do not fit {offset} features")
+    meta = {k: raw[k] for k in ("format", "vlln_version", "sklearn_version", "seed")}
+    meta["training_digest"] = raw["training_digest"]
+    return QuestionClassifier(labels, tuple(parts), np.ascontiguousarray(weights), bias, meta)

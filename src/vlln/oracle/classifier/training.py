@@ -1,0 +1,154 @@
+"""Fitting the question classifier from the packaged labelled questions.
+
+Training reads the ``train`` and ``extra`` sets, less any question that reads the same as one
+of ``heldout`` (which is only measured), adds to each question
+:data:`TYPO_COPIES` copies with random one-letter slips (a letter dropped, doubled, swapped
+with its neighbour or replaced), so that the character n-grams learn what typing errors look
+like, and fits a linear support-vector classifier on TF-IDF features of word 1-2-grams and
+character 2-5-grams. Everything random draws from ``seed``, and the artefact is written with
+sorted keys, rounded numbers and a zero gzip time stamp: the same data and seed give the same
+bytes.
+"""
+
+from __future__ import annotations
+
+import gzip
+import hashlib
+import io
+import json
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import scipy.sparse
+import sklearn
+from sklearn.svm import LinearSVC
+
+import vlln
+from vlln.errors import DataFormatError
+from vlln.oracle.classifier.model import FEATURE_SETS, FORMAT, prepared, vectoriser
+from vlln.oracle.question_set import (
+    TRAINING_SETS,
+    LabelledQuestion,
+    load_packaged_question_set,
+    packaged_question_set_path,
+)
+from vlln.oracle.topics import LABELS
+
+TYPO_COPIES = 2  # noisy copies of each training question
+REGULARISATION = 1.0  # LinearSVC's C
+DIGITS = 5  # significant digits kept of each stored number
+MIN_COUNT = 2  # training texts an n-gram must occur in to become a feature
+_LETTERS = "abcdefghijklmnopqrstuvwxyz"
+
+
+def training_digest() -> str:
+    """SHA-256 of the packaged question files (the held-out one decides what is left out), as
+    stored in the artefact."""
+    digest = hashlib.sha256()
+    for name in (*TRAINING_SETS, "heldout"):
+        digest.update(packaged_question_set_path(name).read_bytes())
+    return digest.hexdigest()
+
+
+def training_questions() -> list[LabelledQuestion]:
+    """Every packaged training question but those that read the same as a held-out one (so
+    that the held-out set stays unseen); raises when one lacks the topic training needs."""
+    heldout = {prepared(q.question) for q in load_packaged_question_set("heldout")}
+    questions = [
+        q
+        for name in TRAINING_SETS
+        for q in load_packaged_question_set(name)
+        if prepared(q.question) not in heldout
+    ]
+    unlabelled = next((q for q in questions if q.label is None), None)
+    if unlabelled is not None:
+        raise DataFormatError(
+            f"training question {unlabelled.question!r} has no 'topic'; give every attribute "
+            "and other question of the training sets a topic"
+        )
+    return questions
+
+
+def with_typo(text: str, rng: np.random.Generator) -> str:
+    """``text`` with one letter of one word of four or more letters dropped, doubled, swapped
+    with the next one or replaced by a random letter."""
+    words = text.split(" ")
+    long = [i for i, word in enumerate(words) if len(word) >= 4]
+    if not long:
+        return text
+    i = long[int(rng.integers(len(long)))]
+    word = words[i]
+    k = int(rng.integers(1, len(word) - 1))
+    slip = int(rng.integers(4))
+    if slip == 0:
+        word = word[:k] + word[k + 1 :]
+    elif slip == 1:
+        word = word[:k] + word[k] + word[k:]
+    elif slip == 2:
+        word = word[: k - 1] + word[k] + word[k - 1] + word[k + 1 :]
+    else:
+        word = word[:k] + _LETTERS[int(rng.integers(26))] + word[k + 1 :]
+    words[i] = word
+    return " ".join(words)
+
+
+def train_artefact(questions: Sequence[LabelledQuestion], seed: int = 0, digest: str = "") -> bytes:
+    """The artefact bytes of a classifier fitted to ``questions`` (all labelled)."""
+    rng = np.random.default_rng(seed)
+    texts: list[str] = []
+    labels: list[str] = []
+    for question in questions:
+        label = question.label
+        if label is None:
+            raise DataFormatError(f"question {question.question!r} has no topic to train on")
+        texts.append(question.question)
+        labels.append(label)
+        for _ in range(TYPO_COPIES):
+            texts.append(with_typo(with_typo(question.question, rng), rng))
+            labels.append(label)
+    vectorisers = {name: vectoriser(name, min_df=MIN_COUNT) for name in FEATURE_SETS}
+    features = scipy.sparse.hstack([v.fit_transform(texts) for v in vectorisers.values()])
+    model = LinearSVC(C=REGULARISATION, random_state=seed)
+    model.fit(features.tocsr(), labels)
+    order = [list(model.classes_).index(label) for label in LABELS if label in model.classes_]
+    artefact: dict[str, Any] = {
+        "format": FORMAT,
+        "vlln_version": vlln.__version__,
+        "sklearn_version": sklearn.__version__,
+        "seed": seed,
+        "training_digest": digest,
+        "labels": [str(model.classes_[i]) for i in order],
+        "features": {
+            name: {
+                "vocabulary": sorted(v.vocabulary_, key=v.vocabulary_.__getitem__),
+                "idf": _rounded(v.idf_),
+            }
+            for name, v in vectorisers.items()
+        },
+        "weights": [_rounded(model.coef_[i]) for i in order],
+        "bias": _rounded(model.intercept_[order]),
+    }
+    text = json.dumps(artefact, sort_keys=True, separators=(",", ":"), ensure_ascii=False)
+    buffer = io.BytesIO()
+    with gzip.GzipFile(filename="", mode="wb", fileobj=buffer, mtime=0, compresslevel=9) as out:
+        out.write(text.encode("utf-8"))
+    return buffer.getvalue()
+
+
+def train_packaged(seed: int = 0) -> bytes:
+    """The artefact of the packaged training sets."""
+    return train_artefact(training_questions(), seed, training_digest())
+
+
+def write_artefact(data: bytes, path: Path) -> None:
+    """Write the artefact whole: to a neighbour file first, then renamed over ``path``."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    partial = path.with_name(path.name + ".partial")
+    partial.write_bytes(data)
+    partial.replace(path)
+
+
+def _rounded(values: np.ndarray) -> list[float]:
+    return [float(f"{x:.{DIGITS}g}") for x in np.asarray(values, np.float64).tolist()]
