@@ -127,7 +127,7 @@ def describe_validation_error(error: ValidationError, flags: bool) -> str:
         if problem["type"] == "default_factory_not_called":
             continue  # a consequence of another field's error, reported on its own
         message = str(problem["msg"]).removeprefix("Value error, ")
-        names = [str(part) for part in problem["loc"]]
+        names = [str(part) for part in problem["loc"] if not isinstance(part, int)]
         if not names:
             parts.append(message)
             continue

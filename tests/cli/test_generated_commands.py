@@ -5,7 +5,10 @@ from __future__ import annotations
 
 import argparse
 import json
+import subprocess
+import sys
 from collections.abc import Iterator
+from enum import Enum
 from pathlib import Path
 
 import pytest
@@ -16,6 +19,18 @@ from vlln.cli.eval_configs import EvalCommand
 from vlln.cli.generated import add_config_command
 from vlln.config import Config
 from vlln.train.config import TrainConfig
+
+BENCH_COMMANDS = (
+    "sim",
+    "eval",
+    "oracle",
+    "agent",
+    "storeys",
+    "frontier-storeys",
+    "data",
+    "fidelity",
+    "world",
+)
 
 
 def _commands(
@@ -40,7 +55,28 @@ def _generated() -> list[tuple[tuple[str, ...], argparse.ArgumentParser, type[Co
 
 def test_the_commands_with_settings_are_generated_from_their_configs() -> None:
     names = {" ".join(words) for words, _, _ in _generated()}
-    assert {"train sft", "eval", "score", "report", "video", "demo"} <= names
+    assert {
+        "train sft",
+        "eval",
+        "score",
+        "report",
+        "video",
+        "demo",
+        "data build",
+        "data export-sft",
+        "data episodes",
+        "data stats",
+        "oracle classify-report",
+        "oracle train-classifier",
+        "train tiny-model",
+        "world show",
+        "world export",
+        "world import",
+        "world catalogue",
+        "oracle serve",
+        "serve web",
+        *(f"bench {name}" for name in BENCH_COMMANDS),
+    } <= names
 
 
 @pytest.mark.parametrize("words, parser, config", _generated(), ids=lambda v: str(v))
@@ -68,7 +104,9 @@ def test_every_flag_is_a_field_and_every_default_the_fields(
             shown = f"(default factory: {field.default_factory.__name__})"
             assert shown in help_text, f"{' '.join(words)} {flag}: {help_text}"
         elif not field.is_required():
-            assert f"(default: {field.default})" in help_text or (
+            # pydantic-settings names an enum default by its member name (flags take both)
+            default = field.default.name if isinstance(field.default, Enum) else field.default
+            assert f"(default: {default})" in help_text or (
                 isinstance(field.default, tuple | list)
             ), f"{' '.join(words)} {flag}: help shows no default {field.default!r}: {help_text}"
         # The argparse-level default is never a second copy of the value.
@@ -94,6 +132,28 @@ def test_stored_settings_read_back_equal_and_refuse_unknown_keys(tmp_path: Path)
     assert TrainConfig.from_json(stored, "x.json") == config
     with pytest.raises(Exception, match=r"x.json: malformed settings \(learnig_rate: not a known"):
         TrainConfig.from_json({**stored, "learnig_rate": 1.0}, "x.json")
+
+
+def test_the_parser_imports_no_config_module_until_a_command_is_used() -> None:
+    code = (
+        "import sys; from vlln.cli import build_parser; build_parser(); print(sorted(m for m "
+        "in sys.modules if m.startswith(('vlln.datagen', 'vlln.oracle_service'))))"
+    )
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert done.stdout.strip() == "[]"
+    parser = build_parser()
+    parser.parse_args(["data", "build", "--houses", "1", "--out", "o"])
+    assert "vlln.cli.data_settings" in sys.modules
+
+
+def test_data_episodes_refuses_floors_for_houses_that_draw_their_own(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    assert main(["data", "episodes", "--houses", "1", "--out", "o", "--floors", "2"]) == 2
+    assert capsys.readouterr().err.strip() == (
+        "error: --floors sets the storeys of small houses; mp3d houses draw theirs from the "
+        "seed: add --preset small, or drop --floors"
+    )
 
 
 def test_a_bare_flag_goes_without_its_value_and_eval_keeps_its_flag_spellings() -> None:

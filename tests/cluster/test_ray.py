@@ -154,4 +154,4 @@ def test_data_build_on_ray_equals_a_local_build(cluster: None, tmp_path: Path) -
     assert files(remote) == files(local)
     assert any(name.endswith(INFO_FILE) for name in files(remote))
     with pytest.raises(ConfigError, match="other settings"):  # the runner's check, on Ray too
-        build_dataset_ray(tmp_path / "ray", replace(config, seed=1), progress=False)
+        build_dataset_ray(tmp_path / "ray", config.replace(seed=1), progress=False)

@@ -17,7 +17,7 @@ from .conftest import World
 
 
 def _session(store: SessionStore, target: ObjectInstance) -> Session:
-    return Session(store.fresh_id(), "vlln/house_00076", None, target, None, 5, RuleOracle())
+    return Session(store.fresh_id(), "vlln/house_00076", None, target, (), None, 5, RuleOracle())
 
 
 def test_store_drops_the_least_recently_used(world: World) -> None:
@@ -68,12 +68,12 @@ def test_random_session_ids_are_distinct_and_url_safe() -> None:
     ],
 )
 def test_invalid_settings_are_config_errors(settings: dict[str, Any]) -> None:
-    with pytest.raises(ConfigError):
-        ServiceConfig(**settings)
+    with pytest.raises(ConfigError, match=f"^{next(iter(settings))}: "):
+        ServiceConfig.build(settings, flags=False)
 
 
 def test_duplicate_episode_ids_are_refused(world: World) -> None:
     with pytest.raises(ConfigError, match="twice"):
-        ServiceConfig(episodes=(world.episode, world.episode))
+        ServiceConfig.build({"episodes": (world.episode, world.episode)})
     with pytest.raises(ConfigError):
         SessionStore(0)

@@ -79,7 +79,7 @@ def test_the_token_guards_the_lobby_and_other_hosts_need_one(study: Study, tmp_p
         build_server(open_config, "0.0.0.0", 0)
     build_server(config, "0.0.0.0", 0)  # with a token: built, never started
     with pytest.raises(ConfigError, match="at least 16 characters"):
-        WebConfig(episodes=tuple(study.episodes), out=tmp_path / "c", token="short")
+        WebConfig.build({"episodes": tuple(study.episodes), "out": tmp_path / "c", "token": "x"})
 
 
 def test_bodies_and_request_rates_are_bounded(study: Study, tmp_path: Path) -> None:

@@ -12,10 +12,10 @@ from vlln.cli.bench import add_bench_commands
 from vlln.cli.data import add_data_commands
 from vlln.cli.evaluation import add_demo_command, add_eval_commands, add_video_command
 from vlln.cli.oracle import add_oracle_commands
+from vlln.cli.serve import add_serve_commands
 from vlln.cli.train import add_train_commands
 from vlln.cli.world import add_world_commands
 from vlln.errors import VllnError
-from vlln.web.command import add_serve_commands
 
 Handler = Callable[[argparse.Namespace], int]
 

@@ -2,98 +2,109 @@
 
 from __future__ import annotations
 
-import argparse
 import sys
-from pathlib import Path
+from typing import TYPE_CHECKING
 
-from vlln.cli.options import Commands, add_preset_option, add_ray_options
-from vlln.errors import ConfigError
+from vlln.cli.generated import add_config_command
+from vlln.cli.options import Commands
+
+if TYPE_CHECKING:
+    from vlln.cli.data_settings import BuildCommand, EpisodesCommand, SftCommand, StatsCommand
 
 
-def _data_build(args: argparse.Namespace) -> int:
-    from vlln.datagen.build import BuildConfig, build_dataset, summarize
+def _build_command() -> type[BuildCommand]:
+    from vlln.cli.data_settings import BuildCommand
+
+    return BuildCommand
+
+
+def _episodes_command() -> type[EpisodesCommand]:
+    from vlln.cli.data_settings import EpisodesCommand
+
+    return EpisodesCommand
+
+
+def _stats_command() -> type[StatsCommand]:
+    from vlln.cli.data_settings import StatsCommand
+
+    return StatsCommand
+
+
+def _sft_command() -> type[SftCommand]:
+    from vlln.cli.data_settings import SftCommand
+
+    return SftCommand
+
+
+def _data_build(command: BuildCommand) -> int:
+    from vlln.datagen.build import BuildConfig, BuildOptions, build_dataset, summarize
     from vlln.datagen.cost import build_cost
     from vlln.eval.sharding import Shard
     from vlln.files import check_output_folder
 
-    config = BuildConfig(
-        houses=args.houses,
-        split=args.split,
-        seed=args.seed,
-        per_house=args.per_house,
-        floors=args.floors,
-    )
-    check_output_folder(Path(args.out))
-    shard = Shard.parse(args.shard) if args.shard else None
+    config = BuildConfig(**command.model_dump(include=set(BuildOptions.model_fields)))
+    check_output_folder(command.out)
+    shard = Shard.parse(command.shard) if command.shard else None
     houses = -(-config.houses // shard.count) if shard else config.houses
     cost = build_cost(houses, config.per_house)
     print(cost.line(), file=sys.stderr)
-    if cost.large and not args.yes and sys.stdin.isatty():
+    if cost.large and not command.yes and sys.stdin.isatty():
         answer = input("this is a large build; start it? [y/N] ")
         if answer.strip().lower() not in ("y", "yes"):
             print("not started (pass --yes to skip this question)", file=sys.stderr)
             return 1
-    if args.ray is not None:
+    if command.ray is not None:
         from vlln.cluster.data import build_dataset_ray
 
-        if shard is not None:
-            raise ConfigError("--shard and --ray do not mix: Ray shares the houses out itself")
         out = build_dataset_ray(
-            Path(args.out),
+            command.out,
             config,
-            address=args.ray or None,
-            max_retries=args.retries,
-            progress=not args.quiet,
+            address=command.ray_address,
+            max_retries=command.retries,
+            progress=not command.quiet,
         )
     else:
-        out = build_dataset(Path(args.out), config, shard=shard, progress=not args.quiet)
+        out = build_dataset(command.out, config, shard=shard, progress=not command.quiet)
     print(summarize(out).line())
     print(f"dataset in {out} (summarise it with: vlln data stats {out})")
     return 0
 
 
-def _data_stats(args: argparse.Namespace) -> int:
+def _data_stats(command: StatsCommand) -> int:
     from vlln.datagen.stats.report import write_stats
 
-    paths = write_stats(Path(args.dataset), Path(args.out) if args.out else None)
+    paths = write_stats(command.dataset, command.out)
     print("wrote " + ", ".join(str(path) for path in paths))
     return 0
 
 
-def _data_export_sft(args: argparse.Namespace) -> int:
+def _data_export_sft(command: SftCommand) -> int:
     from vlln.datagen.sft.config import SftConfig
     from vlln.datagen.sft.export import export_sft
     from vlln.datagen.sft.records import SFT_FILE
 
-    config = SftConfig(seed=args.seed, history_frames=args.history)
-    summary = export_sft(Path(args.dataset), Path(args.out), config, progress=not args.quiet)
+    config = SftConfig(**command.model_dump(include=set(SftConfig.model_fields)))
+    summary = export_sft(command.dataset, command.out, config, progress=not command.quiet)
     print(
         f"wrote {summary.samples} conversations from {summary.trajectories} trajectories "
-        f"({summary.images} images) to {Path(args.out) / SFT_FILE}"
+        f"({summary.images} images) to {command.out / SFT_FILE}"
     )
     return 0
 
 
-def _data_episodes(args: argparse.Namespace) -> int:
-    from vlln.errors import ConfigError
+def _data_episodes(command: EpisodesCommand) -> int:
     from vlln.tasks.split_files import build_split
-    from vlln.world.generator.presets import SMALL
 
-    if args.floors is not None and args.preset != SMALL.name:
-        raise ConfigError(
-            f"--floors sets the storeys of small houses; {args.preset} houses draw theirs from "
-            "the seed: add --preset small, or drop --floors"
-        )
     out = build_split(
-        args.split,
-        args.houses,
-        Path(args.out),
-        args.seed,
-        floors=args.floors or 1,
-        progress=not args.quiet,
-        preset=args.preset,
+        command.split,
+        command.houses,
+        command.out,
+        command.seed,
+        floors=command.floors or 1,
+        progress=not command.quiet,
+        preset=command.preset,
     )
-    ign = out / f"{args.split}_ign.json.gz"
+    ign = out / f"{command.split}_ign.json.gz"
     print(f"episodes in {out} (evaluate with: vlln eval --episode-file {ign})")
     return 0
 
@@ -102,52 +113,31 @@ def add_data_commands(commands: Commands) -> None:
     data = commands.add_parser("data", help="the training-data pipeline").add_subparsers(
         dest="data_command", required=True
     )
-    build = data.add_parser(
-        "build", help="scene summaries, episodes and dialog-augmented trajectories"
+    add_config_command(
+        data,
+        "build",
+        _build_command,
+        _data_build,
+        help="scene summaries, episodes and dialog-augmented trajectories",
     )
-    build.add_argument("--houses", type=int, required=True, help="houses of the split to use")
-    build.add_argument("--out", required=True, help="dataset folder (a rerun resumes it)")
-    build.add_argument(
-        "--per-house",
-        type=int,
-        default=20,
-        help="trajectories tried per house (default 20; 0 = every IIGN episode)",
+    add_config_command(
+        data,
+        "episodes",
+        _episodes_command,
+        _data_episodes,
+        help="episode files (IIGN, IGN, ObjectNav) of a split's procedural houses",
     )
-    build.add_argument("--split", default="train", help="house split (default train)")
-    build.add_argument("--seed", type=int, default=0, help="seed of every random choice")
-    build.add_argument(
-        "--floors", type=int, default=1, help="storeys joined by stairs, 1 to 3 (default 1)"
+    add_config_command(
+        data,
+        "stats",
+        _stats_command,
+        _data_stats,
+        help="statistics, figure and report of a built dataset",
     )
-    build.add_argument("--shard", help="i/n: build every n-th house, starting at the i-th")
-    build.add_argument("--quiet", action="store_true", help="no progress bars")
-    add_ray_options(build, chunks=False)
-    build.add_argument(
-        "--yes", action="store_true", help="start a large build without asking (it states its cost)"
+    add_config_command(
+        data,
+        "export-sft",
+        _sft_command,
+        _data_export_sft,
+        help="trajectories as multi-image conversations for fine-tuning",
     )
-    build.set_defaults(handler=_data_build)
-    episodes = data.add_parser(
-        "episodes", help="episode files (IIGN, IGN, ObjectNav) of a split's procedural houses"
-    )
-    episodes.add_argument("--houses", type=int, required=True, help="houses of the split")
-    episodes.add_argument("--out", required=True, help="folder for <split>_<task>.json.gz")
-    episodes.add_argument("--split", default="test", help="house split (default test)")
-    episodes.add_argument("--seed", type=int, default=0, help="seed of every random choice")
-    add_preset_option(episodes)
-    episodes.add_argument(
-        "--floors", type=int, help="small houses: storeys joined by stairs, 1 to 3 (default 1)"
-    )
-    episodes.add_argument("--quiet", action="store_true", help="no progress bar")
-    episodes.set_defaults(handler=_data_episodes)
-    stats = data.add_parser("stats", help="statistics, figure and report of a built dataset")
-    stats.add_argument("dataset", help="a folder made by vlln data build")
-    stats.add_argument("--out", help="where to write them (default DATASET/stats)")
-    stats.set_defaults(handler=_data_stats)
-    sft = data.add_parser(
-        "export-sft", help="trajectories as multi-image conversations for fine-tuning"
-    )
-    sft.add_argument("dataset", help="a folder made by vlln data build")
-    sft.add_argument("--out", required=True, help="output folder (sft.jsonl and images)")
-    sft.add_argument("--seed", type=int, default=0, help="seed of every random choice")
-    sft.add_argument("--history", type=int, default=8, help="history frames (default 8)")
-    sft.add_argument("--quiet", action="store_true", help="no progress bar")
-    sft.set_defaults(handler=_data_export_sft)

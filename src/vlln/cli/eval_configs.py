@@ -10,12 +10,13 @@ agent's options class (:data:`vlln.agents.registry.OPTIONS`), where their defaul
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Annotated, Any
+from typing import Any
 
 from pydantic import AliasChoices, Field, model_validator
 from pydantic_settings import CliPositionalArg, SettingsConfigDict
 
-from vlln.config import BareFlag, Config
+from vlln.cluster.options import RayChunkOptions
+from vlln.config import Config
 from vlln.eval.config import EvalConfig
 from vlln.tasks.metrics import ORACLE_SUCCESS_RADIUS, SUCCESS_RADIUS
 
@@ -32,8 +33,9 @@ MODEL_FLAGS = (
 """The fields of :class:`EvalCommand` that are agent options (by option name or alias)."""
 
 
-class EvalCommand(EvalConfig):
-    """``vlln eval``: the run's settings, and how to run it now."""
+class EvalCommand(EvalConfig, RayChunkOptions):
+    """``vlln eval``: the run's settings, and how to run it now (``--ray``, ``--chunk`` and
+    ``--retries`` from :class:`RayChunkOptions`)."""
 
     model_config = SettingsConfigDict(protected_namespaces=())
 
@@ -66,13 +68,6 @@ class EvalCommand(EvalConfig):
     """vlln: torch device (none: cuda if present, else cpu)"""
     max_tokens: int | None = None
     """openai-vlm, vlln: longest model reply in tokens (none: the agent's default)"""
-    ray: Annotated[str | None, BareFlag("")] = None
-    """run on a Ray cluster: ADDRESS, 'auto', or the flag alone for RAY_ADDRESS or a local
-    one (docs/ray.md)"""
-    chunk: int = Field(4, ge=1)
-    """--ray: episodes per Ray task"""
-    retries: int = Field(3, ge=0)
-    """--ray: re-runs of a task whose worker died"""
     model_cpus: float = 1.0
     """--ray: CPUs of the vlln agent's model server on each node"""
     model_gpus: float | None = None

@@ -42,7 +42,7 @@ def _eval(command: EvalCommand) -> int:
         outcome = run_ray_evaluation(
             config,
             command.out,
-            address=command.ray or None,
+            address=command.ray_address,
             cache_dir=command.cache_dir,
             episodes_per_chunk=command.chunk,
             max_retries=command.retries,

@@ -27,32 +27,72 @@ CONFIG_FLAG = "config"
 """``--config FILE``: settings stored by an earlier run, under the flags given."""
 
 
+class _LazyParser(argparse.ArgumentParser):
+    """A command's parser whose flags are added on first use (parsing it, its help, its
+    defaults), so that ``vlln --help`` never imports the modules its configs live in."""
+
+    fill: Callable[[argparse.ArgumentParser], None] | None = None
+
+    def _filled(self) -> None:
+        fill, self.fill = self.fill, None
+        if fill is not None:
+            fill(self)
+
+    def parse_known_args(self, *args: Any, **kwargs: Any) -> Any:
+        self._filled()
+        return super().parse_known_args(*args, **kwargs)
+
+    def format_help(self) -> str:
+        self._filled()
+        return super().format_help()
+
+    def format_usage(self) -> str:
+        self._filled()
+        return super().format_usage()
+
+    def get_default(self, dest: str) -> Any:
+        self._filled()
+        return super().get_default(dest)
+
+
 def add_config_command(
     commands: Commands,
     name: str,
-    config: type[C],
+    config: type[C] | Callable[[], type[C]],
     handler: Callable[[C], int],
     help: str,
     replay: bool = False,
 ) -> argparse.ArgumentParser:
-    """Add command ``name``, its flags generated from ``config``; ``handler`` gets the config
-    built from the flags given. With ``replay``, ``--config FILE`` reads settings stored by
-    :meth:`Config.to_json` (e.g. a run's ``run.json``) and the flags given override them."""
-    parser = commands.add_parser(name, help=help, description=help)
-    if replay:
-        parser.add_argument(
-            "--" + CONFIG_FLAG,
-            metavar="FILE",
-            help="settings stored by an earlier run (its run.json); flags given override them",
+    """Add command ``name``, its flags generated from ``config`` (the class, or a function
+    importing it when the command is used); ``handler`` gets the config built from the flags
+    given. With ``replay``, ``--config FILE`` reads settings stored by :meth:`Config.to_json`
+    (e.g. a run's ``run.json``) and the flags given override them."""
+    parser_class = commands._parser_class
+    commands._parser_class = _LazyParser
+    try:
+        parser = commands.add_parser(name, help=help, description=help)
+    finally:
+        commands._parser_class = parser_class
+    assert isinstance(parser, _LazyParser)
+
+    def fill(parser: argparse.ArgumentParser) -> None:
+        config_class = config if isinstance(config, type) else config()
+        if replay:
+            parser.add_argument(
+                "--" + CONFIG_FLAG,
+                metavar="FILE",
+                help="settings stored by an earlier run (its run.json); flags given override them",
+            )
+        source: CliSettingsSource[Any] = CliSettingsSource(
+            config_class, root_parser=parser, add_argument_method=_argument_adder(config_class)
         )
-    source: CliSettingsSource[Any] = CliSettingsSource(
-        config, root_parser=parser, add_argument_method=_argument_adder(config)
-    )
 
-    def run(args: argparse.Namespace) -> int:
-        return handler(config_from_args(config, source, args))
+        def run(args: argparse.Namespace) -> int:
+            return handler(config_from_args(config_class, source, args))
 
-    parser.set_defaults(handler=run, config_class=config)
+        parser.set_defaults(handler=run, config_class=config_class)
+
+    parser.fill = fill
     return parser
 
 

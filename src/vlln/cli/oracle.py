@@ -2,41 +2,71 @@
 
 from __future__ import annotations
 
-import argparse
 import json
-from pathlib import Path
+from typing import TYPE_CHECKING
 
+from vlln.cli.generated import add_config_command
 from vlln.cli.options import Commands
 from vlln.extras import SERVE_PACKAGES, require_extra
 
+if TYPE_CHECKING:
+    from vlln.cli.oracle_settings import (
+        ClassifyReportCommand,
+        ServeCommand,
+        TrainClassifierCommand,
+    )
 
-def _oracle_serve(args: argparse.Namespace) -> int:
+
+def _serve_command() -> type[ServeCommand]:
+    from vlln.cli.oracle_settings import ServeCommand
+
+    return ServeCommand
+
+
+def _classify_report_command() -> type[ClassifyReportCommand]:
+    from vlln.cli.oracle_settings import ClassifyReportCommand
+
+    return ClassifyReportCommand
+
+
+def _train_classifier_command() -> type[TrainClassifierCommand]:
+    from vlln.cli.oracle_settings import TrainClassifierCommand
+
+    return TrainClassifierCommand
+
+
+def _oracle_serve(command: ServeCommand) -> int:
     require_extra("serve", "vlln oracle serve", SERVE_PACKAGES)
+    from vlln.oracle_service.config import ServiceConfig, ServiceLimits
     from vlln.oracle_service.server import serve, token_from_environment
+    from vlln.tasks.episode import read_episodes
 
-    token = token_from_environment(args.token_env)
+    limits = command.model_dump(include=set(ServiceLimits.model_fields))
+    config = ServiceConfig.build(
+        {
+            **limits,
+            "token": token_from_environment(command.token_env),
+            "episodes": () if command.episodes is None else tuple(read_episodes(command.episodes)),
+        },
+        flags=False,
+    )
     serve(
-        host=args.host,
-        port=args.port,
-        token=token,
-        episodes=None if args.episodes is None else Path(args.episodes),
-        allow_remote=args.allow_remote,
-        max_sessions=args.max_sessions,
-        oracle_seed=args.oracle_seed,
-        builds_per_minute=args.builds_per_minute,
-        client_builds_per_minute=args.client_builds_per_minute,
-        log_level=args.log_level,
+        config,
+        command.host,
+        command.port,
+        allow_remote=command.allow_remote,
+        log_level=command.log_level,
     )
     return 0
 
 
-def _oracle_classify_report(args: argparse.Namespace) -> int:
+def _oracle_classify_report(command: ClassifyReportCommand) -> int:
     from vlln.oracle.classifier.model import packaged_classifier
     from vlln.oracle.question_set import classifier_report
 
-    report = classifier_report(args.questions)
+    report = classifier_report(command.questions)
     report["classifier"] = packaged_classifier().meta
-    if args.json:
+    if command.as_json:
         print(json.dumps({k: v for k, v in report.items() if k != "table"}, indent=2))
         return 0
     print(f"type accuracy: {report['accuracy']:.1%} of {report['questions']} questions")
@@ -46,14 +76,14 @@ def _oracle_classify_report(args: argparse.Namespace) -> int:
     return 0
 
 
-def _oracle_train_classifier(args: argparse.Namespace) -> int:
+def _oracle_train_classifier(command: TrainClassifierCommand) -> int:
     from vlln.oracle.classifier.model import load_classifier, packaged_artefact_path
     from vlln.oracle.classifier.training import train_packaged, write_artefact
 
-    path = Path(args.out) if args.out else packaged_artefact_path()
-    write_artefact(train_packaged(args.seed), path)
+    path = command.out or packaged_artefact_path()
+    write_artefact(train_packaged(command.seed), path)
     meta = load_classifier(path).meta
-    print(f"wrote {path} (training data {meta['training_digest'][:12]}, seed {args.seed})")
+    print(f"wrote {path} (training data {meta['training_digest'][:12]}, seed {command.seed})")
     return 0
 
 
@@ -61,45 +91,20 @@ def add_oracle_commands(commands: Commands) -> None:
     oracle = commands.add_parser("oracle", help="the oracle").add_subparsers(
         dest="oracle_command", required=True
     )
-    serve = oracle.add_parser("serve", help="answer questions over HTTP (FastAPI)")
-    serve.add_argument("--host", default="127.0.0.1", help="address (default loopback only)")
-    serve.add_argument("--port", type=int, default=8765, help="port (default 8765)")
-    serve.add_argument(
-        "--token-env",
-        help="environment variable holding the bearer token; it must be set and not empty "
-        "(without the flag: VLLN_ORACLE_TOKEN when set, else no token, loopback only)",
+    add_config_command(
+        oracle, "serve", _serve_command, _oracle_serve, help="answer questions over HTTP (FastAPI)"
     )
-    serve.add_argument("--episodes", help="an episode file whose episodes sessions can name")
-    serve.add_argument(
-        "--allow-remote", action="store_true", help="allow a host other than loopback"
+    add_config_command(
+        oracle,
+        "classify-report",
+        _classify_report_command,
+        _oracle_classify_report,
+        help="accuracy and confusion matrix of the offline classifier",
     )
-    serve.add_argument("--max-sessions", type=int, default=64, help="sessions kept (default 64)")
-    serve.add_argument("--oracle-seed", type=int, default=0, help="paraphrase seed (default 0)")
-    serve.add_argument(
-        "--builds-per-minute", type=int, default=60, help="house builds, all clients (default 60)"
-    )
-    serve.add_argument(
-        "--client-builds-per-minute",
-        type=int,
-        default=20,
-        help="house builds one client address may cause (default 20)",
-    )
-    serve.add_argument(
-        "--log-level",
-        default="warning",
-        help="uvicorn log level (default warning: no line per request)",
-    )
-    serve.set_defaults(handler=_oracle_serve)
-    report = oracle.add_parser(
-        "classify-report", help="accuracy and confusion matrix of the offline classifier"
-    )
-    report.add_argument("--questions", help="a JSON Lines question set (default: held-out set)")
-    report.add_argument("--json", action="store_true", help="print the figures as JSON")
-    report.set_defaults(handler=_oracle_classify_report)
-    train = oracle.add_parser(
+    add_config_command(
+        oracle,
         "train-classifier",
+        _train_classifier_command,
+        _oracle_train_classifier,
         help="fit the offline question classifier on the packaged training questions",
     )
-    train.add_argument("--seed", type=int, default=0, help="seed of the typo copies (default 0)")
-    train.add_argument("--out", help="where to write it (default: the packaged artefact)")
-    train.set_defaults(handler=_oracle_train_classifier)

@@ -2,12 +2,9 @@
 
 from __future__ import annotations
 
-import argparse
-from pathlib import Path
-
 from vlln.cli.generated import add_config_command
 from vlln.cli.options import Commands
-from vlln.train.config import TrainConfig
+from vlln.train.config import TinyModelConfig, TrainConfig
 
 
 def _train_sft(config: TrainConfig) -> int:
@@ -26,12 +23,14 @@ def _train_sft(config: TrainConfig) -> int:
     return 0
 
 
-def _train_tiny_model(args: argparse.Namespace) -> int:
+def _train_tiny_model(config: TinyModelConfig) -> int:
     from vlln.files import replace_folder
     from vlln.train.tiny import build_tiny_model, is_tiny_model_file
 
-    out = Path(args.out)
-    replace_folder(out, lambda folder: build_tiny_model(folder, seed=args.seed), is_tiny_model_file)
+    out = config.out
+    replace_folder(
+        out, lambda folder: build_tiny_model(folder, seed=config.seed), is_tiny_model_file
+    )
     print(
         f"wrote a tiny randomly initialised Qwen2.5-VL-style model to {out} (it has learnt "
         f"nothing): try the pipeline on a CPU with vlln train sft --model {out} and "
@@ -48,10 +47,10 @@ def add_train_commands(commands: Commands) -> None:
         train, "sft", TrainConfig, _train_sft, help="supervised fine-tuning on a training export"
     )
 
-    tiny = train.add_parser(
+    add_config_command(
+        train,
         "tiny-model",
+        TinyModelConfig,
+        _train_tiny_model,
         help="write a tiny random Qwen2.5-VL-style model (CPU trials and tests; no download)",
     )
-    tiny.add_argument("--out", required=True, help="model folder (replaced on a rerun)")
-    tiny.add_argument("--seed", type=int, default=0, help="seed of its weights (default 0)")
-    tiny.set_defaults(handler=_train_tiny_model)

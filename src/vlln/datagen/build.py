@@ -27,14 +27,16 @@ from __future__ import annotations
 
 import json
 from collections.abc import Callable, Iterator
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Protocol
+from typing import Annotated, Any, Protocol
 
 import numpy as np
+from pydantic import Field, field_validator
 from tqdm import tqdm
 
 from vlln import __version__
+from vlln.config import Config
 from vlln.datagen.collector.collect import CollectorConfig, collect_trajectory
 from vlln.datagen.collector.visibility import DOWN_TILT
 from vlln.datagen.filtering import FilterConfig, rejection_reason
@@ -71,40 +73,53 @@ from vlln.world.scene_summary import export_scene_summary
 FLOOR_CHOICES = (1, 2, 3)  # storeys a procedural house can have
 
 
-@dataclass(frozen=True)
-class BuildConfig:
+class BuildOptions(Config):
+    """The settings of a build that ``vlln data build`` takes as flags."""
+
+    houses: Annotated[int, Field(ge=1)]
+    """houses of the split to use"""
+    split: str = "train"
+    """house split"""
+    seed: Annotated[int, Field(ge=0)] = 0
+    """seed of every random choice"""
+    per_house: Annotated[int, Field(ge=0)] = 20
+    """trajectories tried per house (0: every IIGN episode)"""
+    floors: int = 1
+    """storeys of every house, joined by stairs, 1 to 3"""
+
+    @field_validator("floors")
+    @classmethod
+    def _known_floors(cls, value: int) -> int:
+        if value not in FLOOR_CHOICES:
+            raise ValueError(f"must be one of {', '.join(map(str, FLOOR_CHOICES))}, got {value}")
+        return value
+
+
+class BuildConfig(BuildOptions):
     """What a build makes; recorded in ``build.json`` and in every house's info."""
 
-    houses: int
-    split: str = "train"
-    seed: int = 0
-    per_house: int = 20  # trajectories attempted per house (0 = every IIGN episode)
-    floors: int = 1  # storeys of every house, joined by stairs
-    episodes: EpisodeGenConfig = field(default_factory=EpisodeGenConfig)
-    collector: CollectorConfig = field(default_factory=CollectorConfig)
-    filter: FilterConfig = field(default_factory=FilterConfig)
-
-    def __post_init__(self) -> None:
-        for name in ("houses", "seed", "per_house"):
-            value = getattr(self, name)
-            low = 1 if name == "houses" else 0
-            if isinstance(value, bool) or not isinstance(value, int) or value < low:
-                raise ConfigError(f"{name} must be a whole number >= {low}, got {value!r}")
-        if self.floors not in FLOOR_CHOICES:
-            raise ConfigError(
-                f"floors must be one of {', '.join(map(str, FLOOR_CHOICES))}, got {self.floors!r}"
-            )
+    episodes: EpisodeGenConfig = Field(default_factory=EpisodeGenConfig)
+    collector: CollectorConfig = Field(default_factory=CollectorConfig)
+    filter: FilterConfig = Field(default_factory=FilterConfig)
 
     def scene_id(self, seed: int) -> str:
         """The scene id of the split's house ``seed`` with this build's storeys."""
         return procedural_scene_id(seed, self.floors)
 
-    def settings(self) -> dict[str, Any]:
-        fields = asdict(self)
-        if self.floors == 1:  # one-storey settings stay as they were
+    def to_json(self) -> dict[str, Any]:
+        """The settings; a one-storey build records no ``floors``, as before houses had
+        storeys, so its folders resume."""
+        fields = super().to_json()
+        if self.floors == 1:
             del fields["floors"]
+        return fields
+
+    def settings(self) -> dict[str, Any]:
+        """What ``build.json`` and each house's info record: the settings and what else
+        decides the data (the oracle, the code's and trajectory format's versions, the
+        catalogue)."""
         return {
-            **fields,
+            **self.to_json(),
             "oracle": "rules",
             "vlln_version": __version__,
             "trajectory_format": FORMAT_VERSION,
@@ -323,7 +338,7 @@ def _episodes_by_scene(episodes: list[Episode]) -> dict[str, list[Episode]]:
 def check_settings(root: Path, config: BuildConfig) -> None:
     """Record the settings on the first run; refuse to mix settings in one folder."""
     path = root / SETTINGS_FILE
-    wanted = json.loads(json.dumps(config.settings()))
+    wanted = config.settings()
     if path.exists():
         try:
             recorded = json.loads(path.read_text(encoding="utf-8"))

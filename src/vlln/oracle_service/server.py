@@ -11,7 +11,6 @@ from __future__ import annotations
 import gc
 import os
 import sys
-from pathlib import Path
 
 import uvicorn
 
@@ -19,12 +18,12 @@ from vlln.errors import ConfigError
 from vlln.http.addresses import is_loopback
 from vlln.http.server import uvicorn_server
 from vlln.oracle_service.app import create_app
-from vlln.oracle_service.config import ServiceConfig
-from vlln.tasks.episode import read_episodes
-
-DEFAULT_HOST = "127.0.0.1"
-DEFAULT_PORT = 8765
-DEFAULT_TOKEN_ENV = "VLLN_ORACLE_TOKEN"
+from vlln.oracle_service.config import (
+    DEFAULT_HOST,
+    DEFAULT_PORT,
+    DEFAULT_TOKEN_ENV,
+    ServiceConfig,
+)
 
 
 def token_from_environment(token_env: str | None) -> str | None:
@@ -84,30 +83,14 @@ def freeze_startup_objects() -> int:
 
 
 def serve(
+    config: ServiceConfig,
     host: str = DEFAULT_HOST,
     port: int = DEFAULT_PORT,
-    token: str | None = None,
-    episodes: Path | None = None,
     *,
     allow_remote: bool = False,
-    max_sessions: int = 64,
-    scene_capacity: int = 2,
-    oracle_seed: int = 0,
     log_level: str = "info",
-    builds_per_minute: int = 60,
-    client_builds_per_minute: int = 20,
 ) -> None:
-    """Serve the oracle until interrupted; ``episodes`` is an episode file (``.json.gz``) whose
-    episodes sessions may name by ``episode_id``."""
-    config = ServiceConfig(
-        token=token,
-        episodes=tuple(read_episodes(episodes)) if episodes is not None else (),
-        max_sessions=max_sessions,
-        scene_capacity=scene_capacity,
-        oracle_seed=oracle_seed,
-        builds_per_minute=builds_per_minute,
-        client_builds_per_minute=client_builds_per_minute,
-    )
+    """Serve the oracle of ``config`` until interrupted."""
     server = build_server(config, host, port, allow_remote=allow_remote, log_level=log_level)
     freeze_startup_objects()
     server.run()

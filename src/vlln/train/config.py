@@ -66,3 +66,12 @@ class TrainConfig(Config):
     """recompute activations (none: on with a GPU)"""
     resume: Path | None = None
     """a checkpoint folder (none: the newest in --out)"""
+
+
+class TinyModelConfig(Config):
+    """``vlln train tiny-model``: a tiny random Qwen2.5-VL-style model for CPU trials."""
+
+    out: Path
+    """model folder (replaced on a rerun)"""
+    seed: int = 0
+    """seed of its weights"""

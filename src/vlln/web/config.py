@@ -5,12 +5,22 @@ from __future__ import annotations
 import math
 import re
 from collections.abc import Mapping
-from dataclasses import dataclass, field
 from enum import StrEnum
 from pathlib import Path
+from typing import Annotated, Self
+
+from pydantic import (
+    AfterValidator,
+    AliasChoices,
+    Field,
+    SkipValidation,
+    field_validator,
+    model_validator,
+)
 
 from vlln.agents.options import AgentOptions
 from vlln.agents.registry import AGENTS, CONFIGURED_AGENTS, agent_options
+from vlln.config import Config
 from vlln.errors import ConfigError
 from vlln.oracle.llm.openai_client import OpenAISettings
 from vlln.tasks.episode import Episode
@@ -18,6 +28,9 @@ from vlln.tasks.spec import MAX_DIALOG_BUDGET, TaskType
 
 PARTICIPANT_PATTERN = re.compile(r"^[A-Za-z0-9_.-]{1,32}$")
 HUMAN_PREFIX = "human"
+DEFAULT_HOST = "127.0.0.1"
+DEFAULT_PORT = 8770
+DEFAULT_TOKEN_ENV = "VLLN_WEB_TOKEN"
 
 
 class OracleKind(StrEnum):
@@ -28,71 +41,103 @@ class OracleKind(StrEnum):
     HUMAN = "human"  # a person on the oracle page
 
 
-@dataclass(frozen=True)
-class WebConfig:
+def _seconds(value: float) -> float:
+    if not (math.isfinite(value) and value > 0):
+        raise ValueError(f"must be a positive number of seconds, got {value!r}")
+    return value
+
+
+Seconds = Annotated[float, AfterValidator(_seconds)]
+Count = Annotated[int, Field(ge=1)]
+
+
+class WebLimits(Config):
+    """How sessions are played and the app's limits (``vlln serve web`` takes them as flags)."""
+
+    task: TaskType = TaskType.IIGN
+    """task of the served episodes"""
+    max_steps: Count = 500
+    """counted-step cap of an episode"""
+    seed: int = 0
+    """seed of oracles and agents"""
+    answer_time_limit_s: Annotated[
+        Seconds, Field(validation_alias=AliasChoices("answer_time_limit", "answer_time_limit_s"))
+    ] = 90.0
+    """seconds a person has to answer (then the rule oracle answers, recorded as a fallback)"""
+    idle_limit_s: Annotated[
+        Seconds, Field(validation_alias=AliasChoices("idle_limit", "idle_limit_s"))
+    ] = 1800.0
+    """seconds without an action before a session is recorded as abandoned"""
+    max_live_sessions: Annotated[
+        Count, Field(validation_alias=AliasChoices("max_sessions", "max_live_sessions"))
+    ] = 8
+    """sessions played at once"""
+    max_body_bytes: Count = 16 * 1024
+    """largest request body accepted"""
+    requests_per_second: Seconds = 40.0
+    """requests a client may send per second, on average"""
+    request_burst: Count = 80
+    """requests a client may send at once"""
+    max_question_chars: Count = 500
+    """longest question a person may type"""
+    max_answer_chars: Count = 1000
+    """longest answer a person may type"""
+    jpeg_quality: Annotated[int, Field(ge=1, le=95)] = 85
+    """JPEG quality of the frames sent to the browser"""
+
+
+class WebConfig(WebLimits):
     """What the web app serves and its limits.
 
     ``token``: when set, creating and listing sessions needs ``Authorization: Bearer <token>``
-    (the lobby asks for it); the pages of a session need only its code. ``answer_time_limit_s``
-    is how long a human oracle has for one answer (then the rule oracle answers, recorded as
-    a fallback); ``idle_limit_s`` is how long a session may go without an action before it is
-    recorded as abandoned. ``llm`` enables the language-model oracle.
+    (the lobby asks for it); the pages of a session need only its code. ``llm`` enables the
+    language-model oracle; ``agent_options`` offers the agents that take options.
     """
 
-    episodes: tuple[Episode, ...]
+    episodes: SkipValidation[tuple[Episode, ...]]
     out: Path
-    task: TaskType = TaskType.IIGN
-    dialog_budget: int = 5
-    max_steps: int = 500
-    seed: int = 0
+    dialog_budget: int = TaskType.IIGN.default_budget
     token: str | None = None
-    answer_time_limit_s: float = 90.0
-    idle_limit_s: float = 1800.0
-    max_live_sessions: int = 8
-    max_body_bytes: int = 16 * 1024
-    requests_per_second: float = 40.0
-    request_burst: int = 80
-    max_question_chars: int = 500
-    max_answer_chars: int = 1000
-    jpeg_quality: int = 85
-    llm: OpenAISettings | None = None
-    agent_options: Mapping[str, AgentOptions | Mapping[str, str]] = field(default_factory=dict)
+    llm: SkipValidation[OpenAISettings | None] = None
+    agent_options: SkipValidation[Mapping[str, AgentOptions | Mapping[str, str]]] = Field(
+        default_factory=dict
+    )
     """Options of agents that take them, by agent; read into the agent's options class."""
 
-    def __post_init__(self) -> None:
-        if not self.episodes:
-            raise ConfigError("the web app needs at least one episode to serve")
-        if self.token is not None and (len(self.token) < 16 or self.token != self.token.strip()):
-            raise ConfigError(
+    @field_validator("episodes")
+    @classmethod
+    def _some_episodes(cls, value: tuple[Episode, ...]) -> tuple[Episode, ...]:
+        if not value:
+            raise ValueError("the web app needs at least one episode to serve")
+        return value
+
+    @field_validator("token")
+    @classmethod
+    def _long_token(cls, value: str | None) -> str | None:
+        if value is not None and (len(value) < 16 or value != value.strip()):
+            raise ValueError(
                 "the token must be at least 16 characters without surrounding whitespace; "
                 "make one with: python -c 'import secrets; print(secrets.token_urlsafe(24))'"
             )
+        return value
+
+    @model_validator(mode="after")
+    def _budget_fits_task(self) -> Self:
         if not 0 <= self.dialog_budget <= MAX_DIALOG_BUDGET or (
             self.task != TaskType.IIGN and self.dialog_budget > 0
         ):
-            raise ConfigError(
+            raise ValueError(
                 f"dialog budget {self.dialog_budget} does not fit task {self.task.value}: "
                 f"IIGN takes a budget of 0 to {MAX_DIALOG_BUDGET} (the paper's), the other tasks 0"
             )
-        for name in ("answer_time_limit_s", "idle_limit_s", "requests_per_second"):
-            value = getattr(self, name)
-            if not (math.isfinite(value) and value > 0):
-                raise ConfigError(f"{name} must be a positive number of seconds, got {value!r}")
-        for name in (
-            "max_steps",
-            "max_live_sessions",
-            "max_body_bytes",
-            "request_burst",
-            "max_question_chars",
-            "max_answer_chars",
-        ):
-            value = getattr(self, name)
-            if isinstance(value, bool) or not isinstance(value, int) or value < 1:
-                raise ConfigError(f"{name} must be a whole number >= 1, got {value!r}")
-        if not 1 <= self.jpeg_quality <= 95:
-            raise ConfigError(f"jpeg_quality must be in 1..95, got {self.jpeg_quality}")
-        typed = {name: agent_options(name, given) for name, given in self.agent_options.items()}
-        object.__setattr__(self, "agent_options", typed)
+        return self
+
+    @field_validator("agent_options")
+    @classmethod
+    def _typed_agent_options(
+        cls, value: Mapping[str, AgentOptions | Mapping[str, str]]
+    ) -> dict[str, AgentOptions]:
+        return {name: agent_options(name, given) for name, given in value.items()}
 
     @property
     def agents(self) -> tuple[str, ...]:

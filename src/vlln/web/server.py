@@ -15,10 +15,7 @@ from vlln.errors import ConfigError
 from vlln.http.addresses import is_loopback
 from vlln.http.server import uvicorn_server
 from vlln.web.app import create_app, open_store
-from vlln.web.config import WebConfig
-
-DEFAULT_HOST = "127.0.0.1"
-DEFAULT_PORT = 8770
+from vlln.web.config import DEFAULT_HOST, DEFAULT_PORT, WebConfig
 
 
 def build_server(

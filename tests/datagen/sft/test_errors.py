@@ -92,12 +92,12 @@ def test_the_output_folder_must_be_new_empty_or_an_export(
     [
         {"seed": -1},
         {"sample_step": 0},
-        {"repeats": True},
+        {"repeats": "many"},
         {"max_answers": -1},
         {"history_frames": 2.5},
         {"max_turn_run": 5},
     ],
 )
 def test_invalid_settings_are_config_errors(settings: dict[str, Any]) -> None:
-    with pytest.raises(ConfigError):
-        SftConfig(**settings)
+    with pytest.raises(ConfigError, match=f"^--{next(iter(settings)).replace('_', '-')}: "):
+        SftConfig.build(settings)

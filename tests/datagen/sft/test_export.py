@@ -220,7 +220,15 @@ def test_export_json_counts_what_was_written(default_export: Path) -> None:
     assert counts["images"] == len(referenced) == len(on_disk)
     assert referenced == on_disk
     assert counts["trajectories"] == 3
-    assert summary["settings"] == SftConfig().settings()
+    assert summary["settings"] == {
+        "seed": 0,
+        "sample_step": 4,
+        "repeats": 10,
+        "max_answers": 6,
+        "history_frames": 8,
+        "max_turn_run": 4,
+    }
+    assert SftConfig.from_json(summary["settings"], "export.json") == SftConfig()
 
 
 def tree(root: Path) -> dict[str, bytes]:

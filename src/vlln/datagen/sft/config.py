@@ -2,15 +2,15 @@
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass
-from typing import Any
+from typing import Annotated
 
-from vlln.errors import ConfigError
+from pydantic import AliasChoices, Field
+
+from vlln.config import Config
 from vlln.prompt import DEFAULT_HISTORY_COUNT, MAX_TURN_RUN
 
 
-@dataclass(frozen=True)
-class SftConfig:
+class SftConfig(Config):
     """How trajectories are sampled into conversations; the defaults are the reference's.
 
     One sample every ``sample_step`` frames; every STOP frame and every frame where questions
@@ -18,29 +18,17 @@ class SftConfig:
     still gets (0 to ``max_answers``), later ones reading the question-limit answer.
     """
 
-    seed: int = 0
-    sample_step: int = 4
-    repeats: int = 10
-    max_answers: int = 6
-    history_frames: int = DEFAULT_HISTORY_COUNT
-    max_turn_run: int = MAX_TURN_RUN
-
-    def __post_init__(self) -> None:
-        _check_whole("seed", self.seed, 0)
-        _check_whole("sample_step", self.sample_step, 1)
-        _check_whole("repeats", self.repeats, 1)
-        _check_whole("max_answers", self.max_answers, 0)
-        _check_whole("history_frames", self.history_frames, 1)
-        _check_whole("max_turn_run", self.max_turn_run, 1)
-        if self.max_turn_run > MAX_TURN_RUN:
-            raise ConfigError(
-                f"max_turn_run must be at most {MAX_TURN_RUN}, got {self.max_turn_run}"
-            )
-
-    def settings(self) -> dict[str, Any]:
-        return asdict(self)
-
-
-def _check_whole(name: str, value: object, low: int) -> None:
-    if isinstance(value, bool) or not isinstance(value, int) or value < low:
-        raise ConfigError(f"{name} must be a whole number >= {low}, got {value!r}")
+    seed: Annotated[int, Field(ge=0)] = 0
+    """seed of every random choice"""
+    sample_step: Annotated[int, Field(ge=1)] = 4
+    """one sample every N frames"""
+    repeats: Annotated[int, Field(ge=1)] = 10
+    """copies of each STOP frame and of each frame where questions were asked"""
+    max_answers: Annotated[int, Field(ge=0)] = 6
+    """most answers a sample's model may still get (each sample draws 0 to N)"""
+    history_frames: Annotated[
+        int, Field(ge=1, validation_alias=AliasChoices("history", "history_frames"))
+    ] = DEFAULT_HISTORY_COUNT
+    """history frames in each prompt"""
+    max_turn_run: Annotated[int, Field(ge=1, le=MAX_TURN_RUN)] = MAX_TURN_RUN
+    """longest run of turns one answer names"""

@@ -115,7 +115,7 @@ def export_sft(
         "format_version": FORMAT_VERSION,
         "vlln_version": __version__,
         "files": {"conversations": SFT_FILE, "images": f"{IMAGES_DIR}/"},
-        "settings": config.settings(),
+        "settings": config.to_json(),
         "houses": [house.root.name for house in houses],
         "counts": summary.counts(),
     }

@@ -1,0 +1,136 @@
+"""The settings of the ``vlln bench ...`` commands, one class per command; every one prints
+its figures as text or, with ``--json``, one JSON object per line. Imported when a bench
+command is used."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+from pydantic import AliasChoices, Field
+
+from vlln.config import Config
+from vlln.world.options import PresetOptions
+
+Count = Annotated[int, Field(ge=1)]
+Storeys = Annotated[int, Field(ge=2, le=3)]
+
+
+class BenchOptions(Config):
+    """What every benchmark takes: how it prints its figures."""
+
+    as_json: Annotated[bool, Field(validation_alias=AliasChoices("json", "as_json"))] = False
+    """print one JSON object per line"""
+
+
+class SimBench(BenchOptions):
+    """``vlln bench sim``: renderer, motion and geodesic figures."""
+
+    seed: int = 0
+    """house seed"""
+    frames: Count = 300
+    """frames per timing"""
+    repeats: Count = 3
+    """passes per frame rate"""
+    scene: Path | None = None
+    """a scanned scene folder instead of a procedural house"""
+    subdivide: Annotated[int, Field(ge=0)] = 0
+    """bench a scan: house --seed exported as Matterport3D with every triangle split into 4,
+    N times (as `vlln world export --subdivide N`), then imported"""
+    envs: Count | None = None
+    """steps/s of N environments in N processes against one (speed-up)"""
+
+
+class EvalBench(BenchOptions):
+    """``vlln bench eval``: episodes per hour of the evaluation runner."""
+
+    episodes: Count = 6
+    """episodes"""
+    cache_dir: Path | None = None
+    """where built splits are kept (none: ~/.cache/vlln)"""
+
+
+class OracleBench(BenchOptions):
+    """``vlln bench oracle``: answer latency of the offline oracle, the service's memory."""
+
+    seed: int = 0
+    """house seed"""
+    questions: Count = 2000
+    """questions"""
+    service_scenes: Annotated[int, Field(ge=0)] = 64
+    """houses given a session each for the service's memory figure (0: no service figures)"""
+
+
+class AgentBench(BenchOptions):
+    """``vlln bench agent``: a model agent's step cost outside the model."""
+
+    seed: int = 0
+    """house seed"""
+    repeats: Count = 200
+    """timed repeats"""
+
+
+class StoreysBench(BenchOptions):
+    """``vlln bench storeys``: the expert's success on targets on another storey."""
+
+    houses: Count = 10
+    """houses"""
+    floors: Storeys = 2
+    """storeys, 2 or 3"""
+    per_house: Count = 6
+    """episodes per house"""
+
+
+class FrontierStoreysBench(BenchOptions):
+    """``vlln bench frontier-storeys``: the frontier agent's IIGN success on houses of several
+    storeys."""
+
+    houses: Count = 2
+    """test houses"""
+    floors: Storeys = 2
+    """storeys, 2 or 3"""
+    episodes: Count = 30
+    """episodes"""
+
+
+class DataBench(BenchOptions):
+    """``vlln bench data``: trajectories per hour of the data pipeline."""
+
+    houses: Count = 2
+    """training houses"""
+    per_house: Count = 6
+    """trajectories per house"""
+
+
+class FidelityBench(BenchOptions, PresetOptions):
+    """``vlln bench fidelity``: SR/SPL and the failure taxonomy beside the paper's Table 1."""
+
+    episodes: Count = 200
+    """episodes of test500 per run"""
+    out: Path = Path("out/fidelity")
+    """run folders, resumed"""
+    workers: Count = 1
+    """processes"""
+    cache_dir: Path | None = None
+    """where built splits are kept (none: ~/.cache/vlln)"""
+
+
+class WebBench(BenchOptions):
+    """``vlln bench web``: key-press-to-new-frame latency in the browser."""
+
+    presses: Count = 200
+    """key presses"""
+    browser: str = "/usr/bin/chromium"
+    """Chromium executable (Debian: chromium)"""
+
+
+class WorldBench(BenchOptions, PresetOptions):
+    """``vlln bench world``: catalogue size; objects, triangles and build time per house."""
+
+    houses: Count = 20
+    """houses"""
+    first_seed: int = 0
+    """first seed"""
+    test_houses: Annotated[int, Field(ge=0)] = 14
+    """test houses whose statistics are printed beside the Matterport3D anchors (14: the
+    whole test split; 0: none)"""
