@@ -17,7 +17,8 @@ import ray
 
 from tests.train.conftest import tiny_model  # noqa: F401  (the shared tiny-model fixture)
 from vlln.cluster.evaluation import run_ray_evaluation
-from vlln.cluster.model_server import ServerStats, ServingOptions
+from vlln.cluster.model_server import ServerStats
+from vlln.cluster.options import ServingOptions
 from vlln.cluster.scheduler import ClusterError
 from vlln.errors import ConfigError
 from vlln.eval.config import EvalConfig
@@ -96,11 +97,13 @@ def test_a_server_nowhere_possible_or_a_bad_batch_size_is_one_error_before_any_e
 ) -> None:
     with pytest.raises(ConfigError, match="no node of the cluster has 1 CPUs and 1 GPUs"):
         run_ray_evaluation(
-            config, tmp_path / "run", cache_dir=splits, serving=ServingOptions(gpus=1)
+            config, tmp_path / "run", cache_dir=splits, serving=ServingOptions(model_gpus=1)
         )
     assert (tmp_path / "run" / "episodes.jsonl").read_text(encoding="utf-8") == ""
-    with pytest.raises(ConfigError, match="--model-batch must be at least 1, got 0"):
-        ServingOptions(max_batch=0)
+    with pytest.raises(
+        ConfigError, match="--model-batch: Input should be greater than or equal to 1"
+    ):
+        ServingOptions(model_batch=0)
 
 
 def test_two_workers_share_one_model_and_the_folder_equals_a_local_run(

@@ -15,7 +15,7 @@ from typing import Any
 from pydantic import AliasChoices, Field, model_validator
 from pydantic_settings import CliPositionalArg, SettingsConfigDict
 
-from vlln.cluster.options import RayChunkOptions
+from vlln.cluster.options import RayChunkOptions, ServingOptions
 from vlln.config import Config
 from vlln.eval.config import EvalConfig
 from vlln.tasks.metrics import ORACLE_SUCCESS_RADIUS, SUCCESS_RADIUS
@@ -33,7 +33,7 @@ MODEL_FLAGS = (
 """The fields of :class:`EvalCommand` that are agent options (by option name or alias)."""
 
 
-class EvalCommand(EvalConfig, RayChunkOptions):
+class EvalCommand(EvalConfig, RayChunkOptions, ServingOptions):
     """``vlln eval``: the run's settings, and how to run it now (``--ray``, ``--chunk`` and
     ``--retries`` from :class:`RayChunkOptions`)."""
 
@@ -68,12 +68,6 @@ class EvalCommand(EvalConfig, RayChunkOptions):
     """vlln: torch device (none: cuda if present, else cpu)"""
     max_tokens: int | None = None
     """openai-vlm, vlln: longest model reply in tokens (none: the agent's default)"""
-    model_cpus: float = 1.0
-    """--ray: CPUs of the vlln agent's model server on each node"""
-    model_gpus: float | None = None
-    """--ray: its GPUs (none: 1 when the cluster has GPUs and --device is not cpu, else 0)"""
-    model_batch: int = 8
-    """--ray: most requests the model server answers at once"""
 
     @model_validator(mode="before")
     @classmethod

@@ -31,7 +31,8 @@ def _eval(command: EvalCommand) -> int:
     config = command.run_settings()
     if command.ray is not None:
         from vlln.cluster.evaluation import run_ray_evaluation
-        from vlln.cluster.model_server import ServerStats, ServingOptions
+        from vlln.cluster.model_server import ServerStats
+        from vlln.cluster.options import ServingOptions
 
         def report_servers(stats: list[ServerStats]) -> None:
             for server in stats:
@@ -48,7 +49,9 @@ def _eval(command: EvalCommand) -> int:
             max_retries=command.retries,
             progress=not command.quiet,
             sweep=command.sweep,
-            serving=ServingOptions(command.model_cpus, command.model_gpus, command.model_batch),
+            serving=ServingOptions.build(
+                command.model_dump(include=set(ServingOptions.model_fields))
+            ),
             on_model_stats=report_servers,
         )
     else:

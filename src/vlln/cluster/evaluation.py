@@ -24,12 +24,12 @@ from vlln.cluster.model_server import (
     ModelServerLost,
     ServedModel,
     ServerStats,
-    ServingOptions,
     served_model,
     server_for_this_node,
     start_model_servers,
     stop_model_servers,
 )
+from vlln.cluster.options import ServingOptions
 from vlln.cluster.scheduler import DEFAULT_MAX_RETRIES, collect_in_order, connect, remote_function
 from vlln.errors import ConfigError
 from vlln.eval.config import EvalConfig

@@ -28,9 +28,10 @@ from dataclasses import dataclass
 from typing import Any
 
 from vlln.agents.local.backend import TransformersBackend
-from vlln.agents.local.batching import DEFAULT_MAX_BATCH, BatchingModel
+from vlln.agents.local.batching import BatchingModel
 from vlln.agents.local.options import VllnOptions
 from vlln.agents.model.backend import ModelReply
+from vlln.cluster.options import ServingOptions
 from vlln.cluster.scheduler import ClusterError, import_ray
 from vlln.errors import ConfigError, VllnError
 from vlln.eval.config import EvalConfig
@@ -39,26 +40,6 @@ from vlln.prompt import Conversation
 
 class ModelServerLost(VllnError):
     """A chunk's model server died for good while the chunk was playing."""
-
-
-@dataclass(frozen=True)
-class ServingOptions:
-    """What each node's model server asks of its node, and how many requests it batches.
-
-    ``gpus`` None: one GPU when the cluster has any and the model's device is not the CPU.
-    """
-
-    cpus: float = 1.0
-    gpus: float | None = None
-    max_batch: int = DEFAULT_MAX_BATCH
-
-    def __post_init__(self) -> None:
-        if self.cpus < 0 or (self.gpus is not None and self.gpus < 0):
-            raise ConfigError(
-                f"--model-cpus and --model-gpus must be >= 0, got {self.cpus}, {self.gpus}"
-            )
-        if self.max_batch < 1:
-            raise ConfigError(f"--model-batch must be at least 1, got {self.max_batch}")
 
 
 @dataclass(frozen=True)
@@ -183,7 +164,7 @@ def start_model_servers(
     ray = import_ray()
     from ray.util.scheduling_strategies import NodeAffinitySchedulingStrategy
 
-    gpus = options.gpus
+    gpus = options.model_gpus
     if gpus is None:
         on_cpu = (settings.device or "").startswith("cpu")
         gpus = 1.0 if ray.cluster_resources().get("GPU", 0) > 0 and not on_cpu else 0.0
@@ -191,13 +172,13 @@ def start_model_servers(
         node["NodeID"]
         for node in ray.nodes()
         if node["Alive"]
-        and node["Resources"].get("CPU", 0) >= options.cpus
+        and node["Resources"].get("CPU", 0) >= options.model_cpus
         and node["Resources"].get("GPU", 0) >= gpus
     ]
     if not nodes:
         raise ConfigError(
-            f"no node of the cluster has {options.cpus:g} CPUs and {gpus:g} GPUs for the model "
-            "server; lower --model-cpus / --model-gpus or add a node that has them"
+            f"no node of the cluster has {options.model_cpus:g} CPUs and {gpus:g} GPUs for the "
+            "model server; lower --model-cpus / --model-gpus or add a node that has them"
         )
     digest = hashlib.sha1(repr(settings).encode()).hexdigest()[:8]
     actor = ray.remote(ModelServer)
@@ -205,12 +186,12 @@ def start_model_servers(
         node: actor.options(
             name=f"vlln-model-{digest}-{node}",
             get_if_exists=True,
-            num_cpus=options.cpus,
+            num_cpus=options.model_cpus,
             num_gpus=gpus,
             max_restarts=max_retries,
             max_task_retries=max_retries,
             scheduling_strategy=NodeAffinitySchedulingStrategy(node, soft=False),
-        ).remote(settings, options.max_batch)
+        ).remote(settings, options.model_batch)
         for node in nodes
     }
     try:

@@ -1,5 +1,7 @@
 """The settings every command that can run on Ray shares (``--ray``, ``--retries``,
-``--chunk``), as config classes a command's config inherits (docs/ray.md)."""
+``--chunk``) and those of the vlln agent's model server on each node (``--model-cpus``,
+``--model-gpus``, ``--model-batch``), as config classes a command's config inherits
+(docs/ray.md)."""
 
 from __future__ import annotations
 
@@ -7,6 +9,7 @@ from typing import Annotated
 
 from pydantic import Field
 
+from vlln.agents.local.batching import DEFAULT_MAX_BATCH
 from vlln.cluster.scheduler import DEFAULT_MAX_RETRIES
 from vlln.config import BareFlag, Config
 
@@ -31,3 +34,14 @@ class RayChunkOptions(RayOptions):
 
     chunk: Annotated[int, Field(ge=1)] = 4
     """--ray: episodes per Ray task"""
+
+
+class ServingOptions(Config):
+    """What each node's model server asks of its node, and how many requests it batches."""
+
+    model_cpus: Annotated[float, Field(ge=0)] = 1.0
+    """--ray: CPUs of the vlln agent's model server on each node"""
+    model_gpus: Annotated[float | None, Field(ge=0)] = None
+    """--ray: its GPUs (none: 1 when the cluster has GPUs and --device is not cpu, else 0)"""
+    model_batch: Annotated[int, Field(ge=1)] = DEFAULT_MAX_BATCH
+    """--ray: most requests the model server answers at once"""
