@@ -5,6 +5,7 @@ import json
 import pytest
 
 from vlln.bench.agent import run_agent_benchmark
+from vlln.bench.settings import AgentBench
 from vlln.errors import ConfigError
 
 REQUIRED = {
@@ -19,7 +20,7 @@ REQUIRED = {
 
 
 def test_agent_benchmark_prints_json_lines(capsys: pytest.CaptureFixture[str]) -> None:
-    figures = run_agent_benchmark(seed=1, repeats=3, as_json=True)
+    figures = run_agent_benchmark(AgentBench(seed=1, repeats=3, as_json=True))
     lines = [json.loads(line) for line in capsys.readouterr().out.splitlines()]
     assert [f.metric for f in figures] == [line["metric"] for line in lines]
     values = {line["metric"]: line["value"] for line in lines}
@@ -33,5 +34,5 @@ def test_agent_benchmark_prints_json_lines(capsys: pytest.CaptureFixture[str]) -
 
 
 def test_a_non_positive_repeat_count_is_refused() -> None:
-    with pytest.raises(ConfigError, match="repeats"):
-        run_agent_benchmark(repeats=0)
+    with pytest.raises(ConfigError, match="--repeats"):
+        AgentBench.build({"repeats": 0})

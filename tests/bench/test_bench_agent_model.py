@@ -9,12 +9,13 @@ import pytest
 import torch
 
 from vlln.bench.agent_model import BATCH, run_model_benchmark
+from vlln.bench.settings import AgentBench
 
 
 def test_the_tiny_model_figures_are_measured_and_printed(
     capsys: pytest.CaptureFixture[str],
 ) -> None:
-    figures = run_model_benchmark(repeats=1, as_json=True, max_new_tokens=8)
+    figures = run_model_benchmark(AgentBench(as_json=True), passes=1, max_new_tokens=8)
     lines = [json.loads(line) for line in capsys.readouterr().out.splitlines()]
     printed = {line["metric"]: line["value"] for line in lines if "metric" in line}
     assert printed == {figure.metric: round(figure.value, 3) for figure in figures}

@@ -5,11 +5,12 @@ import json
 import pytest
 
 from vlln.bench.data import run_data_benchmark
+from vlln.bench.settings import DataBench
 from vlln.errors import ConfigError
 
 
 def test_data_benchmark_prints_json_lines(capsys: pytest.CaptureFixture[str]) -> None:
-    figures = run_data_benchmark(houses=1, per_house=1, as_json=True)
+    figures = run_data_benchmark(DataBench(houses=1, per_house=1, as_json=True))
     lines = [json.loads(line) for line in capsys.readouterr().out.splitlines()]
     assert all(set(line) == {"metric", "value", "unit"} for line in lines)
     assert [f.metric for f in figures] == [line["metric"] for line in lines]
@@ -28,5 +29,5 @@ def test_data_benchmark_prints_json_lines(capsys: pytest.CaptureFixture[str]) ->
 
 
 def test_a_bad_workload_is_refused() -> None:
-    with pytest.raises(ConfigError, match="houses"):
-        run_data_benchmark(houses=0, per_house=1)
+    with pytest.raises(ConfigError, match="--houses"):
+        DataBench.build({"houses": 0, "per_house": 1})

@@ -6,13 +6,16 @@ import pytest
 
 from vlln.bench.oracle import run_oracle_benchmark
 from vlln.bench.service import run_service_benchmark
+from vlln.bench.settings import OracleBench
 from vlln.errors import ConfigError
 
 REQUIRED = {"answer_p50_ms", "answer_p99_ms", "classify_us", "oracle_start_ms"}
 
 
 def test_oracle_benchmark_prints_json_lines(capsys: pytest.CaptureFixture[str]) -> None:
-    figures = run_oracle_benchmark(seed=1, questions=60, as_json=True)
+    figures = run_oracle_benchmark(
+        OracleBench(seed=1, questions=60, service_scenes=0, as_json=True)
+    )
     lines = [json.loads(line) for line in capsys.readouterr().out.splitlines()]
     assert all(set(line) == {"metric", "value", "unit"} for line in lines)
     values = {line["metric"]: line["value"] for line in lines}
@@ -27,8 +30,8 @@ def test_oracle_benchmark_prints_json_lines(capsys: pytest.CaptureFixture[str]) 
 
 
 def test_a_non_positive_question_count_is_refused() -> None:
-    with pytest.raises(ConfigError, match="questions"):
-        run_oracle_benchmark(seed=1, questions=0, as_json=True)
+    with pytest.raises(ConfigError, match="--questions"):
+        OracleBench.build({"seed": 1, "questions": 0})
 
 
 def test_service_benchmark_measures_a_running_service() -> None:

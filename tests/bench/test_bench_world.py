@@ -4,6 +4,7 @@ import json
 
 import pytest
 
+from vlln.bench.settings import WorldBench
 from vlln.bench.world import run_world_benchmark
 from vlln.errors import ConfigError
 from vlln.world.generator.house import generate_house
@@ -12,7 +13,9 @@ from vlln.world.generator.house import generate_house
 def test_world_benchmark_prints_the_mean_counts_of_the_houses(
     capsys: pytest.CaptureFixture[str],
 ) -> None:
-    figures = run_world_benchmark(houses=2, first_seed=3, as_json=True)
+    figures = run_world_benchmark(
+        WorldBench(houses=2, first_seed=3, preset="small", test_houses=0, as_json=True)
+    )
     lines = [json.loads(line) for line in capsys.readouterr().out.splitlines()]
     assert [f.metric for f in figures] == [line["metric"] for line in lines]
     values = {line["metric"]: line["value"] for line in lines}
@@ -27,7 +30,9 @@ def test_world_benchmark_prints_the_mean_counts_of_the_houses(
     assert values["house_build_s"] > 0 and values["house_build_cpu_s"] > 0
 
 
-@pytest.mark.parametrize(("houses", "first_seed", "word"), [(0, 0, "houses"), (2, -1, "seed")])
-def test_bad_counts_are_refused(houses: int, first_seed: int, word: str) -> None:
-    with pytest.raises(ConfigError, match=word):
-        run_world_benchmark(houses=houses, first_seed=first_seed)
+@pytest.mark.parametrize(
+    ("houses", "first_seed", "flag"), [(0, 0, "--houses"), (2, -1, "--first-seed")]
+)
+def test_bad_counts_are_refused(houses: int, first_seed: int, flag: str) -> None:
+    with pytest.raises(ConfigError, match=flag):
+        WorldBench.build({"houses": houses, "first_seed": first_seed})

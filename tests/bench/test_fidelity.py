@@ -88,17 +88,19 @@ def test_the_benchmark_plays_every_run_and_resumes(tmp_path: Any, capsys: Any) -
     from pathlib import Path
 
     from vlln.bench.fidelity import run_fidelity_benchmark
+    from vlln.bench.settings import FidelityBench
     from vlln.eval.results import RunDirectory
 
     out, cache = Path(tmp_path) / "fid", Path(tmp_path) / "cache"
-    rows = run_fidelity_benchmark(out, episodes=2, preset="small", cache_dir=cache, as_json=True)
+    settings = FidelityBench(out=out, episodes=2, preset="small", cache_dir=cache, as_json=True)
+    rows = run_fidelity_benchmark(settings)
     assert {row["task"] for row in rows} == {"iign", "ign", "objectnav"}
     assert sum("dialog_gain_pp" in row for row in rows) == 1
     for run in RUNS:
         records = RunDirectory(out / run.folder).records()
         assert len(records) == 2 * len(run.budgets)
     before = {run.folder: (out / run.folder / "episodes.jsonl").read_bytes() for run in RUNS}
-    assert run_fidelity_benchmark(out, 2, "small", cache_dir=cache, as_json=True) == rows
+    assert run_fidelity_benchmark(settings) == rows
     after = {run.folder: (out / run.folder / "episodes.jsonl").read_bytes() for run in RUNS}
     assert after == before
     assert capsys.readouterr().out.count("\n") == 2 * len(rows)

@@ -22,7 +22,7 @@ from numpy.typing import NDArray
 
 from vlln.agents.model.openai_vlm import chat_messages
 from vlln.bench.figures import Figure, emit, median_seconds
-from vlln.errors import ConfigError
+from vlln.bench.settings import AgentBench
 from vlln.prompt import (
     Conversation,
     DialogExchange,
@@ -50,10 +50,9 @@ REPLIES = (
 LOOK_DOWN_REPLIES = ("<move>312 401", "<move>12", "<move>640 480")
 
 
-def run_agent_benchmark(seed: int = 0, repeats: int = 200, as_json: bool = False) -> list[Figure]:
+def run_agent_benchmark(settings: AgentBench) -> list[Figure]:
     """Measure and print the model agent's per-step costs outside the model."""
-    if repeats < 1:
-        raise ConfigError(f"repeats must be a positive count, got {repeats}")
+    seed, repeats, as_json = settings.seed, settings.repeats, settings.as_json
     figures: list[Figure] = []
 
     def record(metric: str, value: float, unit: str) -> None:

@@ -20,16 +20,19 @@ from PIL import Image
 from vlln.agents.local.backend import MAX_NEW_TOKENS
 from vlln.agents.local.dependencies import require_model_extra
 from vlln.bench.figures import Figure, emit
+from vlln.bench.settings import AgentBench
 from vlln.errors import ConfigError
 
 BATCH = 4  # conversations answered in one padded forward pass
+PASSES = 3  # timed decisions per thread count: a model step is slow, unlike the agent's
 
 
 def run_model_benchmark(
-    seed: int = 0, repeats: int = 3, as_json: bool = False, max_new_tokens: int = MAX_NEW_TOKENS
+    settings: AgentBench, passes: int = PASSES, max_new_tokens: int = MAX_NEW_TOKENS
 ) -> list[Figure]:
     """Measure and print the tiny model's decisions per second (CPU unless a GPU is present);
-    ``max_new_tokens`` below the agent's 128 only to keep a smoke run short."""
+    ``passes`` and ``max_new_tokens`` below their defaults only to keep a smoke run short."""
+    seed, as_json = settings.seed, settings.as_json
     try:
         require_model_extra()
     except ConfigError as error:
@@ -72,12 +75,12 @@ def run_model_benchmark(
         torch.set_num_threads(threads)
         backend.generate(conversation, images)  # warm-up
         tokens, started = 0, time.perf_counter()
-        for _ in range(repeats):
+        for _ in range(passes):
             reply = backend.generate(conversation, images)
             tokens += reply.completion_tokens
         seconds = time.perf_counter() - started
         where = f"{device}_threads{threads}"
-        record(f"tiny_model_steps_per_s_{where}", repeats / seconds, "steps/s")
+        record(f"tiny_model_steps_per_s_{where}", passes / seconds, "steps/s")
         record(f"tiny_model_tokens_per_s_{where}", tokens / seconds, "tokens/s")
         started = time.perf_counter()
         backend.generate_batch(batch)

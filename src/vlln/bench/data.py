@@ -15,6 +15,7 @@ import time
 from pathlib import Path
 
 from vlln.bench.figures import Figure, emit
+from vlln.bench.settings import DataBench
 from vlln.datagen.build import (
     BuildConfig,
     build_house,
@@ -26,9 +27,10 @@ from vlln.tasks.scenes import SceneCache, procedural_scene_id
 from vlln.tasks.splits import house_seeds
 
 
-def run_data_benchmark(houses: int = 2, per_house: int = 6, as_json: bool = False) -> list[Figure]:
+def run_data_benchmark(settings: DataBench) -> list[Figure]:
     """Build the fixed workload once in a temporary folder and print its figures."""
-    config = BuildConfig(houses=houses, per_house=per_house)
+    as_json = settings.as_json
+    config = BuildConfig(houses=settings.houses, per_house=settings.per_house)
     figures: list[Figure] = []
 
     def note(metric: str, value: float, unit: str) -> None:

@@ -28,6 +28,7 @@ import time
 from pathlib import Path
 
 from vlln.bench.figures import Figure, emit
+from vlln.bench.settings import EvalBench
 from vlln.eval.config import EvalConfig
 from vlln.eval.runner import load_episodes, run_evaluation
 from vlln.tasks.metrics import success
@@ -39,40 +40,34 @@ BENCH_AGENT = "frontier"
 BENCH_BUDGET = 5
 
 
-def compare_presets(
-    episodes: int = 6, as_json: bool = False, cache_dir: Path | None = None
-) -> list[Figure]:
+def compare_presets(settings: EvalBench) -> list[Figure]:
     """Play the workload on the small and the mp3d houses, each in a fresh process, and print
     both presets' figures and the ratio of their environment steps per second."""
     figures: list[Figure] = []
     context = multiprocessing.get_context("spawn")  # a fresh process: its own peak memory
     for preset in (SMALL.name, MP3D.name):
         with context.Pool(1) as pool:
-            figures += pool.apply(run_eval_benchmark, (episodes, as_json, cache_dir, preset))
+            figures += pool.apply(run_eval_benchmark, (settings, preset))
     rate = {f.metric: f.value for f in figures if f.metric.endswith("env_steps_per_s")}
     ratio = Figure(
         "mp3d_steps_per_s_ratio",
         rate[f"{MP3D.name}_env_steps_per_s"] / rate[f"{SMALL.name}_env_steps_per_s"],
         "x",
     )
-    emit(ratio, as_json)
+    emit(ratio, settings.as_json)
     return [*figures, ratio]
 
 
-def run_eval_benchmark(
-    episodes: int = 6,
-    as_json: bool = False,
-    cache_dir: Path | None = None,
-    preset: str = SMALL.name,
-) -> list[Figure]:
+def run_eval_benchmark(settings: EvalBench, preset: str) -> list[Figure]:
     """Play the fixed workload once on the first test house of ``preset`` and print its
     figures, each named ``<preset>_<figure>``."""
+    as_json, cache_dir = settings.as_json, settings.cache_dir
     config = EvalConfig(
         agent=BENCH_AGENT,
         task="iign",
         split="test",
         houses=1,
-        episodes=episodes,
+        episodes=settings.episodes,
         budgets=(BENCH_BUDGET,),
         preset=preset,
     )

@@ -28,15 +28,14 @@ from pathlib import Path
 
 from scipy import stats
 
-from vlln.errors import ConfigError
+from vlln.bench.settings import FidelityBench
 from vlln.eval.config import EvalConfig
 from vlln.eval.results import RunDirectory
 from vlln.eval.runner import default_cache_dir, load_episodes, run_evaluation
 from vlln.tasks.metrics import record_spl, success
 from vlln.tasks.record import EpisodeRecord
 from vlln.tasks.taxonomy import CLASS_ABBREVIATIONS, FAILURE_CLASSES, classify
-from vlln.tasks.test_protocol import TEST_PROTOCOL_EPISODES, TEST_PROTOCOL_SPLIT
-from vlln.world.generator.presets import DEFAULT_PRESET
+from vlln.tasks.test_protocol import TEST_PROTOCOL_SPLIT
 
 CONFIDENCE = 0.95
 
@@ -167,19 +166,10 @@ def _play(job: tuple[FidelityRun, int, str, str, str | None]) -> str:
     return f"{run.folder}: {len(outcome.records)} of {outcome.planned} episode lines"
 
 
-def run_fidelity_benchmark(
-    out: Path,
-    episodes: int = 200,
-    preset: str = DEFAULT_PRESET,
-    workers: int = 1,
-    cache_dir: Path | None = None,
-    as_json: bool = False,
-) -> list[dict[str, object]]:
-    """Play (or resume) every run of :data:`RUNS` into ``out`` and print the figures."""
-    if not 1 <= episodes <= TEST_PROTOCOL_EPISODES:
-        raise ConfigError(f"--episodes must be 1..{TEST_PROTOCOL_EPISODES}, got {episodes}")
-    if workers < 1:
-        raise ConfigError(f"--workers must be at least 1, got {workers}")
+def run_fidelity_benchmark(settings: FidelityBench) -> list[dict[str, object]]:
+    """Play (or resume) every run of :data:`RUNS` into ``settings.out`` and print the figures."""
+    out, episodes, preset = settings.out, settings.episodes, settings.preset
+    workers, cache_dir = settings.workers, settings.cache_dir
     cache = None if cache_dir is None else str(cache_dir)
     jobs = [(run, episodes, preset, str(out), cache) for run in RUNS]
     # Every task's episodes are built once, before the workers share the cache.
@@ -202,7 +192,7 @@ def run_fidelity_benchmark(
         row for run in RUNS for row in fidelity_rows(run, RunDirectory(out / run.folder).records())
     ]
     for row in rows:
-        print(json.dumps(row) if as_json else _table_line(row))
+        print(json.dumps(row) if settings.as_json else _table_line(row))
     return rows
 
 

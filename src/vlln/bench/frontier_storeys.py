@@ -15,6 +15,7 @@ from pathlib import Path
 
 from vlln.agents.frontier import FrontierAgent
 from vlln.bench.figures import Figure, emit
+from vlln.bench.settings import FrontierStoreysBench
 from vlln.errors import ConfigError
 from vlln.eval.play import derive_seed, play_episode
 from vlln.eval.runner import order_by_scene, spread_over_scenes
@@ -36,7 +37,7 @@ class _Tally:
     left: int = 0  # episodes in which the agent reached another storey
 
 
-def play_frontier(scenes: SceneCache, episodes: list[Episode], seed: int = 0) -> _Tally:
+def play_frontier(scenes: SceneCache, episodes: list[Episode], seed: int) -> _Tally:
     """Play the frontier agent (truth detector, budget 5) on each IIGN episode."""
     tally = _Tally()
     config = TaskConfig(task=TaskType.IIGN, dialog_budget=5)
@@ -61,22 +62,22 @@ def play_frontier(scenes: SceneCache, episodes: list[Episode], seed: int = 0) ->
     return tally
 
 
-def run_frontier_storeys_benchmark(
-    houses: int = 2, floors: int = 2, episodes: int = 30, seed: int = 0, as_json: bool = False
-) -> list[Figure]:
+def run_frontier_storeys_benchmark(settings: FrontierStoreysBench) -> list[Figure]:
     """Measure and print the frontier agent's IIGN success on houses of several storeys."""
-    if houses < 1 or episodes < 1 or floors not in (2, 3):
-        raise ConfigError(
-            f"need houses >= 1, episodes >= 1 and floors 2 or 3, got {houses}, {episodes} "
-            f"and {floors}"
-        )
     with tempfile.TemporaryDirectory() as folder:
-        build_split("test", houses, Path(folder), seed, floors=floors, progress=False)
+        build_split(
+            "test",
+            settings.houses,
+            Path(folder),
+            settings.seed,
+            floors=settings.floors,
+            progress=False,
+        )
         source = read_episodes(Path(folder) / "test_iign.json.gz")
-    chosen = order_by_scene(spread_over_scenes(source, episodes))
+    chosen = order_by_scene(spread_over_scenes(source, settings.episodes))
     scenes = SceneCache(capacity=1)
     try:
-        tally = play_frontier(scenes, chosen, seed)
+        tally = play_frontier(scenes, chosen, settings.seed)
     finally:
         scenes.close()
     figures = [
@@ -87,5 +88,5 @@ def run_frontier_storeys_benchmark(
         Figure("episodes_reaching_another_storey", float(tally.left), "episodes"),
     ]
     for figure in figures:
-        emit(figure, as_json)
+        emit(figure, settings.as_json)
     return figures

@@ -15,8 +15,9 @@ import time
 import numpy as np
 
 from vlln.bench.figures import Figure, emit, median_seconds
-from vlln.bench.service import run_service_benchmark
+from vlln.bench.settings import OracleBench
 from vlln.errors import ConfigError
+from vlln.extras import SERVICE_BENCH_PACKAGES, require_extra
 from vlln.oracle.classify import analyse_question
 from vlln.oracle.question_set import load_packaged_question_set
 from vlln.oracle.rule_oracle import RuleOracle
@@ -31,13 +32,13 @@ TARGETS = 4  # episodes (targets) the questions are spread over
 QUESTIONS_PER_POSE = 4  # questions asked from each rendered pose
 
 
-def run_oracle_benchmark(
-    seed: int = 0, questions: int = 2000, as_json: bool = False, service_scenes: int = 0
-) -> list[Figure]:
-    """Measure and print the oracle's answer latency over ``questions`` questions and, when
-    ``service_scenes`` > 0, the HTTP service under load (:mod:`vlln.bench.service`)."""
-    if questions < 1:
-        raise ConfigError(f"questions must be a positive count, got {questions}")
+def run_oracle_benchmark(settings: OracleBench) -> list[Figure]:
+    """Measure and print the oracle's answer latency over ``settings.questions`` questions and,
+    when ``settings.service_scenes`` > 0, the HTTP service under load
+    (:mod:`vlln.bench.service`, which needs the serve extra)."""
+    seed, questions, as_json = settings.seed, settings.questions, settings.as_json
+    if settings.service_scenes > 0:  # refused before the first figure, not after
+        require_extra("serve", "vlln bench oracle (its service figures)", SERVICE_BENCH_PACKAGES)
     figures: list[Figure] = []
 
     def record(metric: str, value: float, unit: str) -> None:
@@ -69,8 +70,10 @@ def run_oracle_benchmark(
         record(f"{group}_p50_ms", float(np.percentile(latencies[group], 50)), "ms")
         record(f"{group}_p99_ms", float(np.percentile(latencies[group], 99)), "ms")
     record("oracle_start_ms", float(np.median(start_ms)), "ms")
-    if service_scenes > 0:
-        run_service_benchmark(record, seed, service_scenes)
+    if settings.service_scenes > 0:
+        from vlln.bench.service import run_service_benchmark
+
+        run_service_benchmark(record, seed, settings.service_scenes)
     return figures
 
 

@@ -33,6 +33,7 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from vlln.bench.figures import Figure, emit
+from vlln.bench.settings import SimBench
 from vlln.errors import ConfigError
 
 WARM_UP_STEPS = 30
@@ -46,19 +47,17 @@ class Run(NamedTuple):
     main_thread_cpu_ms_per_step: float  # the thread that steps the simulator
 
 
-def run_parallel_benchmark(
-    envs: int, seed: int = 0, frames: int = 300, repeats: int = 3, as_json: bool = False
-) -> list[Figure]:
-    """Print steps/s of one environment, of ``envs`` in parallel, their ratio and its bound."""
-    if envs < 1:
-        raise ConfigError(f"--envs must be at least 1, got {envs}")
+def run_parallel_benchmark(settings: SimBench, envs: int) -> list[Figure]:
+    """Print steps/s of one environment, of ``envs`` (``settings.envs``, given) in parallel,
+    their ratio and its bound."""
+    seed, frames = settings.seed, settings.frames
     cores = len(os.sched_getaffinity(0))  # the cores this process may use (taskset, cgroups)
     threads_alone = cores
     threads_shared = max(1, cores // envs)
     runs_one: list[Run] = []
     runs_many: list[Run] = []
     runs_one_shared: list[Run] = []
-    for _ in range(repeats):
+    for _ in range(settings.repeats):
         runs_one.append(_run(1, seed, frames, threads_alone))
         runs_many.append(_run(envs, seed, frames, threads_shared))
         if threads_shared != threads_alone:
@@ -87,7 +86,7 @@ def run_parallel_benchmark(
         Figure("envs_speedup_same_threads", many.steps_per_s / one_shared.steps_per_s, "x"),
     ]
     for figure in figures:
-        emit(figure, as_json)
+        emit(figure, settings.as_json)
     return figures
 
 

@@ -10,6 +10,7 @@ from typing import Annotated
 from pydantic import AliasChoices, Field
 
 from vlln.config import Config
+from vlln.tasks.test_protocol import TEST_PROTOCOL_EPISODES
 from vlln.world.options import PresetOptions
 
 Count = Annotated[int, Field(ge=1)]
@@ -79,6 +80,8 @@ class StoreysBench(BenchOptions):
     """storeys, 2 or 3"""
     per_house: Count = 6
     """episodes per house"""
+    first_seed: Annotated[int, Field(ge=0)] = 0
+    """first house seed"""
 
 
 class FrontierStoreysBench(BenchOptions):
@@ -91,6 +94,9 @@ class FrontierStoreysBench(BenchOptions):
     """storeys, 2 or 3"""
     episodes: Count = 30
     """episodes"""
+    seed: Annotated[int, Field(ge=0)] = 0
+    """seed of the episodes, the agent and the oracle (as `vlln data episodes --seed` and
+    `vlln eval --seed`)"""
 
 
 class DataBench(BenchOptions):
@@ -105,7 +111,7 @@ class DataBench(BenchOptions):
 class FidelityBench(BenchOptions, PresetOptions):
     """``vlln bench fidelity``: SR/SPL and the failure taxonomy beside the paper's Table 1."""
 
-    episodes: Count = 200
+    episodes: Annotated[int, Field(ge=1, le=TEST_PROTOCOL_EPISODES)] = 200
     """episodes of test500 per run"""
     out: Path = Path("out/fidelity")
     """run folders, resumed"""
@@ -118,8 +124,8 @@ class FidelityBench(BenchOptions, PresetOptions):
 class WebBench(BenchOptions):
     """``vlln bench web``: key-press-to-new-frame latency in the browser."""
 
-    presses: Count = 200
-    """key presses"""
+    presses: Annotated[int, Field(ge=10)] = 200
+    """key presses (at least 10: a p99 needs them)"""
     browser: str = "/usr/bin/chromium"
     """Chromium executable (Debian: chromium)"""
 
@@ -129,7 +135,7 @@ class WorldBench(BenchOptions, PresetOptions):
 
     houses: Count = 20
     """houses"""
-    first_seed: int = 0
+    first_seed: Annotated[int, Field(ge=0)] = 0
     """first seed"""
     test_houses: Annotated[int, Field(ge=0)] = 14
     """test houses whose statistics are printed beside the Matterport3D anchors (14: the

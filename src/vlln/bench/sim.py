@@ -24,6 +24,8 @@ import moderngl
 import numpy as np
 
 from vlln.bench.figures import Figure, emit, median_seconds
+from vlln.bench.parallel import run_parallel_benchmark
+from vlln.bench.settings import SimBench
 from vlln.sim.agent import Action, AgentState
 from vlln.sim.camera import CameraSpec
 from vlln.sim.draw_list import DrawList
@@ -53,22 +55,25 @@ WARM_UP_FRAMES = 30
 WALK = (Action.MOVE_FORWARD, Action.MOVE_FORWARD, Action.TURN_LEFT, Action.TURN_RIGHT)
 
 
-def run_sim_benchmark(
-    seed: int = 0,
-    frames: int = 300,
-    repeats: int = 3,
-    as_json: bool = False,
-    scene: Path | None = None,
-    subdivide: int = 0,
-) -> list[Figure]:
+def run_sim_benchmark(settings: SimBench) -> list[Figure]:
     """Measure and print every simulator figure for house ``seed``, or for the scanned scene
     folder ``scene``, or for house ``seed`` exported as a scan with every triangle split into
     ``4**subdivide`` (then the import time and the simulator's build time instead of the
-    house build time, and no memory probe).
+    house build time, and no memory probe); with ``envs``, the parallel figures instead
+    (:mod:`vlln.bench.parallel`).
 
     The three frame rates replay the same walk ``repeats`` times, interleaved, and report the
     median pass, so a neighbour's burst on a shared machine moves all three alike.
     """
+    if settings.envs is not None:
+        return run_parallel_benchmark(settings, settings.envs)
+    seed, frames, repeats, as_json = (
+        settings.seed,
+        settings.frames,
+        settings.repeats,
+        settings.as_json,
+    )
+    scene, subdivide = settings.scene, settings.subdivide
     figures: list[Figure] = []
 
     def record(metric: str, value: float, unit: str) -> None:

@@ -11,6 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from vlln.bench.figures import Figure, emit
+from vlln.bench.settings import StoreysBench
 from vlln.errors import ConfigError
 from vlln.sim.agent import Action
 from vlln.tasks.env import NavigationEnv
@@ -79,19 +80,10 @@ def play_expert(scenes: SceneCache, episodes: list[Episode]) -> StoreyRun:
     return StoreyRun(count, successes, steps, distance / count if count else 0.0)
 
 
-def run_storeys_benchmark(
-    houses: int = 10,
-    floors: int = 2,
-    per_house: int = 6,
-    first_seed: int = 0,
-    as_json: bool = False,
-) -> list[Figure]:
+def run_storeys_benchmark(settings: StoreysBench) -> list[Figure]:
     """Measure and print the expert's success on targets on another storey."""
-    if houses < 1 or per_house < 1 or floors not in (2, 3):
-        raise ConfigError(
-            f"need houses >= 1, per_house >= 1 and floors 2 or 3, got {houses}, {per_house} "
-            f"and {floors}"
-        )
+    first_seed, houses = settings.first_seed, settings.houses
+    floors, per_house = settings.floors, settings.per_house
     scenes = SceneCache(capacity=1)
     runs: list[StoreyRun] = []
     try:
@@ -115,5 +107,5 @@ def run_storeys_benchmark(
         Figure("mean_steps", total.steps / max(1, total.episodes), "steps"),
     ]
     for figure in figures:
-        emit(figure, as_json)
+        emit(figure, settings.as_json)
     return figures

@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from vlln.bench.figures import Figure, emit
+from vlln.bench.settings import WebBench
 from vlln.errors import ConfigError
 from vlln.sim.simulator import Simulator
 from vlln.tasks.generation import generate_house_episodes
@@ -35,12 +36,9 @@ HOUSE_SEED = 39
 WARM_UP = 5
 
 
-def run_web_benchmark(
-    presses: int = 200, browser: str = "/usr/bin/chromium", as_json: bool = False
-) -> list[Figure]:
-    """Measure and print p50/p99 key-press-to-frame latency over ``presses`` presses."""
-    if presses < 10:
-        raise ConfigError(f"presses must be at least 10, got {presses}")
+def run_web_benchmark(settings: WebBench) -> list[Figure]:
+    """Measure and print p50/p99 key-press-to-frame latency over ``settings.presses`` presses."""
+    presses, browser, as_json = settings.presses, settings.browser, settings.as_json
     if not Path(browser).exists():
         raise ConfigError(f"no browser at {browser}; install Debian's chromium or pass --browser")
     try:

@@ -13,27 +13,19 @@ import statistics
 import time
 
 from vlln.bench.figures import Figure, emit
+from vlln.bench.settings import WorldBench
 from vlln.bench.world_fidelity import preset_statistics, print_comparison
-from vlln.errors import ConfigError
 from vlln.world.catalogue import default_catalogue
 from vlln.world.catalogue.reference import REFERENCE_CATEGORIES
-from vlln.world.generator.presets import SMALL, generate_preset_house
+from vlln.world.generator.presets import generate_preset_house
 
 
-def run_world_benchmark(
-    houses: int = 20,
-    first_seed: int = 0,
-    as_json: bool = False,
-    preset: str = SMALL.name,
-    test_houses: int = 0,
-) -> list[Figure]:
+def run_world_benchmark(settings: WorldBench) -> list[Figure]:
     """Build houses ``first_seed .. first_seed + houses - 1`` of ``preset`` and print their
     mean figures; with ``test_houses``, then each anchored statistic of that many test houses
     and their episodes beside its Matterport3D anchor (:mod:`vlln.bench.world_fidelity`)."""
-    if houses < 1:
-        raise ConfigError(f"--houses {houses} must be at least 1")
-    if first_seed < 0:
-        raise ConfigError(f"--first-seed {first_seed} must be 0 or more")
+    houses, first_seed, preset = settings.houses, settings.first_seed, settings.preset
+    as_json, test_houses = settings.as_json, settings.test_houses
     instances, categories, triangles, walls, cpus = [], [], [], [], []
     for seed in range(first_seed, first_seed + houses):
         cpu_start, wall_start = time.process_time(), time.perf_counter()

@@ -4,13 +4,16 @@ Each field becomes one flag (``max_steps`` -> ``--max-steps``; a field's first v
 alias, when it has one, names the flag instead), its help text is the field's docstring and
 its default the field's default; booleans get ``--x/--no-x``; a field marked
 :class:`vlln.config.BareFlag` also takes its flag alone. The handler receives the built config,
-so no command maps flags to settings by hand.
+so no command maps flags to settings by hand; a command whose work is library calls taking
+that config names them with :class:`Calls` instead of a handler of its own.
 """
 
 from __future__ import annotations
 
 import argparse
 from collections.abc import Callable
+from dataclasses import dataclass
+from importlib import import_module
 from pathlib import Path
 from typing import Any, TypeVar
 
@@ -55,6 +58,33 @@ class _LazyParser(argparse.ArgumentParser):
         return super().get_default(dest)
 
 
+@dataclass(frozen=True)
+class Calls:
+    """A command's handler that calls each ``"module:function"`` of ``targets`` with the
+    config, in order, importing its module only when the command is used (so ``vlln --help``
+    stays light), and returns 0."""
+
+    targets: tuple[str, ...]
+
+    def functions(self) -> list[Callable[[Config], object]]:
+        """The functions named, imported."""
+        found = []
+        for target in self.targets:
+            module, name = target.split(":")
+            found.append(getattr(import_module(module), name))
+        return found
+
+    def __call__(self, config: Config) -> int:
+        for function in self.functions():
+            function(config)
+        return 0
+
+
+def calls(*targets: str) -> Calls:
+    """The handler calling ``targets`` (``"module:function"``) with the command's config."""
+    return Calls(targets)
+
+
 def add_config_command(
     commands: Commands,
     name: str,
@@ -65,8 +95,10 @@ def add_config_command(
 ) -> argparse.ArgumentParser:
     """Add command ``name``, its flags generated from ``config`` (the class, or a function
     importing it when the command is used); ``handler`` gets the config built from the flags
-    given. With ``replay``, ``--config FILE`` reads settings stored by :meth:`Config.to_json`
-    (e.g. a run's ``run.json``) and the flags given override them."""
+    given (a :class:`Calls` handler is kept as the parser's ``calls`` default, so that its
+    functions can be checked against the config). With ``replay``, ``--config FILE`` reads
+    settings stored by :meth:`Config.to_json` (e.g. a run's ``run.json``) and the flags given
+    override them."""
     parser_class = commands._parser_class
     commands._parser_class = _LazyParser
     try:
@@ -90,7 +122,11 @@ def add_config_command(
         def run(args: argparse.Namespace) -> int:
             return handler(config_from_args(config_class, source, args))
 
-        parser.set_defaults(handler=run, config_class=config_class)
+        parser.set_defaults(
+            handler=run,
+            config_class=config_class,
+            calls=handler if isinstance(handler, Calls) else None,
+        )
 
     parser.fill = fill
     return parser
