@@ -17,6 +17,7 @@ from tests.oracle.llm.chat_server import ChatServer, Scripted, chat_server, comp
 from vlln.agents.expert import ExpertAgent
 from vlln.cli import main
 from vlln.eval.config import EvalConfig
+from vlln.eval.options import ReportOptions
 from vlln.eval.play import derive_seed, play_episode
 from vlln.eval.report import write_report
 from vlln.eval.runner import RunOutcome, run_evaluation
@@ -277,7 +278,7 @@ def test_server_trouble_is_retried_then_recorded_as_failed_steps(
     assert "Failed actions at budget 0: parse 1, server 1." in markdown
     assert main(["score", str(tmp_path / "run2")]) == 0
     assert "Failed actions at budget 0: parse 1, server 1." in capsys.readouterr().out
-    write_report([tmp_path / "run2"], tmp_path / "report", samples_per_run=0)
+    write_report([tmp_path / "run2"], tmp_path / "report", ReportOptions(samples=0))
     report = (tmp_path / "report" / "report.md").read_text()
     assert "openai-vlm IIGN budget 0: parse 1, server 1" in report
 

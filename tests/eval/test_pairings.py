@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+from vlln.eval.options import ReportOptions
 from vlln.eval.pairings import cross_table, involves_people, oracle_kind
 from vlln.eval.report import write_report
 from vlln.tasks.record import DialogTurn, EpisodeRecord
@@ -58,7 +59,7 @@ def test_the_cross_table_counts_each_pairing(tmp_path: Path) -> None:
     run.mkdir()
     lines = [json.dumps(record.to_json()) for record in records]
     (run / "episodes.jsonl").write_text("\n".join(lines) + "\n", encoding="utf-8")
-    write_report([run], tmp_path / "report", samples_per_run=0)
+    write_report([run], tmp_path / "report", ReportOptions(samples=0))
     text = (tmp_path / "report" / "report.md").read_text(encoding="utf-8")
     assert "## People and agents" in text and "| human navigator | 100.0 (n=1) |" in text
     assert "human navigator, rule oracle" in text

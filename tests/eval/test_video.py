@@ -10,6 +10,7 @@ from playwright.sync_api import sync_playwright
 
 from tests.eval.runs import evaluate
 from vlln.cli import main
+from vlln.eval.options import ReportOptions
 from vlln.eval.report import write_report
 from vlln.eval.results import read_records
 from vlln.eval.video import VideoConfig, map_images, replay
@@ -63,7 +64,7 @@ def test_vlln_video_writes_an_mp4_of_the_dialog_episode(dialog_run: Path, tmp_pa
 
 
 def test_report_video_plays_in_headless_chromium(dialog_run: Path, tmp_path: Path) -> None:
-    files = write_report([dialog_run], tmp_path, samples_per_run=0, videos_per_run=1)
+    files = write_report([dialog_run], tmp_path, ReportOptions(samples=0, videos=1))
     [video] = [path for path in files if path.suffix == ".mp4"]
     [record] = dialog_first(read_records(dialog_run / "episodes.jsonl"), 1)
     with av.open(str(video)) as container:

@@ -18,7 +18,7 @@ from pydantic_settings import CliPositionalArg, SettingsConfigDict
 from vlln.cluster.options import RayChunkOptions, ServingOptions
 from vlln.config import Config
 from vlln.eval.config import EvalConfig
-from vlln.tasks.metrics import ORACLE_SUCCESS_RADIUS, SUCCESS_RADIUS
+from vlln.eval.options import Radii, ReportOptions
 
 MODEL_FLAGS = (
     "base_url",
@@ -120,15 +120,6 @@ def _by_option_name(agent: str, options: dict[str, Any]) -> dict[str, Any]:
     return {flags.get(names.get(key, key), key): value for key, value in options.items()}
 
 
-class Radii(Config):
-    """The radii that decide success, shared by ``vlln score`` and ``vlln report``."""
-
-    success_radius: float = Field(SUCCESS_RADIUS, gt=0)
-    """success radius in m (the reference's)"""
-    os_radius: float = Field(ORACLE_SUCCESS_RADIUS, gt=0)
-    """oracle-success radius in m (the reference's)"""
-
-
 class ScoreCommand(Radii):
     """``vlln score``: every metric recomputed from run directories."""
 
@@ -138,19 +129,13 @@ class ScoreCommand(Radii):
     """print the summary as JSON"""
 
 
-class ReportCommand(Radii):
+class ReportCommand(ReportOptions):
     """``vlln report``: report.md and report.html of run directories."""
 
     dirs: CliPositionalArg[list[Path]]
     """run directories, compared side by side"""
     out: Path | None = None
     """report directory (none: DIR/report for one run, else ./report)"""
-    samples: int = Field(4, ge=0)
-    """episode maps per run"""
-    videos: int = Field(0, ge=0)
-    """episode videos per run (MP4, needs vlln[video])"""
-    scenes: Path | None = None
-    """folder of scanned scenes (none: the run's --scenes)"""
 
 
 class VideoCommand(Config):

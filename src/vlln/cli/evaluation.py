@@ -121,15 +121,7 @@ def _report(config: ReportCommand) -> int:
 
     dirs = config.dirs
     out = config.out or (dirs[0] / "report" if len(dirs) == 1 else Path("report"))
-    files = write_report(
-        dirs,
-        out,
-        samples_per_run=config.samples,
-        success_radius=config.success_radius,
-        os_radius=config.os_radius,
-        videos_per_run=config.videos,
-        scenes=config.scenes,
-    )
+    files = write_report(dirs, out, config)
     print(f"wrote {len(files)} files to {out}: {out / 'report.md'} and {out / 'report.html'}")
     return 0
 

@@ -28,12 +28,13 @@ from vlln.eval.document import (
 from vlln.eval.episode_map import draw_episode_map
 from vlln.eval.figures import plot_failure_taxonomy, plot_sr_by_budget
 from vlln.eval.health import RunHealth, run_health
+from vlln.eval.options import ReportOptions
 from vlln.eval.pairings import people_section
 from vlln.eval.results import RunDirectory, load_runs
 from vlln.eval.summary import GroupSummary, budget_table, failed_actions_line, summarize_run
 from vlln.files import check_output_folder, replace_folder, write_text_atomic
 from vlln.tasks.aggregate import BudgetSweep, MetricSummary, format_table
-from vlln.tasks.metrics import ORACLE_SUCCESS_RADIUS, SUCCESS_RADIUS
+from vlln.tasks.metrics import SUCCESS_RADIUS
 from vlln.tasks.record import EpisodeRecord
 from vlln.tasks.scenes import scene_house
 from vlln.tasks.taxonomy import CLASS_ABBREVIATIONS, SUCCESS, classify
@@ -57,19 +58,14 @@ class ReportRun:
 
 
 def write_report(
-    run_dirs: Sequence[Path],
-    out: Path,
-    *,
-    samples_per_run: int = 4,
-    success_radius: float = SUCCESS_RADIUS,
-    os_radius: float = ORACLE_SUCCESS_RADIUS,
-    videos_per_run: int = 0,
-    scenes: Path | None = None,
+    run_dirs: Sequence[Path], out: Path, options: ReportOptions | None = None
 ) -> list[Path]:
     """Write report.md, report.html and their PNGs into ``out``, replacing an earlier report
-    there (:func:`vlln.files.replace_folder`); returns the files written.
-    ``videos_per_run`` adds that many episode videos per run (MP4, PyAV needed); ``scenes``
-    is the folder of scanned scenes (default: each run's own ``--scenes``)."""
+    there (:func:`vlln.files.replace_folder`); returns the files written. ``options`` (none:
+    the defaults) say how many episode maps and videos (MP4, PyAV needed) each run gets, the
+    radii, and the folder of scanned scenes (none: each run's own ``--scenes``)."""
+    options = options or ReportOptions()
+    success_radius, os_radius, scenes = options.success_radius, options.os_radius, options.scenes
     if not run_dirs:
         raise ConfigError("give at least one run directory to report on")
     check_output_folder(out)
@@ -84,7 +80,7 @@ def write_report(
 
     def write(folder: Path) -> list[Path]:
         return _write_report(
-            runs, folder, samples_per_run, success_radius, os_radius, videos_per_run
+            runs, folder, options.samples, success_radius, os_radius, options.videos
         )
 
     written = replace_folder(out, write, _is_report_file)

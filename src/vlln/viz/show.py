@@ -56,7 +56,7 @@ def pick_views(sim: Simulator, n_views: int) -> list[View]:
 def show_world(
     seed: int,
     out: Path,
-    n_views: int = 4,
+    n_views: int,
     params: HouseParameters | None = None,
     scene: Path | None = None,
     preset: str | None = None,

@@ -137,7 +137,7 @@ def train_artefact(questions: Sequence[LabelledQuestion], seed: int = 0, digest:
     return buffer.getvalue()
 
 
-def train_packaged(seed: int = 0) -> bytes:
+def train_packaged(seed: int) -> bytes:
     """The artefact of the packaged training sets."""
     return train_artefact(training_questions(), seed, training_digest())
 
