@@ -94,7 +94,7 @@ def make_video(
     out: Path | None,
     episode: str | None,
     budget: int | None,
-    scenes: Path | None = None,
+    scenes: Path | None,
 ) -> tuple[Path, float]:
     """``vlln video``: one episode of ``source`` (named, or the first with dialog); scanned
     scenes come from ``scenes`` or the run's own ``--scenes``."""

@@ -83,12 +83,7 @@ def freeze_startup_objects() -> int:
 
 
 def serve(
-    config: ServiceConfig,
-    host: str = DEFAULT_HOST,
-    port: int = DEFAULT_PORT,
-    *,
-    allow_remote: bool = False,
-    log_level: str = "info",
+    config: ServiceConfig, host: str, port: int, *, allow_remote: bool, log_level: str
 ) -> None:
     """Serve the oracle of ``config`` until interrupted."""
     server = build_server(config, host, port, allow_remote=allow_remote, log_level=log_level)
