@@ -37,11 +37,12 @@ def _episode(sim: Simulator, target: ObjectInstance) -> Episode:
     goals = view_points(sim.grid, target.box)
     x, z = sim.grid.sample_navigable_point(np.random.default_rng(5), sim.grid.largest_component())
     box = target.box
+    qx, qy, qz, qw = yaw_to_quaternion(0.3)
     return Episode(
         episode_id="ablation-test",
         scene_id=f"vlln/{sim.house.name}",
         start_position=(x, 0.0, z),
-        start_rotation=yaw_to_quaternion(0.3),
+        start_rotation=(qx, qy, qz, qw),
         object_category=target.category,
         goals=(
             Goal(
