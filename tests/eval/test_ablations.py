@@ -151,9 +151,12 @@ def test_report_of_runs_differing_in_one_switch_draws_its_ablation_table(
     assert "no-route (question_types=attribute+disambiguation+other, disambiguation=plain)" in text
 
 
-def test_an_old_run_json_reads_with_the_settings_it_was_played_with(
+def test_run_json_replays_the_switches_and_an_old_one_reads_as_it_was_played(
     runs: dict[str, Path],
 ) -> None:
+    replayed = EvalConfig.from_json(_stored(runs["no-route"]), "run.json")
+    assert replayed.question_types == ("attribute", "disambiguation", "other")
+    assert replayed.disambiguation == "plain"
     stored = _stored(runs["plain"])
     for name in ("oracle", "question_types", "disambiguation"):
         del stored[name]
