@@ -83,6 +83,7 @@ def test_plain_and_cues_differ_only_in_disambiguation_answers(
     for oracle in (plain, cues):
         oracle.start(context(sim, target))
     states = _states(sim, 12, seed=9)
+    cued = 0
     for state in states:
         frame = sim.render(state)
         for text in QUESTIONS:
@@ -93,8 +94,10 @@ def test_plain_and_cues_differ_only_in_disambiguation_answers(
                 assert mine.answer in YES + PLAIN_NO, mine.answer
                 if theirs.answer.startswith("Yes"):
                     assert mine.answer == theirs.answer
+                cued += mine.answer != theirs.answer
             else:
                 assert mine.answer == theirs.answer
+    assert cued > 0  # a same-category object in view: cues say how the target differs
 
 
 def test_the_llm_oracle_refuses_a_type_its_model_classifies_as_not_allowed(
