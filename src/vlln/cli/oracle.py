@@ -46,6 +46,38 @@ def _oracle_classify_report(args: argparse.Namespace) -> int:
     return 0
 
 
+def _oracle_classify_cv(args: argparse.Namespace) -> int:
+    from vlln.errors import ConfigError
+    from vlln.oracle.classifier.training import training_sets
+    from vlln.oracle.classifier.validation import grouped_cv, leave_one_out
+
+    sets = training_sets()
+    if args.leave_out not in sets:
+        raise ConfigError(f"--leave-out {args.leave_out!r}: choose one of {sorted(sets)}")
+    if args.folds < 2:
+        raise ConfigError(f"--folds {args.folds}: cross-validation needs at least 2 folds")
+    report = {
+        "grouped_cv": grouped_cv(sets, args.folds, args.seed),
+        "leave_one_out": leave_one_out(sets, args.leave_out, args.seed),
+    }
+    if args.json:
+        print(json.dumps(report, indent=2))
+        return 0
+    cv, out = report["grouped_cv"], report["leave_one_out"]
+    print(
+        f"grouped {cv['folds']}-fold cross-validation over {cv['families']} families of "
+        f"{cv['questions']} questions: type {cv['type_accuracy']:.1%}, "
+        f"type and topic {cv['label_accuracy']:.1%}"
+    )
+    for name, accuracy in cv["type_accuracy_by_set"].items():
+        print(f"  {name}: type {accuracy:.1%}")
+    print(
+        f"trained without {out['test_set']}, tested on its {out['questions']} questions: "
+        f"type {out['type_accuracy']:.1%}, type and topic {out['label_accuracy']:.1%}"
+    )
+    return 0
+
+
 def _oracle_train_classifier(args: argparse.Namespace) -> int:
     from vlln.oracle.classifier.model import load_classifier, packaged_artefact_path
     from vlln.oracle.classifier.training import train_packaged, write_artefact
@@ -96,6 +128,16 @@ def add_oracle_commands(commands: Commands) -> None:
     report.add_argument("--questions", help="a JSON Lines question set (default: held-out set)")
     report.add_argument("--json", action="store_true", help="print the figures as JSON")
     report.set_defaults(handler=_oracle_classify_report)
+    cv = oracle.add_parser(
+        "classify-cv",
+        help="accuracy of the classifier on questions it was not trained on, without a "
+        "held-out file: cross-validation over question families, and one set left out",
+    )
+    cv.add_argument("--folds", type=int, default=5, help="folds (default 5)")
+    cv.add_argument("--seed", type=int, default=0, help="seed of the typo copies (default 0)")
+    cv.add_argument("--leave-out", default="v6", help="training set to test on (default v6)")
+    cv.add_argument("--json", action="store_true", help="print the figures (and misses) as JSON")
+    cv.set_defaults(handler=_oracle_classify_cv)
     train = oracle.add_parser(
         "train-classifier",
         help="fit the offline question classifier on the packaged training questions",
