@@ -11,6 +11,7 @@ from vlln.errors import ConfigError, DataFormatError
 from vlln.oracle.classify import RouteKind
 from vlln.oracle.question_set import (
     PACKAGED_SETS,
+    TRAINING_SETS,
     LabelledQuestion,
     accuracy_of,
     classifier_report,
@@ -88,10 +89,10 @@ def test_the_packaged_train_set_loads_and_unknown_names_are_refused() -> None:
         load_packaged_question_set("test")
 
 
-def test_each_packaged_set_has_its_own_file() -> None:
-    paths = {packaged_question_set_path(name) for name in PACKAGED_SETS}
-    assert len(paths) == len(PACKAGED_SETS)
-    assert all(path.suffix == ".jsonl" for path in paths)
+def test_each_training_set_has_its_own_file() -> None:
+    paths = {packaged_question_set_path(name) for name in TRAINING_SETS}
+    assert len(paths) == len(TRAINING_SETS)
+    assert all(packaged_question_set_path(name).suffix == ".jsonl" for name in PACKAGED_SETS)
 
 
 def test_the_packaged_heldout_set_loads() -> None:

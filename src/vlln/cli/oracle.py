@@ -11,6 +11,7 @@ from vlln.extras import SERVE_PACKAGES, require_extra
 
 if TYPE_CHECKING:
     from vlln.cli.oracle_settings import (
+        ClassifyCvCommand,
         ClassifyReportCommand,
         ServeCommand,
         TrainClassifierCommand,
@@ -27,6 +28,12 @@ def _classify_report_command() -> type[ClassifyReportCommand]:
     from vlln.cli.oracle_settings import ClassifyReportCommand
 
     return ClassifyReportCommand
+
+
+def _classify_cv_command() -> type[ClassifyCvCommand]:
+    from vlln.cli.oracle_settings import ClassifyCvCommand
+
+    return ClassifyCvCommand
 
 
 def _train_classifier_command() -> type[TrainClassifierCommand]:
@@ -76,6 +83,36 @@ def _oracle_classify_report(command: ClassifyReportCommand) -> int:
     return 0
 
 
+def _oracle_classify_cv(command: ClassifyCvCommand) -> int:
+    from vlln.errors import ConfigError
+    from vlln.oracle.classifier.training import training_sets
+    from vlln.oracle.classifier.validation import grouped_cv, leave_one_out
+
+    sets = training_sets()
+    if command.leave_out not in sets:
+        raise ConfigError(f"--leave-out {command.leave_out!r}: choose one of {sorted(sets)}")
+    report = {
+        "grouped_cv": grouped_cv(sets, command.folds, command.seed),
+        "leave_one_out": leave_one_out(sets, command.leave_out, command.seed),
+    }
+    if command.as_json:
+        print(json.dumps(report, indent=2))
+        return 0
+    cv, out = report["grouped_cv"], report["leave_one_out"]
+    print(
+        f"grouped {cv['folds']}-fold cross-validation over {cv['families']} families of "
+        f"{cv['questions']} questions: type {cv['type_accuracy']:.1%}, "
+        f"type and topic {cv['label_accuracy']:.1%}"
+    )
+    for name, accuracy in cv["type_accuracy_by_set"].items():
+        print(f"  {name}: type {accuracy:.1%}")
+    print(
+        f"trained without {out['test_set']}, tested on its {out['questions']} questions: "
+        f"type {out['type_accuracy']:.1%}, type and topic {out['label_accuracy']:.1%}"
+    )
+    return 0
+
+
 def _oracle_train_classifier(command: TrainClassifierCommand) -> int:
     from vlln.oracle.classifier.model import load_classifier, packaged_artefact_path
     from vlln.oracle.classifier.training import train_packaged, write_artefact
@@ -100,6 +137,14 @@ def add_oracle_commands(commands: Commands) -> None:
         _classify_report_command,
         _oracle_classify_report,
         help="accuracy and confusion matrix of the offline classifier",
+    )
+    add_config_command(
+        oracle,
+        "classify-cv",
+        _classify_cv_command,
+        _oracle_classify_cv,
+        help="accuracy of the classifier on questions it was not trained on, without a "
+        "held-out file: cross-validation over question families, and one set left out",
     )
     add_config_command(
         oracle,

@@ -47,3 +47,17 @@ class TrainClassifierCommand(Config):
     """seed of the typo copies"""
     out: Path | None = None
     """where to write it (none: the packaged artefact)"""
+
+
+class ClassifyCvCommand(Config):
+    """``vlln oracle classify-cv``: accuracy on questions the classifier was not trained on,
+    without a held-out file: cross-validation over question families, and one set left out."""
+
+    folds: Annotated[int, Field(ge=2)] = 5
+    """cross-validation folds"""
+    seed: int = 0
+    """seed of the typo copies"""
+    leave_out: str = "v6"
+    """training set to test on, trained on the others"""
+    as_json: Annotated[bool, Field(validation_alias=AliasChoices("json", "as_json"))] = False
+    """print the figures (and misses) as JSON"""

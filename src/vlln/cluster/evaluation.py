@@ -12,7 +12,7 @@ its workers share (:mod:`vlln.cluster.model_server`).
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import partial
 from pathlib import Path
 from typing import Any
@@ -35,7 +35,6 @@ from vlln.errors import ConfigError
 from vlln.eval.config import EvalConfig
 from vlln.eval.play import OracleFactory, Played, WorkItem, by_episode, play_in_order
 from vlln.eval.runner import Commit, RunOutcome, evaluate
-from vlln.oracle.rule_oracle import RuleOracle
 from vlln.tasks.scenes import SceneCache
 
 _worker_scenes: SceneCache | None = None  # one per worker process, kept between its chunks
@@ -93,7 +92,7 @@ class RayExecutor:
     serving: ServingOptions | None = None
     on_model_stats: Callable[[list[ServerStats]], None] | None = None
     label: str = "on Ray"
-    oracle_factory: OracleFactory = field(default=RuleOracle)
+    oracle_factory: OracleFactory | None = None  # None: the run's oracle settings
 
     def check(self, config: EvalConfig) -> None:
         if served_model(config) is None:  # checks a served model's options without loading it

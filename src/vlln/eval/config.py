@@ -9,9 +9,10 @@ part of the run.
 
 from __future__ import annotations
 
+import dataclasses
 import re
 from pathlib import Path
-from typing import Annotated, Any, ClassVar, Self
+from typing import Annotated, Any, ClassVar, Literal, Self
 
 from pydantic import (
     AfterValidator,
@@ -28,6 +29,15 @@ from vlln.config import Config
 from vlln.errors import ConfigError
 from vlln.eval.run_dir import RUN_FACTS
 from vlln.eval.sharding import Shard
+from vlln.oracle.llm.openai_client import OpenAISettings
+from vlln.oracle.rule_oracle import ALL_QUESTION_TYPES
+from vlln.oracle.settings import (
+    Disambiguation,
+    OracleBackend,
+    OracleSettings,
+    parse_question_types,
+)
+from vlln.tasks.oracle_protocol import QuestionType
 from vlln.tasks.spec import MAX_DIALOG_BUDGET, TaskType
 from vlln.tasks.splits import SPLIT_SIZES, SPLITS
 from vlln.tasks.test_protocol import TEST_PROTOCOL_EPISODES, TEST_PROTOCOL_SPLIT, source_split
@@ -71,10 +81,34 @@ def by_task(values: dict[str, Any]) -> tuple[int, ...]:  # named in --help
     return default_budgets(task) if task else (DEFAULT_DIALOG_BUDGET,)
 
 
+def _question_types(value: Any) -> Any:
+    """Question types as given: ``"attribute,route"`` or a list of names."""
+    if isinstance(value, list | tuple):
+        value = ",".join(str(part) for part in value)
+    if isinstance(value, str):
+        return tuple(kind.value for kind in parse_question_types(value))
+    return value
+
+
+def _some_types(types: tuple[str, ...]) -> tuple[str, ...]:
+    if not types:
+        raise ConfigError(
+            "give at least one question type (attribute, route, disambiguation, other); "
+            "for no dialog at all use --budgets 0"
+        )
+    return types
+
+
 # NoDecode: the command line's text reaches the validators as written ("0-5", "1/4").
 Budgets = Annotated[tuple[int, ...], NoDecode, BeforeValidator(_budgets)]
 ShardSetting = Annotated[Shard, NoDecode, PlainSerializer(str), BeforeValidator(_shard)]
 AbsolutePath = Annotated[str | None, AfterValidator(_absolute)]
+QuestionTypes = Annotated[
+    tuple[str, ...],
+    NoDecode,
+    BeforeValidator(_question_types),
+    AfterValidator(_some_types),
+]
 
 
 class EvalConfig(Config):
@@ -122,6 +156,21 @@ class EvalConfig(Config):
     (demo, fast tests)"""
     scenes: AbsolutePath = None
     """folder of scanned scenes (<scenes>/<scene>/) the episode file names"""
+    oracle: Literal["rules", "llm"] = "rules"
+    """who answers questions: rules (offline) or llm (the paper's language-model oracle over
+    an OpenAI-compatible server; needs --oracle-model)"""
+    oracle_model: str | None = None
+    """--oracle llm: the served model's name, e.g. gpt-4o"""
+    oracle_base_url: str | None = None
+    """--oracle llm: the server, e.g. http://localhost:8000/v1 (none: OpenAI's)"""
+    oracle_api_key_env: str | None = None
+    """--oracle llm: the variable holding the API key, never stored (none: OPENAI_API_KEY)"""
+    question_types: QuestionTypes = tuple(kind.value for kind in ALL_QUESTION_TYPES)
+    """question types the oracle answers, e.g. attribute,route (others get the refusal and
+    cost their turn)"""
+    disambiguation: Literal["plain", "cues"] = "plain"
+    """answers to "is this the one?": plain (yes or no, the paper's) or cues (a no says how
+    the target differs)"""
 
     @model_validator(mode="before")
     @classmethod
@@ -174,7 +223,33 @@ class EvalConfig(Config):
 
         self._fill("detector", resolve_detector(self.agent, self.detector))
         preset(self.preset)
+        self.oracle_settings()
         return self
+
+    def oracle_settings(self) -> OracleSettings:
+        """The run's oracle (:mod:`vlln.oracle.settings`); the llm flags need --oracle llm."""
+        llm = None
+        if self.oracle == OracleBackend.LLM.value:
+            if not self.oracle_model:
+                raise ConfigError("--oracle llm needs --oracle-model, the served model's name")
+            defaults = OpenAISettings(model=self.oracle_model)
+            llm = dataclasses.replace(
+                defaults,
+                base_url=self.oracle_base_url or defaults.base_url,
+                api_key_env=self.oracle_api_key_env or defaults.api_key_env,
+            )
+        else:
+            extra = [
+                name
+                for name in ("oracle_model", "oracle_base_url", "oracle_api_key_env")
+                if getattr(self, name) is not None
+            ]
+            if extra:
+                flag = "--" + extra[0].replace("_", "-")
+                raise ConfigError(f"{flag} applies to --oracle llm; add --oracle llm or drop it")
+        types = tuple(QuestionType(name) for name in self.question_types)
+        backend, disambiguation = OracleBackend(self.oracle), Disambiguation(self.disambiguation)
+        return OracleSettings(backend, llm, types, disambiguation)
 
     def _fill(self, name: str, value: Any) -> None:
         """Set a setting that its default leaves to the others (the model is frozen)."""
@@ -183,9 +258,9 @@ class EvalConfig(Config):
     @classmethod
     def from_json(cls, data: Any, where: str) -> Self:
         """Read a ``run.json``; files written before presets existed were played on the
-        ``small`` houses."""
+        ``small`` houses, and before the disambiguation setting existed with cues."""
         if isinstance(data, dict):
-            data = {"preset": SMALL.name, **data}
+            data = {"preset": SMALL.name, "disambiguation": Disambiguation.CUES.value, **data}
         return super().from_json(data, where)
 
     def run_settings(self) -> EvalConfig:

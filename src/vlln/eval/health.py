@@ -49,6 +49,9 @@ class RunHealth:
     refused: int = 0  # planned episode lines refused as unplayable in their scene
     refused_episodes: list[str] = field(default_factory=list)  # "<episode> (<scene>): reason"
     missing_shards: tuple[str, ...] = ()  # shards ("i/n") of the run(s) that were not read
+    # Questions answered with the refusal because the run does not allow their type
+    # (--question-types): by design, not a failure, but every reader should see it.
+    refused_questions: int = 0
 
     @property
     def complete(self) -> bool:
@@ -89,6 +92,8 @@ class RunHealth:
             more = len(self.refused_episodes) - _EXAMPLES
             named += f"; {more} more" if more > 0 else ""
             parts.append(f"refused episodes {len(self.refused_episodes)} ({named})")
+        if self.refused_questions:
+            parts.append(f"questions refused for their type {self.refused_questions}")
         if self.skipped:
             counts = ", ".join(f"{kind} {count}" for kind, count in self.skipped.items())
             where = f" ({'; '.join(self.examples)})" if self.examples else ""
@@ -113,6 +118,7 @@ class RunHealth:
             "oracle_backends": list(self.backends),
             "refused_lines": self.refused,
             "refused_episodes": list(self.refused_episodes),
+            "refused_questions": self.refused_questions,
         }
 
 
@@ -153,4 +159,5 @@ def health_of(
         refused=len(refused),
         refused_episodes=list(dict.fromkeys(refusal.describe() for refusal in refused)),
         missing_shards=tuple(missing_shards),
+        refused_questions=sum(turn.type_refused for record in records for turn in record.dialog),
     )

@@ -29,7 +29,6 @@ from vlln.eval.config import EvalConfig
 from vlln.eval.refusals import Refusal
 from vlln.eval.results import RecordKey
 from vlln.eval.sweep import can_sweep, describe_error, play_sweep
-from vlln.oracle.rule_oracle import RuleOracle
 from vlln.tasks.env import NavigationEnv
 from vlln.tasks.episode import Episode
 from vlln.tasks.oracle_protocol import Oracle
@@ -111,7 +110,7 @@ def play_in_order(
     config: EvalConfig,
     scenes: SceneCache,
     agent_factory: AgentFactory | None = None,
-    oracle_factory: OracleFactory = RuleOracle,
+    oracle_factory: OracleFactory | None = None,
     sweep: bool = True,
 ) -> Iterator[list[Played]]:
     """What each episode of ``items`` came to (its budgets' records, or their refusals), one
@@ -119,6 +118,8 @@ def play_in_order(
     house's simulator is closed when the scene changes and memory stays that of one house."""
     if agent_factory is None:
         agent_factory = partial(make_agent, options=config.agent_options)
+    if oracle_factory is None:
+        oracle_factory = config.oracle_settings().make
     task = TaskType.parse(config.task)
     scene: str | None = None
     for group in by_episode(items):

@@ -1,6 +1,8 @@
 """``vlln report``: one or more run directories as report.md and report.html with PNG figures.
 
-Contents: the runs compared side by side in one metric table (radii stated), SR against dialog
+Contents: the runs compared side by side in one metric table (radii stated), each named by
+the ablation switches in which the runs differ, an ablation table when they differ in exactly
+one (:mod:`vlln.eval.ablation`), SR against dialog
 budget (when a run swept budgets), the failure taxonomy as bars, and top-down maps of sample
 episodes (a scanned scene is read from the folder the run was made with, or ``scenes``).
 Every number is recomputed from the episode lines (:mod:`vlln.eval.summary`), never
@@ -15,6 +17,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from vlln.errors import ConfigError, VllnError
+from vlln.eval.ablation import ablation_section, differing_switches, switch_label
 from vlln.eval.document import (
     Block,
     Heading,
@@ -70,17 +73,22 @@ def write_report(
         raise ConfigError("give at least one run directory to report on")
     check_output_folder(out)
     labels = _labels(run_dirs)
+    configs = [RunDirectory(path).stored_config() if path.is_dir() else None for path in run_dirs]
+    switches = differing_switches(configs)
     runs = []
-    for label, path in zip(labels, run_dirs, strict=True):
+    for label, path, config in zip(labels, run_dirs, configs, strict=True):
         contents = load_runs([path])
         records = contents.records
         groups = summarize_run(records, success_radius, os_radius)
         where = str(scenes) if scenes is not None else RunDirectory(path).stored_scenes()
+        named = switch_label(config, switches)
+        label = f"{label} ({named})" if named else label
         runs.append(ReportRun(label, path, records, groups, run_health(contents), where))
+    ablated = switches[0] if len(switches) == 1 else None
 
     def write(folder: Path) -> list[Path]:
         return _write_report(
-            runs, folder, options.samples, success_radius, os_radius, options.videos
+            runs, folder, options.samples, success_radius, os_radius, options.videos, ablated
         )
 
     written = replace_folder(out, write, _is_report_file)
@@ -98,11 +106,14 @@ def _write_report(
     success_radius: float,
     os_radius: float,
     videos_per_run: int,
+    ablated: str | None = None,
 ) -> list[Path]:
     written: list[Path] = []
     blocks: list[Block] = [Heading(1, "Evaluation report")]
     blocks += _runs_section(runs)
     blocks += _metrics_section(runs, success_radius, os_radius)
+    if ablated is not None:
+        blocks += ablation_section(ablated, [(run.label, run.groups) for run in runs])
     blocks += _budget_section(runs, out, written)
     blocks += _taxonomy_section(runs, out, written)
     every_record = [record for run in runs for record in run.records]
@@ -119,7 +130,8 @@ def _write_report(
 
 
 def _labels(run_dirs: Sequence[Path]) -> list[str]:
-    """Directory names, or full paths when two runs share a name."""
+    """Directory names, or full paths when two runs share a name; a row adds the switches
+    in which the runs differ (:mod:`vlln.eval.ablation`)."""
     names = [path.name or str(path) for path in run_dirs]
     return names if len(set(names)) == len(names) else [str(path) for path in run_dirs]
 

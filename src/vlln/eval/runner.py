@@ -67,8 +67,9 @@ class Executor(Protocol):
         """How the progress bar names where it plays ("" for this process)."""
 
     @property
-    def oracle_factory(self) -> OracleFactory:
-        """Who answers the agent's questions (named in run.json's provenance)."""
+    def oracle_factory(self) -> OracleFactory | None:
+        """Who answers the agent's questions (named in run.json's provenance); None: the
+        run's oracle settings (:meth:`EvalConfig.oracle_settings`)."""
 
     def check(self, config: EvalConfig) -> None:
         """Fail in one line before any work (the agent cannot be made, no cluster)."""
@@ -83,11 +84,12 @@ class LocalExecutor:
     """Plays in this process, one episode after the other. ``scenes`` shares simulators
     between calls (it is then not closed here); ``sweep`` plays an episode's budgets together
     by prefix sharing where the agent allows it (the same records, in less time);
-    ``agent_factory`` defaults to the registry with the run's agent options."""
+    ``agent_factory`` defaults to the registry with the run's agent options, ``oracle_factory``
+    to the run's oracle settings."""
 
     scenes: SceneCache | None = None
     agent_factory: AgentFactory | None = None
-    oracle_factory: OracleFactory = RuleOracle
+    oracle_factory: OracleFactory | None = None
     sweep: bool = True
     label: str = ""
 
@@ -221,7 +223,7 @@ def run_evaluation(
     stop_after: int | None = None,
     progress: bool = True,
     agent_factory: AgentFactory | None = None,
-    oracle_factory: OracleFactory = RuleOracle,
+    oracle_factory: OracleFactory | None = None,
     scenes: SceneCache | None = None,
     sweep: bool = True,
     provenance: dict[str, str | None] | None = None,
@@ -334,15 +336,22 @@ def finish_run(
     return RunOutcome(out, planned, played, seconds, records, summary, health, repaired)
 
 
-def default_provenance(config: EvalConfig, oracle_factory: OracleFactory) -> dict[str, str | None]:
+def default_provenance(
+    config: EvalConfig, oracle_factory: OracleFactory | None
+) -> dict[str, str | None]:
     """Who played and who answered: the agent, and the oracle when any budget has dialog."""
     dialog = any(budget > 0 for budget in config.budgets)
-    oracle = getattr(oracle_factory, "__name__", type(oracle_factory).__name__)
-    rules = oracle_factory is RuleOracle
+    backend: str | None
+    if oracle_factory is None:
+        settings = config.oracle_settings()
+        oracle, backend = settings.oracle_name, settings.backend_name
+    else:
+        oracle = getattr(oracle_factory, "__name__", type(oracle_factory).__name__)
+        backend = "rules" if oracle_factory is RuleOracle else None
     return {
         "agent": config.agent,
         "oracle": (oracle if dialog else "none"),
-        "backend": ("rules" if rules else None) if dialog else "none",
+        "backend": backend if dialog else "none",
         "model": config.agent_options.get("model"),
     }
 

@@ -14,10 +14,13 @@ both parts are made exact, on the instance-id image of the asker's current frame
   region's edge while something else fills the middle.
 * *Within 3 m* is the floor-plan distance from the agent to the target's box.
 
-"Yes" needs both. Otherwise "No"; when the most visible instance of the target's category in
-the centre is another one, the "No" says how the target differs from it ("No, the one I mean
-is red."), and when the target itself is centred but too far, it says how far, so that the
-agent walks closer instead of turning away.
+"Yes" needs both. Otherwise "No". With cues (``cues=True``, an extension of ours), when the
+most visible instance of the target's category in the centre is another one, the "No" says
+how the target differs from it ("No, the one I mean is red."), and when the target itself is
+centred but too far, it says how far, so that the agent walks closer instead of turning away.
+Without cues the answer is yes or no alone, as the paper's oracle answers (docs/evaluation.md,
+Ablations). Both draw the same paraphrases in the same order, so the other answers of an
+episode are worded alike whichever is chosen.
 """
 
 from __future__ import annotations
@@ -44,7 +47,13 @@ def centre_counts(instance_ids: np.ndarray) -> dict[int, int]:
     return dict(zip(ids.tolist(), counts.tolist(), strict=True))
 
 
-def answer_disambiguation(knowledge: EpisodeKnowledge, state: AgentState, frame: Frame) -> str:
+PLAIN_NO = ("No.", "No, that is not the one.", "No, it is not this one.")
+
+
+def answer_disambiguation(
+    knowledge: EpisodeKnowledge, state: AgentState, frame: Frame, cues: bool = True
+) -> str:
+    """Yes or no to "is this the one?"; with ``cues`` a no says why (module doc)."""
     target = knowledge.target
     index = knowledge.index
     rng = knowledge.rng
@@ -57,15 +66,17 @@ def answer_disambiguation(knowledge: EpisodeKnowledge, state: AgentState, frame:
         distance = knowledge.plan_distance(x, z)
         if distance <= DISAMBIGUATION_RANGE:
             return choose(rng, ("Yes.", "Yes, that is the one.", "Yes, this is it."))
+        if not cues:
+            return "No."
         return f"No, not from here: you are still about {round(distance)} meters from it."
-    if candidate is not None and candidate != target.id:
+    if cues and candidate is not None and candidate != target.id:
         predicate = distinguishing_predicate(knowledge, index.instances[candidate])
         if predicate is not None:
             return choose(
                 rng,
                 (f"No, the one I mean {predicate}.", f"No. The one I am thinking of {predicate}."),
             )
-    return choose(rng, ("No.", "No, that is not the one.", "No, it is not this one."))
+    return choose(rng, PLAIN_NO)
 
 
 def most_visible_of(

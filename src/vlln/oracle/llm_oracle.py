@@ -4,7 +4,10 @@ Per question the model is called at most twice: once with the paper's prompt 1 t
 it, and once with prompt 2, 3 or 4 to word the answer from ground-truth facts that the rule
 oracle's logic computes (the target's metadata, the heading, the next 4 m of path, the next
 step, whether the target is in view), together with the rule oracle's own answer to reword.
-Disambiguation stays deterministic and needs no second call, as in the paper.
+Disambiguation stays deterministic and needs no second call, as in the paper. The rule
+oracle's settings hold here too: a question the model classifies as a type the rule oracle
+does not allow gets its refusal, without a second call; disambiguation gives cues only when
+the rule oracle does.
 
 Failures never stop an episode: a classification reply that names no type is replaced by the
 offline classifier's type, and a call that fails after the client's retries is replaced by
@@ -39,7 +42,7 @@ from vlln.oracle.llm.protocol import (
     LanguageModelUnavailableError,
     Message,
 )
-from vlln.oracle.rule_oracle import RuleOracle
+from vlln.oracle.rule_oracle import TYPE_REFUSAL, RuleOracle
 from vlln.tasks.oracle_protocol import EpisodeContext, Question, QuestionType, Reply
 
 logger = logging.getLogger(__name__)
@@ -120,19 +123,23 @@ class LLMOracle:
         offline = self.fallback.answer(question)
         spend = _Spend()
         kind = self._classify(question.text, offline.question_type, spend)
+        refused = False
         if spend.unavailable:  # the server is down: do not wait out its retries twice
-            kind, text = offline.question_type, offline.answer
+            kind, text, refused = offline.question_type, offline.answer, offline.type_refused
+        elif kind not in self.fallback.question_types:
+            text, refused = TYPE_REFUSAL, True
         elif kind == QuestionType.DISAMBIGUATION:
             if offline.question_type == kind:
                 text = offline.answer
             else:
-                text = answer_disambiguation(knowledge, question.state, question.frame)
+                cues = self.fallback.cues
+                text = answer_disambiguation(knowledge, question.state, question.frame, cues)
         else:
             reference = offline.answer if offline.question_type == kind else None
             messages = _answer_messages(knowledge, kind, question, reference)
             worded = self._call(messages, spend)
             if worded is None:
-                kind, text = offline.question_type, offline.answer
+                kind, text, refused = offline.question_type, offline.answer, offline.type_refused
             else:
                 text = worded
         return Reply(
@@ -143,6 +150,7 @@ class LLMOracle:
             prompt_tokens=spend.prompt_tokens,
             completion_tokens=spend.completion_tokens,
             fallback=spend.fallback,
+            type_refused=refused,
         )
 
     def _classify(self, text: str, offline: QuestionType, spend: _Spend) -> QuestionType:

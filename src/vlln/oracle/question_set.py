@@ -1,10 +1,12 @@
 """Labelled navigator questions, and how well the offline classifier types them.
 
 The classifier is learned (:mod:`vlln.oracle.classifier`), so its accuracy means something
-only on questions it was not trained on. Three sets ship with the package: ``train`` (navigator
-questions) and ``extra`` (questions written from templates: every topic, typos, chat
-spellings, word orders) are what it is trained on; ``heldout`` is written separately and
-frozen, only ever measured, never trained on. All are JSON Lines, one question a line::
+only on questions it was not trained on. It is trained on ``train`` (navigator questions),
+``extra`` (questions written for training: every topic, typos, chat spellings, word orders),
+``v6`` (a former held-out set, tuned on and so trained on since) and ``generated`` (written
+from templates by :mod:`vlln.oracle.classifier.generator`, reproducible from a seed);
+``heldout`` is written separately and frozen, only ever measured. All are JSON Lines, one
+question a line::
 
     {"question": "Which way is the sofa?", "type": "route", "route_kind": "orientation"}
     {"question": "What colour is it?", "type": "attribute", "topic": "color"}
@@ -28,13 +30,15 @@ from vlln.oracle.classify import analyse_question, classify_question
 from vlln.oracle.topics import AttributeTopic, OtherTopic, RouteKind, Topic, label_of
 from vlln.tasks.oracle_protocol import QuestionType
 
-PACKAGED_SETS = ("train", "extra", "heldout")
-TRAINING_SETS = ("train", "extra")
+PACKAGED_SETS = ("train", "extra", "v6", "generated", "heldout")
+TRAINING_SETS = ("train", "extra", "v6", "generated")
 # A held-out set stops being held out once the classifier is trained on it or tuned on its
 # errors; each replacement is a new file, written without looking at the classifier.
 _PACKAGED_FILES = {
     "train": "questions_train.jsonl",
     "extra": "questions_extra.jsonl",
+    "v6": "questions_heldout_v6.jsonl",
+    "generated": "questions_generated.jsonl",
     "heldout": "questions_heldout_v7.jsonl",
 }
 _FIELDS = frozenset({"question", "type", "route_kind", "topic"})
@@ -63,7 +67,7 @@ class LabelledQuestion:
 
 
 def packaged_question_set_path(name: str) -> Path:
-    """Where the packaged set ``name`` ("train", "extra" or "heldout") lives."""
+    """Where the packaged set ``name`` (one of :data:`PACKAGED_SETS`) lives."""
     if name not in PACKAGED_SETS:
         raise ConfigError(f"unknown question set {name!r}; choose one of {PACKAGED_SETS}")
     resource = files("vlln.oracle").joinpath("data", _PACKAGED_FILES[name])
@@ -71,7 +75,7 @@ def packaged_question_set_path(name: str) -> Path:
 
 
 def load_packaged_question_set(name: str) -> list[LabelledQuestion]:
-    """The packaged set ``name`` ("train", "extra" or "heldout")."""
+    """The packaged set ``name`` (one of :data:`PACKAGED_SETS`)."""
     return load_question_set(packaged_question_set_path(name))
 
 

@@ -18,8 +18,15 @@ from vlln.oracle.answers import answer_attribute, answer_other
 from vlln.oracle.classify import OtherTopic, RouteKind, analysed
 from vlln.oracle.disambiguation import answer_disambiguation
 from vlln.oracle.knowledge import EpisodeKnowledge, HouseIndex
-from vlln.oracle.route import answer_orientation, answer_path, answer_step
+from vlln.oracle.route import CANNOT_ANSWER, answer_orientation, answer_path, answer_step
 from vlln.tasks.oracle_protocol import EpisodeContext, Question, QuestionType, Reply
+
+ALL_QUESTION_TYPES: tuple[QuestionType, ...] = tuple(QuestionType)
+
+TYPE_REFUSAL = CANNOT_ANSWER
+"""The answer to a question of a type the run does not allow. The paper gives no wording for
+its question-type ablation; this is its oracle's default answer to a question it cannot
+answer ("Sorry, I cannot answer your question now.", paper supplementary, NPC logic "Other")."""
 
 
 def reads_view(text: str) -> bool:
@@ -37,18 +44,29 @@ class RuleOracle:
     """Answers Attribute, Route, Disambiguation and Other questions by rules.
 
     ``seed`` picks the paraphrases; ``goal_radius`` is where the follower says "you are
-    there" (the benchmark's 0.25 m success radius).
+    there" (the benchmark's 0.25 m success radius). A question of a type not in
+    ``question_types`` gets :data:`TYPE_REFUSAL` (its turn is still spent); ``cues`` lets a
+    disambiguation "no" say how the target differs (False: yes or no only, the paper's).
     """
 
     snapshottable = True  # copy.deepcopy gives an independent oracle (vlln.eval.sweep)
 
-    def __init__(self, seed: int = 0, goal_radius: float = 0.25) -> None:
+    def __init__(
+        self,
+        seed: int = 0,
+        goal_radius: float = 0.25,
+        *,
+        question_types: tuple[QuestionType, ...] = ALL_QUESTION_TYPES,
+        cues: bool = True,
+    ) -> None:
         if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
             raise ConfigError(f"seed must be a whole number >= 0, got {seed!r}")
         if not goal_radius > 0.0:
             raise ConfigError(f"goal_radius must be positive metres, got {goal_radius!r}")
         self.seed = seed
         self.goal_radius = float(goal_radius)
+        self.question_types = frozenset(question_types)
+        self.cues = cues
         self._index: HouseIndex | None = None
         self._knowledge: EpisodeKnowledge | None = None
 
@@ -75,10 +93,12 @@ class RuleOracle:
         analysis = analysed(question.text)
         state = question.state
         kind = analysis.question_type
+        if kind not in self.question_types:
+            return Reply(TYPE_REFUSAL, kind, type_refused=True)
         if kind == QuestionType.ATTRIBUTE:
             text = answer_attribute(knowledge, analysis, state)
         elif kind == QuestionType.DISAMBIGUATION:
-            text = answer_disambiguation(knowledge, state, question.frame)
+            text = answer_disambiguation(knowledge, state, question.frame, self.cues)
         elif kind == QuestionType.ROUTE:
             if analysis.route_kind == RouteKind.ORIENTATION:
                 text = answer_orientation(knowledge, state)

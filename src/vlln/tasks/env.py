@@ -307,6 +307,7 @@ class NavigationEnv:
                 prompt_tokens=reply.prompt_tokens,
                 completion_tokens=reply.completion_tokens,
                 fallback=reply.fallback,
+                type_refused=reply.type_refused,
             )
             self._questions_answered += 1
         self._answer = turn.answer

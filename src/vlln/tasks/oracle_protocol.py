@@ -42,7 +42,8 @@ class Question:
 @dataclass(frozen=True)
 class Reply:
     """An answer and how it was made: by which backend, how long the model took, the tokens
-    it spent, and whether offline logic stood in for a model call that failed."""
+    it spent, whether offline logic stood in for a model call that failed, and whether the
+    question was refused for its type (the run does not allow questions of that type)."""
 
     answer: str
     question_type: QuestionType
@@ -51,6 +52,7 @@ class Reply:
     prompt_tokens: int = 0
     completion_tokens: int = 0
     fallback: bool = False
+    type_refused: bool = False
 
 
 class Oracle(Protocol):

@@ -48,6 +48,9 @@ class DialogTurn:
     prompt_tokens: int = 0
     completion_tokens: int = 0
     fallback: bool = False  # offline logic stood in for a failed model call
+    # The run does not allow questions of this type: answered with the refusal, turn spent
+    # (written only when true).
+    type_refused: bool = False
 
 
 MAX_STORED_OUTPUT_CHARS = 2048  # of a model's raw output, per call
@@ -132,6 +135,9 @@ class EpisodeRecord:
         for name in _OMITTED_WHEN_NONE:
             if data[name] is None:
                 del data[name]
+        for turn in data["dialog"]:
+            if not turn["type_refused"]:
+                del turn["type_refused"]
         for call in data["model_calls"]:  # written only when something was cut
             if not call["truncated_chars"]:
                 del call["truncated_chars"]

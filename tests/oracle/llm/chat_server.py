@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 import threading
 import time
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
@@ -43,11 +43,13 @@ def completion(text: str, prompt_tokens: int = 7, completion_tokens: int = 3) ->
 
 @dataclass
 class ChatServer:
-    """Answers POSTs with the script in order, repeating its last entry; records requests."""
+    """Answers POSTs with the script in order, repeating its last entry, or with what
+    ``respond`` makes of each request; records requests."""
 
     script: list[Scripted]
     port: int = 0
     requests: list[dict[str, Any]] = field(default_factory=list)
+    respond: Callable[[dict[str, Any]], Scripted] | None = None
     _lock: threading.Lock = field(default_factory=threading.Lock)
 
     @property
@@ -58,7 +60,7 @@ class ChatServer:
         with self._lock:
             index = min(len(self.requests), len(self.script) - 1)
             self.requests.append(record)
-            return self.script[index]
+            return self.respond(record) if self.respond is not None else self.script[index]
 
 
 def _handler(server: ChatServer) -> type[BaseHTTPRequestHandler]:
@@ -115,9 +117,11 @@ class _QuietServer(ThreadingHTTPServer):
 
 
 @contextmanager
-def chat_server(script: list[Scripted]) -> Iterator[ChatServer]:
+def chat_server(
+    script: list[Scripted], respond: Callable[[dict[str, Any]], Scripted] | None = None
+) -> Iterator[ChatServer]:
     """A running server for the ``with`` block, on a free loopback port."""
-    server = ChatServer(script)
+    server = ChatServer(script, respond=respond)
     httpd = _QuietServer(("127.0.0.1", 0), _handler(server))
     server.port = httpd.server_address[1]
     thread = threading.Thread(target=httpd.serve_forever, kwargs={"poll_interval": 0.05})

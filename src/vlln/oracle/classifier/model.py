@@ -114,9 +114,18 @@ def load_classifier(path: Path) -> QuestionClassifier:
     """Read an artefact; raises :class:`DataFormatError` (one line, naming the fix) when it is
     missing, damaged or of another format."""
     try:
-        raw = json.loads(gzip.decompress(path.read_bytes()))
+        data = path.read_bytes()
     except FileNotFoundError as error:
         raise DataFormatError(f"the question classifier {path} is missing; {RETRAIN}") from error
+    except OSError as error:
+        raise DataFormatError(f"cannot read the question classifier {path}: {error}") from error
+    return classifier_from_bytes(data, path)
+
+
+def classifier_from_bytes(data: bytes, path: Path | str = "in memory") -> QuestionClassifier:
+    """An artefact's classifier from its bytes (``path`` names it in errors)."""
+    try:
+        raw = json.loads(gzip.decompress(data))
     except (OSError, EOFError, zlib.error, ValueError) as error:
         raise DataFormatError(
             f"the question classifier {path} is damaged ({error}); {RETRAIN}"

@@ -1,7 +1,9 @@
 """Fitting the question classifier from the packaged labelled questions.
 
-Training reads the ``train`` and ``extra`` sets, less any question that reads the same as one
-of ``heldout`` (which is only measured), adds to each question
+Training reads the training sets (:data:`~vlln.oracle.question_set.TRAINING_SETS`), less any
+question that reads the same as one of ``heldout`` (which is only measured; while the held-out
+file is itself a training set, as ``v6`` is until its successor lands, only the other sets
+give way), adds to each question
 :data:`TYPO_COPIES` copies with random one-letter slips (a letter dropped, doubled, swapped
 with its neighbour or replaced), so that the character n-grams learn what typing errors look
 like, and fits a linear support-vector classifier on TF-IDF features of word 1-2-grams and
@@ -52,23 +54,30 @@ def training_digest() -> str:
     return digest.hexdigest()
 
 
-def training_questions() -> list[LabelledQuestion]:
-    """Every packaged training question but those that read the same as a held-out one (so
-    that the held-out set stays unseen); raises when one lacks the topic training needs."""
+def training_sets() -> dict[str, list[LabelledQuestion]]:
+    """Each packaged training set's questions, less those that read the same as a held-out
+    one (so that the held-out set stays unseen) unless the set is the held-out file itself;
+    raises when one lacks the topic training needs."""
+    heldout_path = packaged_question_set_path("heldout")
     heldout = {prepared(q.question) for q in load_packaged_question_set("heldout")}
-    questions = [
-        q
-        for name in TRAINING_SETS
-        for q in load_packaged_question_set(name)
-        if prepared(q.question) not in heldout
-    ]
-    unlabelled = next((q for q in questions if q.label is None), None)
-    if unlabelled is not None:
-        raise DataFormatError(
-            f"training question {unlabelled.question!r} has no 'topic'; give every attribute "
-            "and other question of the training sets a topic"
-        )
-    return questions
+    sets = {}
+    for name in TRAINING_SETS:
+        questions = load_packaged_question_set(name)
+        if packaged_question_set_path(name) != heldout_path:
+            questions = [q for q in questions if prepared(q.question) not in heldout]
+        unlabelled = next((q for q in questions if q.label is None), None)
+        if unlabelled is not None:
+            raise DataFormatError(
+                f"training question {unlabelled.question!r} of set {name!r} has no 'topic'; "
+                "give every attribute and other question of the training sets a topic"
+            )
+        sets[name] = questions
+    return sets
+
+
+def training_questions() -> list[LabelledQuestion]:
+    """Every question of :func:`training_sets`, one list."""
+    return [q for questions in training_sets().values() for q in questions]
 
 
 def with_typo(text: str, rng: np.random.Generator) -> str:
@@ -110,7 +119,7 @@ def train_artefact(questions: Sequence[LabelledQuestion], seed: int = 0, digest:
             labels.append(label)
     vectorisers = {name: vectoriser(name, min_df=MIN_COUNT) for name in FEATURE_SETS}
     features = scipy.sparse.hstack([v.fit_transform(texts) for v in vectorisers.values()])
-    model = LinearSVC(C=REGULARISATION, random_state=seed)
+    model = linear_model(seed)
     model.fit(features.tocsr(), labels)
     order = [list(model.classes_).index(label) for label in LABELS if label in model.classes_]
     artefact: dict[str, Any] = {
@@ -135,6 +144,11 @@ def train_artefact(questions: Sequence[LabelledQuestion], seed: int = 0, digest:
     with gzip.GzipFile(filename="", mode="wb", fileobj=buffer, mtime=0, compresslevel=9) as out:
         out.write(text.encode("utf-8"))
     return buffer.getvalue()
+
+
+def linear_model(seed: int) -> LinearSVC:
+    """The unfitted linear classifier."""
+    return LinearSVC(C=REGULARISATION, random_state=seed)
 
 
 def train_packaged(seed: int) -> bytes:

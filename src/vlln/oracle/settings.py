@@ -1,0 +1,100 @@
+"""Which oracle answers and what it may answer: the settings of the paper's oracle ablations.
+
+* ``backend``: the rule oracle, or the paper's language-model oracle over an
+  OpenAI-compatible server (the oracle-backbone ablation, paper supplementary).
+* ``question_types``: the types answered; a question of another type gets
+  :data:`vlln.oracle.rule_oracle.TYPE_REFUSAL` and still costs its turn (the question-type
+  ablation).
+* ``disambiguation``: ``plain`` answers "is this the one?" with yes or no only, as the
+  paper's oracle does; ``cues`` adds how the target differs from the object in view.
+
+The API key is never part of the settings: only the name of the variable that holds it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from enum import StrEnum
+
+import httpx
+import numpy as np
+
+from vlln.errors import ConfigError
+from vlln.oracle.llm.openai_client import OpenAIChatClient, OpenAISettings
+from vlln.oracle.llm_oracle import LLMOracle
+from vlln.oracle.rule_oracle import ALL_QUESTION_TYPES, RuleOracle
+from vlln.tasks.oracle_protocol import Oracle, QuestionType
+
+
+class OracleBackend(StrEnum):
+    """Who words the answers."""
+
+    RULES = "rules"  # the offline rule oracle
+    LLM = "llm"  # a language model over an OpenAI-compatible server
+
+
+class Disambiguation(StrEnum):
+    """How "is this the one?" is answered."""
+
+    PLAIN = "plain"  # yes or no, the paper's oracle
+    CUES = "cues"  # a "no" also says how the target differs ("No, the one I mean is red.")
+
+
+def parse_question_types(text: str) -> tuple[QuestionType, ...]:
+    """``"attribute,route"`` -> the types in their canonical order; unknown names refused."""
+    names = [part.strip().lower() for part in text.split(",") if part.strip()]
+    known = {kind.value: kind for kind in QuestionType}
+    unknown = [name for name in names if name not in known]
+    if unknown:
+        raise ConfigError(
+            f"unknown question type {unknown[0]!r}; choose from {', '.join(known)} "
+            "(comma-separated, e.g. attribute,route)"
+        )
+    return tuple(kind for kind in QuestionType if kind.value in names)
+
+
+@dataclass(frozen=True)
+class OracleSettings:
+    """The oracle of a run: its backend (``llm`` needs ``llm``, the server's settings), the
+    question types it answers, and how it answers disambiguation questions."""
+
+    backend: OracleBackend = OracleBackend.RULES
+    llm: OpenAISettings | None = None
+    question_types: tuple[QuestionType, ...] = ALL_QUESTION_TYPES
+    disambiguation: Disambiguation = Disambiguation.CUES
+
+    def __post_init__(self) -> None:
+        if (self.backend == OracleBackend.LLM) != (self.llm is not None):
+            raise ConfigError(
+                "the llm oracle needs its server's settings (--oracle-model), and only it "
+                "takes them; pass --oracle llm with --oracle-model, or neither"
+            )
+
+    @property
+    def oracle_name(self) -> str:
+        """The class that answers, as run.json's provenance names it."""
+        return "LLMOracle" if self.llm is not None else "RuleOracle"
+
+    @property
+    def backend_name(self) -> str:
+        """How records name the backend: ``rules`` or ``openai:<model>@<host>``."""
+        if self.llm is None:
+            return OracleBackend.RULES.value
+        return llm_backend_name(self.llm)
+
+    def make(self, seed: int) -> Oracle:
+        """A fresh oracle for one episode, seeded (paraphrases, the client's back-off)."""
+        rules = RuleOracle(seed, question_types=self.question_types, cues=self.cues)
+        if self.llm is None:
+            return rules
+        client = OpenAIChatClient(self.llm, rng=np.random.default_rng(seed))
+        return LLMOracle(client, seed, rules)
+
+    @property
+    def cues(self) -> bool:
+        return self.disambiguation == Disambiguation.CUES
+
+
+def llm_backend_name(settings: OpenAISettings) -> str:
+    """The backend name the client gives its replies, without making a client."""
+    return f"openai:{settings.model}@{httpx.URL(settings.base_url).host}"
