@@ -10,6 +10,7 @@ from typing import Annotated
 from pydantic import AliasChoices, Field
 
 from vlln.config import Config
+from vlln.oracle.classifier.validation import FOLDS
 from vlln.oracle_service.config import DEFAULT_HOST, DEFAULT_PORT, ServiceLimits
 
 
@@ -53,7 +54,7 @@ class ClassifyCvCommand(Config):
     """``vlln oracle classify-cv``: accuracy on questions the classifier was not trained on,
     without a held-out file: cross-validation over question families, and one set left out."""
 
-    folds: Annotated[int, Field(ge=2)] = 5
+    folds: Annotated[int, Field(ge=2)] = FOLDS
     """cross-validation folds"""
     seed: int = 0
     """seed of the typo copies"""

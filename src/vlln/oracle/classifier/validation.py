@@ -86,7 +86,7 @@ def _scored(
 
 
 def grouped_cv(
-    sets: Mapping[str, Sequence[LabelledQuestion]], folds: int = FOLDS, seed: int = 0
+    sets: Mapping[str, Sequence[LabelledQuestion]], folds: int, seed: int
 ) -> dict[str, Any]:
     """Type and label accuracy of models fitted to ``folds`` - 1 folds of the families and
     tested on the last, over every fold; with the accuracy per source set and the misses."""
@@ -112,7 +112,7 @@ def grouped_cv(
 
 
 def leave_one_out(
-    sets: Mapping[str, Sequence[LabelledQuestion]], test_set: str, seed: int = 0
+    sets: Mapping[str, Sequence[LabelledQuestion]], test_set: str, seed: int
 ) -> dict[str, Any]:
     """Type and label accuracy on set ``test_set`` of a model fitted to the other sets (less
     any question that reads the same as one of the test set)."""
