@@ -30,8 +30,8 @@ from vlln.oracle.classify import analyse_question, classify_question
 from vlln.oracle.topics import AttributeTopic, OtherTopic, RouteKind, Topic, label_of
 from vlln.tasks.oracle_protocol import QuestionType
 
-PACKAGED_SETS = ("train", "extra", "v6", "generated", "heldout")
-TRAINING_SETS = ("train", "extra", "v6", "generated")
+PACKAGED_SETS = ("train", "extra", "v6", "generated", "written_a", "written_b", "heldout")
+TRAINING_SETS = ("train", "extra", "v6", "generated", "written_a", "written_b")
 # A held-out set stops being held out once the classifier is trained on it or tuned on its
 # errors; each replacement is a new file, written without looking at the classifier.
 _PACKAGED_FILES = {
@@ -39,6 +39,8 @@ _PACKAGED_FILES = {
     "extra": "questions_extra.jsonl",
     "v6": "questions_heldout_v6.jsonl",
     "generated": "questions_generated.jsonl",
+    "written_a": "questions_written_a.jsonl",
+    "written_b": "questions_written_b.jsonl",
     "heldout": "questions_heldout_v7.jsonl",
 }
 _FIELDS = frozenset({"question", "type", "route_kind", "topic"})
