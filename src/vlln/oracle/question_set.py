@@ -30,8 +30,27 @@ from vlln.oracle.classify import analyse_question, classify_question
 from vlln.oracle.topics import AttributeTopic, OtherTopic, RouteKind, Topic, label_of
 from vlln.tasks.oracle_protocol import QuestionType
 
-PACKAGED_SETS = ("train", "extra", "v6", "generated", "written_a", "written_b", "heldout")
-TRAINING_SETS = ("train", "extra", "v6", "generated", "written_a", "written_b")
+PACKAGED_SETS = (
+    "train",
+    "extra",
+    "v6",
+    "generated",
+    "written_a",
+    "written_b",
+    "written_c",
+    "written_d",
+    "heldout",
+)
+TRAINING_SETS = (
+    "train",
+    "extra",
+    "v6",
+    "generated",
+    "written_a",
+    "written_b",
+    "written_c",
+    "written_d",
+)
 # A held-out set stops being held out once the classifier is trained on it or tuned on its
 # errors; each replacement is a new file, written without looking at the classifier.
 _PACKAGED_FILES = {
@@ -41,6 +60,8 @@ _PACKAGED_FILES = {
     "generated": "questions_generated.jsonl",
     "written_a": "questions_written_a.jsonl",
     "written_b": "questions_written_b.jsonl",
+    "written_c": "questions_written_c.jsonl",
+    "written_d": "questions_written_d.jsonl",
     "heldout": "questions_heldout_v7.jsonl",
 }
 _FIELDS = frozenset({"question", "type", "route_kind", "topic"})
