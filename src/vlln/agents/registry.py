@@ -8,7 +8,7 @@ from typing import Any
 
 from vlln.agents.custom import is_agent_spec, load_agent
 from vlln.agents.expert import ExpertAgent
-from vlln.agents.frontier import FrontierAgent
+from vlln.agents.frontier import FrontierAgent, FrontierConfig
 from vlln.agents.frontier.perception import check_detector
 from vlln.agents.local.options import VllnOptions, vlln_agent
 from vlln.agents.model.options import OpenAIVLMOptions, openai_vlm_agent
@@ -17,10 +17,17 @@ from vlln.agents.protocol import Agent
 from vlln.agents.random_agent import RandomAgent
 from vlln.errors import ConfigError
 
+
+def fbe_agent(seed: int, detector: str = "truth") -> FrontierAgent:
+    """The paper's FBE baseline: the frontier agent that never asks the oracle."""
+    return FrontierAgent(seed, FrontierConfig(asks=False), detector=detector)
+
+
 AGENTS: dict[str, Callable[[int], Agent]] = {
     "random": RandomAgent,
     "expert": ExpertAgent,
     "frontier": FrontierAgent,
+    "fbe": fbe_agent,
 }
 
 OPTIONS: dict[str, type[AgentOptions]] = {"openai-vlm": OpenAIVLMOptions, "vlln": VllnOptions}
@@ -34,6 +41,7 @@ CONFIGURED_AGENTS: dict[str, Callable[[int, Any], Agent]] = {
 
 DETECTING_AGENTS: dict[str, Callable[[int, str], Agent]] = {
     "frontier": lambda seed, detector: FrontierAgent(seed, detector=detector),
+    "fbe": fbe_agent,
 }
 """Agents that perceive objects through a detector (``vlln.agents.frontier.perception``)."""
 DEFAULT_DETECTOR = "truth"

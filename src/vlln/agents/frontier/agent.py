@@ -60,6 +60,8 @@ class FrontierAgent:
     ) -> None:
         self.seed = int(seed)
         self.config = config or FrontierConfig()
+        if not self.config.asks:
+            self.name = "fbe"
         self.detector = check_detector(detector)
         self._info: EpisodeInfo | None = None
         self._stop_reason: StopReason | None = None
@@ -363,7 +365,7 @@ class FrontierAgent:
     # ----------------------------------------------------------------- dialog
     def _can_ask(self, spare: bool = False) -> bool:
         info = self._info
-        if info is None or self._dialog_closed:
+        if info is None or self._dialog_closed or not self.config.asks:
             return False
         reserve = self.config.reserve_questions if spare and self.confirmed is None else 0
         return self._questions_left > reserve
