@@ -15,6 +15,7 @@ from vlln.agents.model.options import OpenAIVLMOptions, openai_vlm_agent
 from vlln.agents.options import AgentOptions
 from vlln.agents.protocol import Agent
 from vlln.agents.random_agent import RandomAgent
+from vlln.agents.vlfm.agent import VlfmAgent
 from vlln.errors import ConfigError
 
 
@@ -28,6 +29,7 @@ AGENTS: dict[str, Callable[[int], Agent]] = {
     "expert": ExpertAgent,
     "frontier": FrontierAgent,
     "fbe": fbe_agent,
+    "vlfm": VlfmAgent,
 }
 
 OPTIONS: dict[str, type[AgentOptions]] = {"openai-vlm": OpenAIVLMOptions, "vlln": VllnOptions}
@@ -42,6 +44,7 @@ CONFIGURED_AGENTS: dict[str, Callable[[int, Any], Agent]] = {
 DETECTING_AGENTS: dict[str, Callable[[int, str], Agent]] = {
     "frontier": lambda seed, detector: FrontierAgent(seed, detector=detector),
     "fbe": fbe_agent,
+    "vlfm": lambda seed, detector: VlfmAgent(seed, detector=detector),
 }
 """Agents that perceive objects through a detector (``vlln.agents.frontier.perception``)."""
 DEFAULT_DETECTOR = "truth"
