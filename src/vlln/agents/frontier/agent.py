@@ -346,11 +346,18 @@ class FrontierAgent:
         if tilt > want + 1e-6:
             return Action.LOOK_DOWN
         if self.tracker.centred(candidate.instance_id, self.config.min_central_pixels):
-            text = dialog.question(dialog.DISAMBIGUATION_TEMPLATES, info.object_category, self._rng)
-            return self._ask("disambiguation", text, candidate.instance_id)
+            return self._inspect(candidate)
         self._aim = None
         self._aim_failed_at = (pose.x, pose.z)
         return None
+
+    def _inspect(self, candidate: Candidate) -> AgentOutput | None:
+        """With the candidate in the middle of the view: ask "is this the one?" (None: go on
+        without asking)."""
+        text = dialog.question(
+            dialog.DISAMBIGUATION_TEMPLATES, self.episode.object_category, self._rng
+        )
+        return self._ask("disambiguation", text, candidate.instance_id)
 
     def _may_aim(self, pose: Pose) -> bool:
         """After a failed aim, try again only from somewhere else."""
