@@ -4,7 +4,8 @@ import pytest
 
 from tests.agents import world
 from tests.sim import scenes
-from vlln.agents.frontier import FrontierAgent
+from vlln.agents.frontier import FrontierAgent, FrontierConfig
+from vlln.agents.registry import make_agent
 from vlln.errors import ConfigError
 from vlln.eval.play import play_episode
 from vlln.eval.sweep import play_sweep
@@ -159,3 +160,19 @@ def test_nothing_left_to_explore_is_recorded_and_is_an_exploration_failure() -> 
     # Budget 0 went on from a copy taken at the refused question.
     assert [t.answered for t in swept[0].dialog] == [False]
     assert [t.answered for t in swept[2].dialog] == [True]
+
+
+def test_fbe_never_asks_and_otherwise_plays_like_the_frontier_agent(sim: Simulator) -> None:
+    episode = world.episode(sim, world.BLUE_CHAIR, (3.5, 2.0), -math.pi / 2)
+    env = world.make_env(sim, [episode], TaskType.IIGN, budget=5)
+    actions = world.play(env, make_agent("fbe", 3))
+    record = env.record("fbe")
+    assert not any(isinstance(a, Talk) for a in actions) and record.dialog == []
+    assert classify(record) == "ambiguous_detection"  # with no question, the red chair
+    silent = world.make_env(sim, [episode], TaskType.IIGN, budget=0)
+    world.play(silent, FrontierAgent(seed=3, config=FrontierConfig(asks=False)))
+    assert silent.record("frontier").positions == record.positions
+    # With the budget, the asking agent's questions change its course.
+    talking = world.make_env(sim, [episode], TaskType.IIGN, budget=5)
+    world.play(talking, FrontierAgent(seed=3))
+    assert talking.record("frontier").positions != record.positions

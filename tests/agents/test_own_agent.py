@@ -71,7 +71,7 @@ class Halfway:
 @pytest.mark.parametrize(
     ("spec", "says"),
     [
-        ("own_agent", "unknown agent 'own_agent'; choose one of: expert, frontier, openai-vlm"),
+        ("own_agent", "unknown agent 'own_agent'; choose one of: aiuta, expert, fbe, frontier"),
         ("own_agent:", "--agent 'own_agent:': name an agent class as package.module:Class"),
         (":DepthWalker", "--agent ':DepthWalker': name an agent class as package.module:Class"),
         ("nowhere_at_all:Agent", "no module named nowhere_at_all; run from the folder"),

@@ -6,24 +6,38 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping
 from typing import Any
 
+from vlln.agents.aiuta.options import AiutaOptions, aiuta_agent
 from vlln.agents.custom import is_agent_spec, load_agent
 from vlln.agents.expert import ExpertAgent
-from vlln.agents.frontier import FrontierAgent
+from vlln.agents.frontier import FrontierAgent, FrontierConfig
 from vlln.agents.frontier.perception import check_detector
 from vlln.agents.local.options import VllnOptions, vlln_agent
 from vlln.agents.model.options import OpenAIVLMOptions, openai_vlm_agent
 from vlln.agents.options import AgentOptions
 from vlln.agents.protocol import Agent
 from vlln.agents.random_agent import RandomAgent
+from vlln.agents.vlfm.agent import VlfmAgent
 from vlln.errors import ConfigError
+
+
+def fbe_agent(seed: int, detector: str = "truth") -> FrontierAgent:
+    """The paper's FBE baseline: the frontier agent that never asks the oracle."""
+    return FrontierAgent(seed, FrontierConfig(asks=False), detector=detector)
+
 
 AGENTS: dict[str, Callable[[int], Agent]] = {
     "random": RandomAgent,
     "expert": ExpertAgent,
     "frontier": FrontierAgent,
+    "fbe": fbe_agent,
+    "vlfm": VlfmAgent,
 }
 
-OPTIONS: dict[str, type[AgentOptions]] = {"openai-vlm": OpenAIVLMOptions, "vlln": VllnOptions}
+OPTIONS: dict[str, type[AgentOptions]] = {
+    "openai-vlm": OpenAIVLMOptions,
+    "vlln": VllnOptions,
+    "aiuta": AiutaOptions,
+}
 """The options class of each agent that takes options (which server, which model); stored in
 run.json. Every other agent takes none (:class:`AgentOptions` itself, empty)."""
 
@@ -32,8 +46,15 @@ CONFIGURED_AGENTS: dict[str, Callable[[int, Any], Agent]] = {
     "vlln": vlln_agent,
 }
 
+CONFIGURED_DETECTING_AGENTS: dict[str, Callable[[int, Any, str], Agent]] = {
+    "aiuta": aiuta_agent,
+}
+"""Agents that take options and perceive objects through a detector."""
+
 DETECTING_AGENTS: dict[str, Callable[[int, str], Agent]] = {
     "frontier": lambda seed, detector: FrontierAgent(seed, detector=detector),
+    "fbe": fbe_agent,
+    "vlfm": lambda seed, detector: VlfmAgent(seed, detector=detector),
 }
 """Agents that perceive objects through a detector (``vlln.agents.frontier.perception``)."""
 DEFAULT_DETECTOR = "truth"
@@ -42,11 +63,11 @@ DEFAULT_DETECTOR = "truth"
 def resolve_detector(agent: str, detector: str | None) -> str | None:
     """The detector ``agent`` runs with: ``detector``, checked, or the ground-truth one; None
     for agents without one (naming a detector for those is an error)."""
-    if agent not in DETECTING_AGENTS:
+    if agent not in DETECTING_AGENTS and agent not in CONFIGURED_DETECTING_AGENTS:
         if detector is not None:
             raise ConfigError(
                 f"agent {agent!r} uses no detector; --detector applies to: "
-                + ", ".join(sorted(DETECTING_AGENTS))
+                + ", ".join(sorted([*DETECTING_AGENTS, *CONFIGURED_DETECTING_AGENTS]))
             )
         return None
     return check_detector(detector or DEFAULT_DETECTOR)
@@ -76,8 +97,12 @@ def make_agent(
     if configured is not None:
         resolve_detector(name, detector)
         return configured(seed, agent_options(name, options))
+    sighted = CONFIGURED_DETECTING_AGENTS.get(name)
+    if sighted is not None:
+        sight = resolve_detector(name, detector) or DEFAULT_DETECTOR
+        return sighted(seed, agent_options(name, options), sight)
     if name not in AGENTS and not is_agent_spec(name):
-        names = ", ".join(sorted([*AGENTS, *CONFIGURED_AGENTS]))
+        names = ", ".join(sorted([*AGENTS, *CONFIGURED_AGENTS, *CONFIGURED_DETECTING_AGENTS]))
         raise ConfigError(
             f"unknown agent {name!r}; choose one of: {names}, or name a class of your own as "
             "package.module:Class (docs/own-agent.md)"

@@ -53,17 +53,17 @@ class EvalCommand(EvalConfig, RayChunkOptions, ServingOptions):
     """play an episode's budgets together, sharing prefixes (--no-sweep: each on its own;
     the same records, slower)"""
     base_url: str | None = None
-    """openai-vlm: the OpenAI-compatible server, e.g. http://localhost:8000/v1"""
+    """openai-vlm, aiuta: the OpenAI-compatible server, e.g. http://localhost:8000/v1"""
     model: str | None = None
-    """openai-vlm: the served model's name; vlln: its folder"""
+    """openai-vlm, aiuta: the served model's name; vlln: its folder"""
     api_key_env: str | None = None
-    """openai-vlm: the variable holding the API key (none: the agent's default)"""
+    """openai-vlm, aiuta: the variable holding the API key (none: the agent's default)"""
     model_timeout: float | None = None
-    """openai-vlm: deadline of each whole request in s (none: the agent's default)"""
+    """openai-vlm, aiuta: deadline of each whole request in s (none: the agent's default)"""
     model_retries: int | None = None
-    """openai-vlm: retries per request (none: the agent's default)"""
+    """openai-vlm, aiuta: retries per request (none: the agent's default)"""
     model_cache: str | None = None
-    """openai-vlm: folder caching model replies (none: no cache)"""
+    """openai-vlm, aiuta: folder caching model replies (none: no cache)"""
     device: str | None = None
     """vlln: torch device (none: cuda if present, else cpu)"""
     max_tokens: int | None = None

@@ -60,6 +60,8 @@ class FrontierAgent:
     ) -> None:
         self.seed = int(seed)
         self.config = config or FrontierConfig()
+        if not self.config.asks:
+            self.name = "fbe"
         self.detector = check_detector(detector)
         self._info: EpisodeInfo | None = None
         self._stop_reason: StopReason | None = None
@@ -344,11 +346,18 @@ class FrontierAgent:
         if tilt > want + 1e-6:
             return Action.LOOK_DOWN
         if self.tracker.centred(candidate.instance_id, self.config.min_central_pixels):
-            text = dialog.question(dialog.DISAMBIGUATION_TEMPLATES, info.object_category, self._rng)
-            return self._ask("disambiguation", text, candidate.instance_id)
+            return self._inspect(candidate)
         self._aim = None
         self._aim_failed_at = (pose.x, pose.z)
         return None
+
+    def _inspect(self, candidate: Candidate) -> AgentOutput | None:
+        """With the candidate in the middle of the view: ask "is this the one?" (None: go on
+        without asking)."""
+        text = dialog.question(
+            dialog.DISAMBIGUATION_TEMPLATES, self.episode.object_category, self._rng
+        )
+        return self._ask("disambiguation", text, candidate.instance_id)
 
     def _may_aim(self, pose: Pose) -> bool:
         """After a failed aim, try again only from somewhere else."""
@@ -363,7 +372,7 @@ class FrontierAgent:
     # ----------------------------------------------------------------- dialog
     def _can_ask(self, spare: bool = False) -> bool:
         info = self._info
-        if info is None or self._dialog_closed:
+        if info is None or self._dialog_closed or not self.config.asks:
             return False
         reserve = self.config.reserve_questions if spare and self.confirmed is None else 0
         return self._questions_left > reserve

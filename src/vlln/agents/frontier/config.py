@@ -33,6 +33,9 @@ class FrontierConfig:
     # Questions the agent plans with; it learns the real budget from the refusal, as the
     # reference's agents do, so every budget plays alike until then (vlln.eval.sweep).
     question_budget: int = 5
+    # Whether it asks the oracle at all: off, it is the paper's FBE baseline, which explores
+    # and detects but never talks, whatever budget the task gives.
+    asks: bool = True
 
     def __post_init__(self) -> None:
         if self.scan_turns < 0 or self.stuck_steps < 2 or self.route_after < 1:

@@ -163,6 +163,17 @@ class CandidateTracker:
         ids, counts = np.unique(centre[centre > 0], return_counts=True)
         return ids.size > 0 and int(ids[np.argmax(counts)]) == instance_id
 
+    @property
+    def last_detections(self) -> NDArray[np.int32]:
+        """The last frame's instance ids as the detector reported them (missed ones 0), at
+        every ``stride``-th pixel: what it saw, of every category."""
+        return self._last_ids
+
+    @property
+    def pixel_area(self) -> int:
+        """Full-resolution pixels one pixel of :attr:`last_detections` stands for."""
+        return self._scale
+
     def detected(self) -> list[Candidate]:
         """Candidates seen well enough to act on, by id."""
         return [c for _, c in sorted(self.candidates.items()) if c.best_pixels >= self.min_pixels]

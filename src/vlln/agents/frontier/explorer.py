@@ -9,6 +9,7 @@ look-up, which keeps the per-step cost of the agent far below the cost of render
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -30,6 +31,10 @@ from vlln.sim.agent import Action
 from vlln.world.frame import heading_vector, wrap_angle
 
 _FOUR = ndimage.generate_binary_structure(2, 1)
+
+FrontierRanker = Callable[[NDArray[np.float64], NDArray[np.float64], Pose], int | None]
+"""Picks a frontier instead of the default rule: (points (n, 2), geodesic distances, pose) ->
+an index, or None when none is reachable."""
 
 
 @dataclass(frozen=True)
@@ -76,6 +81,7 @@ class Explorer:
         self._facing: float | None = None  # yaw to turn to at a frontier that is still one
         self._since_plan = 0
         self.look_down = False  # look down at a frontier before giving it up (see step)
+        self.rank: FrontierRanker | None = None  # another frontier choice (a hint still wins)
         self._looked_down = False
         self._look_heading: float | None = None
         self.replans = 0  # searches run so far, for profiling
@@ -196,9 +202,18 @@ class Explorer:
         cells = [(box.r0 + f.row, box.c0 + f.col) for f in frontiers]
         points = np.array([self.map.cell_centre(r, c) for r, c in cells])
         reach = np.array([distances.distance(r, c) for r, c in cells])
-        index = choose_frontier(
-            points, reach, (pose.x, pose.z), self._previous_frontier, hint, self.rng, cfg.chooser
-        )
+        if self.rank is not None and hint is None:
+            index = self.rank(points, reach, pose)
+        else:
+            index = choose_frontier(
+                points,
+                reach,
+                (pose.x, pose.z),
+                self._previous_frontier,
+                hint,
+                self.rng,
+                cfg.chooser,
+            )
         if index is None:
             return None
         point = (float(points[index, 0]), float(points[index, 1]))

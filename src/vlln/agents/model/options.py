@@ -69,6 +69,14 @@ def openai_vlm_agent(seed: int, options: OpenAIVLMOptions) -> ModelAgent:
 
 @lru_cache(maxsize=8)
 def _shared_model(options: OpenAIVLMOptions) -> OpenAIVisionModel:
+    client = shared_client(options)
+    return OpenAIVisionModel(client, max_tokens=options.max_tokens, temperature=options.temperature)
+
+
+@lru_cache(maxsize=8)
+def shared_client(options: OpenAIVLMOptions) -> OpenAIChatClient:
+    """One client per set of options (its connection pool, cache and ledger shared by every
+    episode of the process), made once the server has answered."""
     settings = OpenAISettings(
         model=options.model,
         base_url=options.base_url,
@@ -80,8 +88,7 @@ def _shared_model(options: OpenAIVLMOptions) -> OpenAIVisionModel:
         retry_bad_replies=True,
     )
     check_server_answers(settings)
-    client = OpenAIChatClient(settings, rng=np.random.default_rng(0))
-    return OpenAIVisionModel(client, max_tokens=options.max_tokens, temperature=options.temperature)
+    return OpenAIChatClient(settings, rng=np.random.default_rng(0))
 
 
 def check_server_answers(settings: OpenAISettings) -> None:
