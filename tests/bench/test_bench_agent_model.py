@@ -11,6 +11,7 @@ import torch
 from vlln.bench.agent_model import BATCH, run_model_benchmark
 
 
+@pytest.mark.slow
 def test_the_tiny_model_figures_are_measured_and_printed(
     capsys: pytest.CaptureFixture[str],
 ) -> None:

@@ -11,6 +11,7 @@ from vlln.errors import ConfigError
 REQUIRED = {"answer_p50_ms", "answer_p99_ms", "classify_us", "oracle_start_ms"}
 
 
+@pytest.mark.slow
 def test_oracle_benchmark_prints_json_lines(capsys: pytest.CaptureFixture[str]) -> None:
     figures = run_oracle_benchmark(seed=1, questions=60, as_json=True)
     lines = [json.loads(line) for line in capsys.readouterr().out.splitlines()]
@@ -31,6 +32,7 @@ def test_a_non_positive_question_count_is_refused() -> None:
         run_oracle_benchmark(seed=1, questions=0, as_json=True)
 
 
+@pytest.mark.slow
 def test_service_benchmark_measures_a_running_service() -> None:
     figures: dict[str, float] = {}
     run_service_benchmark(lambda metric, value, unit: figures.update({metric: value}), 1, 2, 1)

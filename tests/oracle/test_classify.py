@@ -67,6 +67,7 @@ def test_the_measured_heldout_questions_are_many_and_cover_every_type() -> None:
         assert sum(q.question_type == question_type for q in heldout) >= 20
 
 
+@pytest.mark.slow
 def test_accuracy_on_the_training_set() -> None:
     accuracy = accuracy_of(evaluate_classifier(TRAIN))
     assert accuracy >= 0.98, f"accuracy {accuracy:.3f}; misclassified: {_misclassified(TRAIN)}"
@@ -86,6 +87,7 @@ def test_route_granularity_on_the_training_set() -> None:
     assert len(wrong) <= 0.03 * len(routes), wrong
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "transform",
     [str.upper, str.lower, lambda q: f"  {q.rstrip('?.!')}?!  ", lambda q: q.replace(" ", "  ")],

@@ -24,6 +24,7 @@ def sim() -> Iterator[Simulator]:
     cache.close()
 
 
+@pytest.mark.slow
 def test_a_flight_joins_a_landing_below_to_one_above(sim: Simulator) -> None:
     storeys = sim.storeys
     assert storeys is not None
