@@ -51,7 +51,7 @@ def test_a_checkpoint_trained_on_dialog_asks_and_the_answers_are_recorded(
     assert _questions_only_export(sft_export, dialog_export) > 0
     trained = tmp_path / "trained"
     train = ["train", "sft", "--data", str(dialog_export), "--model", str(tiny_model)]
-    train += ["--out", str(trained), "--max-steps", "40", "--lr", "1e-2", "--workers", "0"]
+    train += ["--out", str(trained), "--max-steps", "60", "--lr", "1e-2", "--workers", "0"]
     assert main([*train, "--logging-steps", "10", "--seed", "0"]) == 0
     losses = [
         entry["loss"] for entry in json.loads((trained / "training.json").read_text())["losses"]
