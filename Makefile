@@ -1,4 +1,5 @@
-# The two commands of the README: `make demo` and `make test`. Both set themselves up.
+# The two commands of the README: `make demo` and `make test`. Both set themselves up, and so
+# does `make test-fast` (CONTRIBUTING.md).
 # `make demo` installs the package alone; `make test` (and `make setup`) everything the tests
 # use: every extra, torch's CPU build, the dev tools and a browser (scripts/setup.sh).
 VENV := .venv
@@ -8,7 +9,7 @@ STAMP := $(VENV)/.installed
 SETUP := pyproject.toml scripts/setup.sh scripts/setup-lib.sh
 SRC := src tests
 
-.PHONY: setup demo test lint bench clean
+.PHONY: setup demo test test-fast lint bench clean
 
 $(DEMO_STAMP): $(SETUP)
 	bash scripts/setup.sh demo
@@ -28,8 +29,14 @@ lint: $(STAMP)
 	$(BIN)/ruff format --check $(SRC)
 	$(BIN)/mypy
 
+# The whole suite, slow tests included: what CI runs (.ci/run).
 test: lint
 	$(BIN)/python -m pytest -q
+
+# The fast lane while working: every test package, without the tests marked slow and without
+# lint (run `make lint` for that).
+test-fast: $(STAMP)
+	$(BIN)/python -m pytest -q -m "not slow"
 
 bench: $(DEMO_STAMP)
 	$(BIN)/vlln bench sim --json

@@ -48,6 +48,7 @@ def _apt_sandbox(root: Path) -> list[str]:
     ]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     ("lock", "command"), [("lists/lock", "update"), ("dpkg/lock-frontend", "install -y")]
 )
@@ -117,6 +118,7 @@ def _closed_port() -> int:
         return int(probe.getsockname()[1])
 
 
+@pytest.mark.slow
 def test_torch_comes_from_the_cpu_index_or_else_from_the_configured_one(
     tmp_path: Path, indexes: str
 ) -> None:

@@ -10,9 +10,12 @@ import sys
 import zipfile
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parents[1]
 
 
+@pytest.mark.slow
 def test_the_wheel_holds_the_package_data_and_runs(tmp_path: Path) -> None:
     # Built from a copy, so the build folder setuptools leaves is not in the checkout.
     project = tmp_path / "project"

@@ -66,6 +66,7 @@ def test_random_agent_moves_uniformly_and_rarely_stops() -> None:
         RandomAgent(seed=0).act({})
 
 
+@pytest.mark.slow
 def test_expert_reaches_the_goal_of_a_generated_episode() -> None:
     scenes = SceneCache()
     scene_id = procedural_scene_id(1)

@@ -126,6 +126,7 @@ class _OneScene(SceneCache):
         return self.simulator
 
 
+@pytest.mark.slow
 def test_it_climbs_the_stairs_to_a_target_on_the_storey_above(sim: Simulator) -> None:
     storeys = sim.storeys
     assert storeys is not None

@@ -22,6 +22,7 @@ def test_the_guide_shows_the_example_file_as_it_is() -> None:
     assert shown.group(1) == (EXAMPLES / "own_agent.py").read_text(encoding="utf-8")
 
 
+@pytest.mark.slow
 def test_the_example_agent_plays_episodes_through_vlln_eval(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
 ) -> None:

@@ -12,6 +12,7 @@ from vlln.bench.agent_model import BATCH, run_model_benchmark
 from vlln.bench.settings import AgentBench
 
 
+@pytest.mark.slow
 def test_the_tiny_model_figures_are_measured_and_printed(
     capsys: pytest.CaptureFixture[str],
 ) -> None:

@@ -9,6 +9,7 @@ from vlln.bench.settings import DataBench
 from vlln.errors import ConfigError
 
 
+@pytest.mark.slow
 def test_data_benchmark_prints_json_lines(capsys: pytest.CaptureFixture[str]) -> None:
     figures = run_data_benchmark(DataBench(houses=1, per_house=1, as_json=True))
     lines = [json.loads(line) for line in capsys.readouterr().out.splitlines()]

@@ -7,6 +7,7 @@ from vlln.bench.settings import FrontierStoreysBench
 from vlln.errors import ConfigError
 
 
+@pytest.mark.slow
 def test_the_benchmark_splits_the_success_rate_by_the_targets_storey(
     capsys: pytest.CaptureFixture[str],
 ) -> None:

@@ -12,6 +12,7 @@ from vlln.errors import ConfigError
 REQUIRED = {"answer_p50_ms", "answer_p99_ms", "classify_us", "oracle_start_ms"}
 
 
+@pytest.mark.slow
 def test_oracle_benchmark_prints_json_lines(capsys: pytest.CaptureFixture[str]) -> None:
     figures = run_oracle_benchmark(
         OracleBench(seed=1, questions=60, service_scenes=0, as_json=True)
@@ -34,6 +35,7 @@ def test_a_non_positive_question_count_is_refused() -> None:
         OracleBench.build({"seed": 1, "questions": 0})
 
 
+@pytest.mark.slow
 def test_service_benchmark_measures_a_running_service() -> None:
     figures: dict[str, float] = {}
     run_service_benchmark(lambda metric, value, unit: figures.update({metric: value}), 1, 2, 1)

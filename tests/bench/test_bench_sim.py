@@ -22,6 +22,7 @@ REQUIRED = {
 }
 
 
+@pytest.mark.slow
 def test_sim_benchmark_prints_json_lines(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["bench", "sim", "--json", "--frames", "40", "--repeats", "1", "--seed", "3"]) == 0
     lines = [json.loads(line) for line in capsys.readouterr().out.splitlines()]
@@ -31,6 +32,7 @@ def test_sim_benchmark_prints_json_lines(capsys: pytest.CaptureFixture[str]) -> 
     assert all(values[name] > 0 for name in REQUIRED)
 
 
+@pytest.mark.slow
 def test_parallel_environments_report_their_speed_up(capsys: pytest.CaptureFixture[str]) -> None:
     args = ["bench", "sim", "--json", "--envs", "2", "--frames", "20", "--repeats", "1"]
     assert main([*args, "--seed", "3"]) == 0
@@ -53,6 +55,7 @@ def test_parallel_environments_report_their_speed_up(capsys: pytest.CaptureFixtu
     assert values["envs_speedup_same_threads"] == pytest.approx(same, rel=0.01)
 
 
+@pytest.mark.slow
 def test_a_subdivided_scan_reports_import_and_frame_rates(
     capsys: pytest.CaptureFixture[str],
 ) -> None:
@@ -70,6 +73,7 @@ def test_a_subdivided_scan_reports_import_and_frame_rates(
     assert "house_build_s" not in values and "sim_rss_mb" not in values
 
 
+@pytest.mark.slow
 def test_a_scanned_scene_with_several_storeys_is_measured(
     capsys: pytest.CaptureFixture[str], tmp_path: Path
 ) -> None:

@@ -9,6 +9,7 @@ import pytest
 from vlln.cli import main
 
 
+@pytest.mark.slow
 def test_bench_web_reports_key_to_frame_latency(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["bench", "web", "--presses", "10", "--json"]) == 0
     lines = [json.loads(line) for line in capsys.readouterr().out.splitlines()]

@@ -10,6 +10,7 @@ from vlln.errors import ConfigError
 from vlln.world.generator.house import generate_house
 
 
+@pytest.mark.slow
 def test_world_benchmark_prints_the_mean_counts_of_the_houses(
     capsys: pytest.CaptureFixture[str],
 ) -> None:

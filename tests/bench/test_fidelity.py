@@ -82,6 +82,7 @@ def test_the_test_protocol_is_500_episodes_on_the_14_test_houses() -> None:
         EvalConfig(agent="random", task="iign", split="test500", episodes=501)
 
 
+@pytest.mark.slow
 def test_the_benchmark_plays_every_run_and_resumes(tmp_path: Any, capsys: Any) -> None:
     """Two protocol episodes of the small houses per run: every run folder is written, the
     rows cover every task, and a second call plays nothing new."""

@@ -2,12 +2,15 @@
 
 from __future__ import annotations
 
+import pytest
+
 from vlln.bench.world_fidelity import preset_statistics, print_comparison
 from vlln.tasks.generation import episode_config, generate_house_episodes, house_rng
 from vlln.tasks.scenes import SceneCache, procedural_scene_id
 from vlln.tasks.splits import house_seeds
 
 
+@pytest.mark.slow
 def test_statistics_of_one_small_house_match_its_episodes(capsys) -> None:  # type: ignore[no-untyped-def]
     measured = preset_statistics("small", houses=1)
     seed = house_seeds("test", 1)[0]

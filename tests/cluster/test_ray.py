@@ -105,6 +105,7 @@ def test_one_plan_on_both_executors_writes_the_same_folder_refusals_included(
         run_ray_evaluation(config.replace(max_steps=61), tmp_path / "ray", progress=False)
 
 
+@pytest.mark.slow
 def test_a_killed_worker_is_retried_and_the_folder_equals_a_local_run(
     cluster: None, split_cache: Path, tmp_path: Path
 ) -> None:
@@ -141,6 +142,7 @@ def test_a_killed_worker_is_retried_and_the_folder_equals_a_local_run(
     assert again.played == 0 and _lines(tmp_path / "ray") == _lines(tmp_path / "local")
 
 
+@pytest.mark.slow
 def test_data_build_on_ray_equals_a_local_build(cluster: None, tmp_path: Path) -> None:
     config = BuildConfig(houses=1, per_house=1)
     local = build_dataset(tmp_path / "local", config, progress=False)

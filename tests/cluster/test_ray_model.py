@@ -92,7 +92,13 @@ def _titled(processes: list[psutil.Process], title: str) -> list[psutil.Process]
     return [p for p in processes if p.info["cmdline"][0].startswith(title)]
 
 
-def test_a_server_nowhere_possible_or_a_bad_batch_size_is_one_error_before_any_episode(
+def test_a_bad_batch_size_is_one_error_before_any_cluster_starts() -> None:
+    with pytest.raises(ConfigError, match="--model-batch: Input should be greater than or equal"):
+        ServingOptions(model_batch=0)
+
+
+@pytest.mark.slow
+def test_a_server_nowhere_possible_is_one_error_before_any_episode(
     cluster: None, config: EvalConfig, splits: Path, tmp_path: Path
 ) -> None:
     with pytest.raises(ConfigError, match="no node of the cluster has 1 CPUs and 1 GPUs"):
@@ -100,12 +106,9 @@ def test_a_server_nowhere_possible_or_a_bad_batch_size_is_one_error_before_any_e
             config, tmp_path / "run", cache_dir=splits, serving=ServingOptions(model_gpus=1)
         )
     assert (tmp_path / "run" / "episodes.jsonl").read_text(encoding="utf-8") == ""
-    with pytest.raises(
-        ConfigError, match="--model-batch: Input should be greater than or equal to 1"
-    ):
-        ServingOptions(model_batch=0)
 
 
+@pytest.mark.slow
 def test_two_workers_share_one_model_and_the_folder_equals_a_local_run(
     cluster: None, config: EvalConfig, splits: Path, local_run: Path, tmp_path: Path
 ) -> None:
@@ -154,6 +157,7 @@ def _kill_the_server_once(results: Path, after_lines: int) -> tuple[threading.Ev
     return stop, killed
 
 
+@pytest.mark.slow
 def test_a_killed_model_server_fails_its_chunk_or_is_restarted_and_no_episode_changes(
     cluster: None, config: EvalConfig, splits: Path, local_run: Path, tmp_path: Path
 ) -> None:

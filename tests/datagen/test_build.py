@@ -24,6 +24,7 @@ from vlln.tasks.splits import house_seeds
 from vlln.world.catalogue import default_catalogue
 
 
+@pytest.mark.slow
 def test_every_stage_is_written(small_dataset: Path) -> None:
     houses = list(house_folders(small_dataset))
     assert [h.name for h in houses] == sorted(
@@ -49,6 +50,7 @@ def test_every_stage_is_written(small_dataset: Path) -> None:
         assert read_episodes(small_dataset / "episodes" / f"train_{task}.json.gz")
 
 
+@pytest.mark.slow
 def test_the_summary_counts_the_houses_and_their_disk(small_dataset: Path) -> None:
     summary = summarize(small_dataset)
     infos = [HouseDataset(folder).info for folder in house_folders(small_dataset)]
@@ -59,6 +61,7 @@ def test_the_summary_counts_the_houses_and_their_disk(small_dataset: Path) -> No
     assert f"kept {summary.kept} of 2 trajectories" in summary.line()
 
 
+@pytest.mark.slow
 def test_the_commands_report_what_they_wrote(
     small_dataset: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
@@ -72,6 +75,7 @@ def test_the_commands_report_what_they_wrote(
     assert (tmp_path / "export.json").exists() and (tmp_path / "sft.jsonl").stat().st_size > 0
 
 
+@pytest.mark.slow
 def test_a_killed_build_resumes_to_the_same_dataset(small_dataset: Path, tmp_path: Path) -> None:
     out = tmp_path / "resumed"
     command = [
@@ -101,6 +105,7 @@ def test_a_killed_build_resumes_to_the_same_dataset(small_dataset: Path, tmp_pat
     assert dataset_files(out) == dataset_files(small_dataset)
 
 
+@pytest.mark.slow
 def test_two_shards_equal_one_build(small_dataset: Path, tmp_path: Path) -> None:
     out = tmp_path / "sharded"
     build_dataset(out, SMALL, shard=Shard(1, 2), progress=False)
@@ -109,6 +114,7 @@ def test_two_shards_equal_one_build(small_dataset: Path, tmp_path: Path) -> None
     assert dataset_files(out) == dataset_files(small_dataset)
 
 
+@pytest.mark.slow
 def test_other_settings_in_the_same_folder_are_refused(small_dataset: Path) -> None:
     with pytest.raises(ConfigError, match="per_house"):
         build_dataset(small_dataset, BuildConfig(houses=2, per_house=3), progress=False)
@@ -145,6 +151,7 @@ with lock_houses(Path(sys.argv[1]), Shard(0, 2).take(house_seeds("train", 2)), c
 """
 
 
+@pytest.mark.slow
 def test_a_build_of_houses_another_build_holds_stops_in_one_line(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

@@ -120,6 +120,7 @@ def walked(small_dataset: Path) -> Iterator[list[tuple[ReferenceEpisode, Traject
     cache.close()
 
 
+@pytest.mark.slow
 def test_actions_and_instruction_follow_the_reference_rules(walked: list[Any]) -> None:
     for episode, trajectory, _ in walked:
         assert episode.actions[0] == -1
@@ -130,6 +131,7 @@ def test_actions_and_instruction_follow_the_reference_rules(walked: list[Any]) -
         assert {"episode_index", "tasks", "length", "dialogs"} <= set(episode.row)
 
 
+@pytest.mark.slow
 def test_poses_are_the_cameras_of_every_frame(walked: list[Any]) -> None:
     down = math.radians(PITCH_DOWN)
     for episode, trajectory, _ in walked:
@@ -150,6 +152,7 @@ def test_poses_are_the_cameras_of_every_frame(walked: list[Any]) -> None:
                 assert np.linalg.det(pose[:3, :3]) == pytest.approx(1.0, abs=1e-5)
 
 
+@pytest.mark.slow
 def test_pixel_goals_show_where_the_agent_stands_later(walked: list[Any]) -> None:
     goals = 0
     for episode, trajectory, _ in walked:
@@ -171,6 +174,7 @@ def test_pixel_goals_show_where_the_agent_stands_later(walked: list[Any]) -> Non
     assert goals > 0
 
 
+@pytest.mark.slow
 def test_dialog_indices_map_to_the_frames_questions_were_asked(walked: list[Any]) -> None:
     for episode, trajectory, _ in walked:
         dialogs = episode.dialogs
@@ -184,6 +188,7 @@ def test_dialog_indices_map_to_the_frames_questions_were_asked(walked: list[Any]
             assert 0 <= turn["true_idx"] < episode.length
 
 
+@pytest.mark.slow
 def test_images_are_the_frames_of_both_cameras(walked: list[Any]) -> None:
     """Each JPEG is its camera's view of its frame: within JPEG noise of a fresh render, and
     nearer to it than to the other camera's view of the same frame unless the two views differ

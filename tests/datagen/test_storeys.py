@@ -56,6 +56,7 @@ def climbing(tmp_path_factory: pytest.TempPathFactory) -> Path:
     return root
 
 
+@pytest.mark.slow
 def test_a_kept_trajectory_climbs_to_the_targets_storey(climbing: Path) -> None:
     (folder,) = house_folders(climbing)
     assert folder.name.endswith("_2f")
@@ -75,6 +76,7 @@ def test_a_kept_trajectory_climbs_to_the_targets_storey(climbing: Path) -> None:
     assert settings["floors"] == 2
 
 
+@pytest.mark.slow
 def test_stats_and_export_read_the_two_storey_data(
     climbing: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
@@ -87,6 +89,7 @@ def test_stats_and_export_read_the_two_storey_data(
     assert (sft / "sft.jsonl").stat().st_size > 0
 
 
+@pytest.mark.slow
 def test_one_storey_data_is_what_it_was(small_dataset: Path) -> None:
     settings = json.loads((small_dataset / "build.json").read_text(encoding="utf-8"))
     assert "floors" not in settings

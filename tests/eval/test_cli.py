@@ -28,6 +28,7 @@ def eval_args(out: Path, cache_dir: Path) -> list[str]:
     ]  # fmt: skip
 
 
+@pytest.mark.slow
 def test_killed_process_resumes_to_the_uninterrupted_result(
     tmp_path: Path, split_cache: Path, scenes: SceneCache
 ) -> None:
@@ -54,6 +55,7 @@ def test_killed_process_resumes_to_the_uninterrupted_result(
     assert (out / "summary.json").read_bytes() == (reference / "summary.json").read_bytes()
 
 
+@pytest.mark.slow
 def test_eval_command_writes_the_run_and_prints_the_summary(
     tmp_path: Path, split_cache: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

@@ -120,6 +120,7 @@ def image_count(request: dict[str, Any]) -> int:
     )
 
 
+@pytest.mark.slow
 def test_scripted_replies_play_the_experts_episode_to_success(
     split_cache: Path, scenes: SceneCache, tmp_path: Path
 ) -> None:
@@ -235,6 +236,7 @@ def test_a_question_is_answered_and_the_answer_reaches_the_next_prompt(
     assert record.actions == ["TALK", "TURN_LEFT", "STOP"]
 
 
+@pytest.mark.slow
 def test_server_trouble_is_retried_then_recorded_as_failed_steps(
     split_cache: Path, scenes: SceneCache, tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
@@ -401,6 +403,7 @@ def test_a_server_that_does_not_answer_is_refused_before_any_episode(
     assert not (tmp_path / "run" / "episodes.jsonl").exists()
 
 
+@pytest.mark.slow
 def test_a_run_whose_every_model_call_failed_ends_non_zero(
     split_cache: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

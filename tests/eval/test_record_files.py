@@ -9,6 +9,8 @@ import random
 from pathlib import Path
 from typing import Any
 
+import pytest
+
 from tests.tasks.test_metrics import make_record
 from vlln.eval.config import EvalConfig
 from vlln.eval.results import (
@@ -107,6 +109,7 @@ def _mutations(rng: random.Random, base: dict[str, Any]) -> bytes:
     return json.dumps(data).encode() + b"\n"
 
 
+@pytest.mark.slow
 def test_fuzzed_files_never_crash_lose_or_double_a_valid_record(tmp_path: Path) -> None:
     rng = random.Random(15)
     path = tmp_path / "episodes.jsonl"

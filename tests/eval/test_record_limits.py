@@ -119,6 +119,7 @@ def test_a_resume_sets_the_hostile_lines_aside_and_keeps_every_valid_one(tmp_pat
     assert aside == list(HOSTILE.values())
 
 
+@pytest.mark.slow
 def test_the_commands_resume_a_real_run_past_hostile_lines(
     tmp_path: Path, split_cache: Path, scenes: SceneCache, capsys: pytest.CaptureFixture[str]
 ) -> None:

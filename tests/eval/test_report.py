@@ -29,6 +29,7 @@ def runs(
     return [root / "expert", root / "random"]
 
 
+@pytest.mark.slow
 def test_report_compares_runs_with_table_charts_and_maps(
     runs: list[Path], tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

@@ -36,6 +36,7 @@ def copy_run(full_run: Path, to: Path) -> Path:
     return to
 
 
+@pytest.mark.slow
 def test_wrong_types_neither_crash_resume_and_score_nor_duplicate(
     full_run: Path, tmp_path: Path, split_cache: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
@@ -58,6 +59,7 @@ def test_wrong_types_neither_crash_resume_and_score_nor_duplicate(
     assert f"set aside in {SKIPPED_FILE} 1" in capsys.readouterr().err
 
 
+@pytest.mark.slow
 def test_lines_outside_the_plan_do_not_stand_in_for_planned_episodes(
     full_run: Path, tmp_path: Path, split_cache: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
@@ -104,6 +106,7 @@ def test_torn_last_line_is_stated_and_a_line_missing_its_newline_is_kept(
     assert (run / "episodes.jsonl").read_bytes() == data
 
 
+@pytest.mark.slow
 def test_fallback_turns_are_counted_and_run_json_names_who_played(
     full_run: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

@@ -42,6 +42,7 @@ def keys(run_dir: Path) -> list[tuple[int, str]]:
     return [(r["budget"], r["episode_id"]) for r in map(json.loads, lines(run_dir))]
 
 
+@pytest.mark.slow
 def test_full_run_plays_every_episode_at_every_budget(full_run: Path) -> None:
     played = keys(full_run)
     assert len(played) == len(set(played)) == 8
@@ -50,6 +51,7 @@ def test_full_run_plays_every_episode_at_every_budget(full_run: Path) -> None:
     assert "OS radius 3.00 m" in (full_run / "summary.md").read_text()
 
 
+@pytest.mark.slow
 def test_resume_after_a_stop_gives_the_same_lines_and_summary(
     full_run: Path, tmp_path: Path, split_cache: Path, scenes: SceneCache
 ) -> None:
@@ -62,6 +64,7 @@ def test_resume_after_a_stop_gives_the_same_lines_and_summary(
     assert evaluate(tmp_path, split_cache, scenes).played == 0  # a finished run stays finished
 
 
+@pytest.mark.slow
 def test_truncated_last_line_is_cut_and_its_episode_played_again(
     full_run: Path, tmp_path: Path, split_cache: Path, scenes: SceneCache
 ) -> None:
@@ -75,6 +78,7 @@ def test_truncated_last_line_is_cut_and_its_episode_played_again(
     assert summary(tmp_path) == summary(full_run)
 
 
+@pytest.mark.slow
 def test_two_shards_equal_one_full_run(
     full_run: Path, tmp_path: Path, split_cache: Path, scenes: SceneCache
 ) -> None:
@@ -90,6 +94,7 @@ def test_two_shards_equal_one_full_run(
     assert set(keys(shards[0])).isdisjoint(keys(shards[1]))
 
 
+@pytest.mark.slow
 def test_shards_left_out_make_the_merge_incomplete(
     full_run: Path, tmp_path: Path, split_cache: Path, scenes: SceneCache
 ) -> None:
@@ -107,6 +112,7 @@ def test_shards_left_out_make_the_merge_incomplete(
     assert (whole.finished, whole.planned, whole.complete) == (8, 8, True)
 
 
+@pytest.mark.slow
 def test_same_seed_gives_identical_lines_and_another_seed_other_agent_seeds(
     full_run: Path, tmp_path: Path, split_cache: Path, scenes: SceneCache
 ) -> None:
@@ -202,6 +208,7 @@ def test_tasks_without_dialog_run_at_budget_zero_and_resume(
     assert all(r.task == "objectnav" for r in outcome.records)
 
 
+@pytest.mark.slow
 def test_ign_with_budgets_0_to_5_talks_and_reports_msp(
     tmp_path: Path, split_cache: Path, scenes: SceneCache
 ) -> None:
@@ -221,6 +228,7 @@ def test_ign_with_budgets_0_to_5_talks_and_reports_msp(
     assert "## frontier (truth detector) on IGN" in (tmp_path / "summary.md").read_text()
 
 
+@pytest.mark.slow
 def test_plan_spreads_n_episodes_and_shards_round_robin(split_cache: Path) -> None:
     config = EvalConfig(agent="random", task="iign", houses=1, episodes=5, budgets=(0, 2))
     episodes = load_episodes(config, split_cache, progress=False)

@@ -94,6 +94,7 @@ def run(root: Path, sim: Simulator, tmp_path_factory: pytest.TempPathFactory) ->
     return out, err.getvalue()
 
 
+@pytest.mark.slow
 def test_the_episode_upstairs_climbs_and_is_scored_honestly(
     run: tuple[Path, str], sim: Simulator
 ) -> None:
@@ -156,6 +157,7 @@ def test_score_counts_the_refused_episode(
     assert health["refused_episodes"][0].startswith("2 (mp3d/8WUmhLawc2A")
 
 
+@pytest.mark.slow
 def test_vlln_video_reads_the_scan_from_the_run(run: tuple[Path, str], tmp_path: Path) -> None:
     out, _ = run
     target = tmp_path / "up.mp4"
@@ -166,6 +168,7 @@ def test_vlln_video_reads_the_scan_from_the_run(run: tuple[Path, str], tmp_path:
     assert frames == len(record.actions) + 1
 
 
+@pytest.mark.slow
 def test_vlln_report_draws_the_scan(run: tuple[Path, str], tmp_path: Path) -> None:
     out, _ = run
     report = tmp_path / "report"
@@ -176,6 +179,7 @@ def test_vlln_report_draws_the_scan(run: tuple[Path, str], tmp_path: Path) -> No
     assert "map_0_1_b0.png" in html and "refused episodes 1" in html
 
 
+@pytest.mark.slow
 def test_world_show_accepts_a_scan_folder(root: Path, tmp_path: Path) -> None:
     out = tmp_path / "show"
     args = ["world", "show", "--scene", str(root / JOINED), "--out", str(out), "--views", "2"]
@@ -185,6 +189,7 @@ def test_world_show_accepts_a_scan_folder(root: Path, tmp_path: Path) -> None:
     assert len(views) == 2
 
 
+@pytest.mark.slow
 def test_a_procedural_episode_with_scenes_is_said_so(
     root: Path, caplog: pytest.LogCaptureFixture
 ) -> None:
@@ -198,6 +203,7 @@ def test_a_procedural_episode_with_scenes_is_said_so(
     assert [house.seed for house in houses] == [3, 3, 4]
 
 
+@pytest.mark.slow
 def test_episodes_written_for_an_exported_scan_name_it_and_play_on_it(
     tmp_path: Path, caplog: pytest.LogCaptureFixture
 ) -> None:

@@ -10,6 +10,7 @@ from vlln.eval.runner import load_episodes, run_evaluation
 from vlln.tasks.episode import Episode, write_episodes
 
 
+@pytest.mark.slow
 def test_moving_through_houses_changes_no_episode_line(
     tmp_path_factory: pytest.TempPathFactory,
 ) -> None:

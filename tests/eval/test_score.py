@@ -28,6 +28,7 @@ def score_json(capsys: pytest.CaptureFixture[str], *args: str) -> dict[str, obje
     return data
 
 
+@pytest.mark.slow
 def test_score_recomputes_the_summary(run_dir: Path, capsys: pytest.CaptureFixture[str]) -> None:
     assert score_json(capsys, str(run_dir)) == summary(run_dir)
     assert main(["score", str(run_dir)]) == 0
@@ -35,6 +36,7 @@ def test_score_recomputes_the_summary(run_dir: Path, capsys: pytest.CaptureFixtu
     assert "| budget 0 | 3 |" in table and "OS radius 3.00 m" in table and "MSP" in table
 
 
+@pytest.mark.slow
 def test_score_merges_shards(
     run_dir: Path,
     tmp_path: Path,

@@ -15,6 +15,7 @@ from vlln.sim.agent import AgentState
 from vlln.tasks.scenes import SceneCache
 
 
+@pytest.mark.slow
 def test_a_pixel_on_the_stairs_leads_up_the_flight_to_the_treads_height(
     scenes: SceneCache, tmp_path: Path
 ) -> None:

@@ -52,6 +52,7 @@ def climb(scenes: SceneCache) -> EpisodeRecord:
     return play_episode(env, make_agent("expert", seed=0), "expert")
 
 
+@pytest.mark.slow
 def test_a_climbing_record_holds_the_height_of_every_pose(
     climb: EpisodeRecord, scenes: SceneCache
 ) -> None:
@@ -105,6 +106,7 @@ def test_the_episode_map_has_a_panel_per_storey_with_its_part_of_the_trail(
     assert trail[:half].any() and trail[half:].any(), "the trail is on both storeys' panels"
 
 
+@pytest.mark.slow
 def test_the_video_map_switches_storey_with_the_agent(
     climb: EpisodeRecord, scenes: SceneCache, tmp_path: Path
 ) -> None:

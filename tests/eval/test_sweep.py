@@ -6,6 +6,8 @@ import json
 from pathlib import Path
 from typing import Any
 
+import pytest
+
 from tests.eval.runs import evaluate, lines
 from vlln.tasks.scenes import SceneCache
 
@@ -17,6 +19,7 @@ def _without_timing(line: str) -> dict[str, Any]:
     return record
 
 
+@pytest.mark.slow
 def test_sweep_records_equal_independent_runs(
     tmp_path: Path, split_cache: Path, scenes: SceneCache
 ) -> None:

@@ -49,6 +49,7 @@ def test_replay_follows_the_recorded_poses(dialog_run: Path, scenes: SceneCache)
     assert (last.position[0], last.position[2], last.yaw) == (x, z, yaw)
 
 
+@pytest.mark.slow
 def test_vlln_video_writes_an_mp4_of_the_dialog_episode(dialog_run: Path, tmp_path: Path) -> None:
     target = tmp_path / "episode.mp4"
     assert main(["video", str(dialog_run), "--out", str(target)]) == 0
@@ -63,6 +64,7 @@ def test_vlln_video_writes_an_mp4_of_the_dialog_episode(dialog_run: Path, tmp_pa
     assert frames == len(record.actions) + 1 + held * len(record.dialog)
 
 
+@pytest.mark.slow
 def test_report_video_plays_in_headless_chromium(dialog_run: Path, tmp_path: Path) -> None:
     files = write_report([dialog_run], tmp_path, ReportOptions(samples=0, videos=1))
     [video] = [path for path in files if path.suffix == ".mp4"]

@@ -36,6 +36,7 @@ def cache_dir(tmp_path_factory: pytest.TempPathFactory) -> str:
     return str(cache)
 
 
+@pytest.mark.slow
 def test_registration_happens_only_in_vlln_gym() -> None:
     code = (
         "import gymnasium, vlln, vlln.eval.runner, vlln.cli;"
@@ -47,6 +48,7 @@ def test_registration_happens_only_in_vlln_gym() -> None:
     assert set(vlln.gym.ENV_IDS) <= set(gymnasium.registry)
 
 
+@pytest.mark.slow
 def test_module_prefixed_id_needs_no_import(cache_dir: str) -> None:
     code = (
         "import gymnasium;"
@@ -58,6 +60,7 @@ def test_module_prefixed_id_needs_no_import(cache_dir: str) -> None:
     assert out.stdout.startswith("Search for the ")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("env_id", sorted(vlln.gym.ENV_IDS))
 def test_check_env_passes(env_id: str, cache_dir: str) -> None:
     env = gymnasium.make(env_id, cache_dir=cache_dir, max_steps=20, **SMALL)
@@ -101,6 +104,7 @@ def _rollout(env: Any, seeds: list[int], steps: int) -> list[Any]:
     return frames
 
 
+@pytest.mark.slow
 def test_async_vector_rollout_equals_sequential(cache_dir: str) -> None:
     kwargs = dict(cache_dir=cache_dir, max_steps=50, **SMALL)
     vector = gymnasium.make_vec(
@@ -122,6 +126,7 @@ def test_async_vector_rollout_equals_sequential(cache_dir: str) -> None:
         np.testing.assert_array_equal(a, b)
 
 
+@pytest.mark.slow
 def test_height_rises_as_the_expert_climbs_to_a_target_upstairs(
     cache_dir: str, tmp_path: Path
 ) -> None:
@@ -195,6 +200,7 @@ print("same" if same else "different")
 """
 
 
+@pytest.mark.slow
 def test_async_vector_env_after_an_env_has_stepped_in_the_process(
     cache_dir: str, tmp_path: Path
 ) -> None:
@@ -205,6 +211,7 @@ def test_async_vector_env_after_an_env_has_stepped_in_the_process(
     assert out.strip() == "same"
 
 
+@pytest.mark.slow
 def test_the_docs_snippet_runs_as_pasted(cache_dir: str, tmp_path: Path) -> None:
     text = (Path(__file__).parents[2] / "docs" / "gym.md").read_text(encoding="utf-8")
     snippet = text.split("```python\n", 1)[1].split("```", 1)[0]
@@ -217,6 +224,7 @@ def test_the_docs_snippet_runs_as_pasted(cache_dir: str, tmp_path: Path) -> None
     assert out.splitlines()[-1] == "(2, 480, 640, 3)"
 
 
+@pytest.mark.slow
 def test_arguments_that_do_not_pickle_are_refused_in_one_line() -> None:
     # What a process that cannot render sends to the environment's own process.
     with pytest.raises(ConfigError, match="cannot be sent to the environment's own process"):

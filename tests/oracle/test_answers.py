@@ -421,6 +421,7 @@ def test_relation_answers_name_real_neighbours(sim: Simulator) -> None:
     assert checked >= 5
 
 
+@pytest.mark.slow
 def test_relation_questions_may_name_a_category_by_its_earlier_name(sim: Simulator) -> None:
     house = sim.house
     earlier = {name: alias for alias, name in ALIASES.items()}

@@ -71,6 +71,7 @@ def test_the_heldout_set_is_many_questions_of_every_type_none_in_other_sets() ->
     assert not [q.question for q in HELDOUT if prepared(q.question) in trained]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", TRAINING_SETS)
 def test_accuracy_on_each_training_set(name: str) -> None:
     questions = TRAINED[name]
@@ -90,6 +91,7 @@ def test_route_granularity_on_the_heldout_set() -> None:
     assert len(wrong) <= 0.05 * len(routes), wrong
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "transform",
     [str.upper, str.lower, lambda q: f"  {q.rstrip('?.!')}?!  ", lambda q: q.replace(" ", "  ")],

@@ -1,9 +1,12 @@
 """The house index finds the objects a question names, and no object in its grammar."""
 
+import pytest
+
 from vlln.oracle.knowledge import HouseIndex
 from vlln.world.generator import generate_house
 
 
+@pytest.mark.slow
 def test_the_auxiliary_can_is_not_the_object_can() -> None:
     house = next(h for h in map(generate_house, range(20)) if h.instances_of("can"))
     pattern = HouseIndex.build(house).category_pattern

@@ -74,6 +74,7 @@ def _pose(point: tuple[float, float, float], yaw: float) -> dict[str, Any]:
     return {"position": list(point), "yaw": yaw, "tilt": 0.0}
 
 
+@pytest.mark.slow
 def test_route_answers_on_the_stairs_say_upstairs_toward_a_target_upstairs(
     client: httpx.Client, house: tuple[Simulator, Flight, Episode, int]
 ) -> None:
@@ -90,6 +91,7 @@ def test_route_answers_on_the_stairs_say_upstairs_toward_a_target_upstairs(
     assert "go upstairs" in path["answer"].lower(), path
 
 
+@pytest.mark.slow
 def test_route_answers_on_the_stairs_say_downstairs_toward_a_target_downstairs(
     client: httpx.Client, house: tuple[Simulator, Flight, Episode, int]
 ) -> None:
@@ -109,6 +111,7 @@ def test_route_answers_on_the_stairs_say_downstairs_toward_a_target_downstairs(
     assert step["question_type"] == "route" and "downstairs" in step["answer"], step
 
 
+@pytest.mark.slow
 def test_a_pose_beside_the_treads_height_is_refused_with_the_nearest_point_on_them(
     client: httpx.Client, house: tuple[Simulator, Flight, Episode, int]
 ) -> None:

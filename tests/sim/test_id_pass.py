@@ -41,6 +41,7 @@ def poses(
     return chosen
 
 
+@pytest.mark.slow
 def test_the_id_pass_equals_the_full_pass_on_many_poses(sim: Simulator) -> None:
     renderer = sim.renderer
     seen: set[int] = set()

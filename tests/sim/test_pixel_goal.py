@@ -35,6 +35,7 @@ def project(sim: Simulator, point: np.ndarray, state: AgentState) -> tuple[int, 
     return col, row, depth
 
 
+@pytest.mark.slow
 def test_a_pixel_on_a_known_floor_point_lands_within_15_cm_of_it(sim: Simulator) -> None:
     rng = np.random.default_rng(7)
     component = sim.grid.largest_component()

@@ -83,6 +83,7 @@ def far_start(scenes: SceneCache, target: ObjectInstance) -> tuple[float, float]
             return x, z
 
 
+@pytest.mark.slow
 def test_expert_actions_succeed_and_the_record_says_so(scenes: SceneCache) -> None:
     target, _ = ambiguous_target(scenes)
     env = NavigationEnv(

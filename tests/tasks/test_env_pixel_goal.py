@@ -62,6 +62,7 @@ def turn_until_floor_is_visible(env: NavigationEnv) -> tuple[int, int, float, fl
     raise AssertionError("no heading shows floor ahead")
 
 
+@pytest.mark.slow
 def test_a_pixel_goal_levels_the_camera_and_the_waypoint_leads_to_its_floor_point(
     scenes: SceneCache,
 ) -> None:

@@ -262,6 +262,7 @@ def read_all(folder: Path) -> dict[str, bytes]:
     return {path.name: path.read_bytes() for path in sorted(folder.iterdir())}
 
 
+@pytest.mark.slow
 def test_a_split_build_is_byte_identical_and_reads_back(
     tmp_path: Path, scenes: SmallHouses
 ) -> None:

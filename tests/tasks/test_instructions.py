@@ -398,6 +398,7 @@ def test_same_seed_same_text_and_the_rng_varies_the_phrasing() -> None:
     assert one == InstructionWriter(house).full_instruction(3, np.random.default_rng(5))
 
 
+@pytest.mark.slow
 def test_texts_do_not_depend_on_the_string_hash_seed() -> None:
     """Constraint sets are hashed; the choice among them must not follow set order."""
     script = (

@@ -144,6 +144,7 @@ def test_each_episode_variant_loads(name: str, scenes: tuple[Path, House], tmp_p
     assert target.id == int(base_episode(house)["instruction"]["instance_id"][0])
 
 
+@pytest.mark.slow
 def test_an_evaluation_runs_on_every_variant_against_an_imported_scan(
     scenes: tuple[Path, House], tmp_path: Path
 ) -> None:

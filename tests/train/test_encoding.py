@@ -42,6 +42,7 @@ def test_image_tags_become_image_parts_in_place() -> None:
         to_messages([Turn("system", "hi")])  # type: ignore[arg-type]
 
 
+@pytest.mark.slow
 def test_labels_keep_exactly_the_assistant_turns(tiny_model: Path) -> None:
     encoder = ChatEncoder.load(tiny_model)
     short = (Turn("human", "Go. <image>"), Turn("gpt", "<move>STOP"))
@@ -60,6 +61,7 @@ def test_labels_keep_exactly_the_assistant_turns(tiny_model: Path) -> None:
     assert batch["attention_mask"][1, -1] == 0
 
 
+@pytest.mark.slow
 def test_each_image_placeholder_is_repeated_once_per_merged_patch(tiny_model: Path) -> None:
     encoder = ChatEncoder.load(tiny_model)
     text = encoder.render(TURNS, add_generation_prompt=False)
@@ -74,6 +76,7 @@ def test_each_image_placeholder_is_repeated_once_per_merged_patch(tiny_model: Pa
     assert prompt.endswith("<|im_start|>assistant\n")
 
 
+@pytest.mark.slow
 def test_a_conversation_needs_one_image_per_tag(tiny_model: Path) -> None:
     encoder = ChatEncoder.load(tiny_model)
     text = encoder.render(TURNS, add_generation_prompt=False)
@@ -81,6 +84,7 @@ def test_a_conversation_needs_one_image_per_tag(tiny_model: Path) -> None:
         encoder.encode([text], [_images(1)])
 
 
+@pytest.mark.slow
 def test_export_samples_train_on_exactly_their_assistant_turns(
     sft_export: Path, tiny_model: Path
 ) -> None:

@@ -8,6 +8,7 @@ import io
 from pathlib import Path
 
 import numpy as np
+import pytest
 from PIL import Image
 
 from vlln.agents.local.backend import TransformersBackend
@@ -42,6 +43,7 @@ def _answer(reply: ModelReply) -> tuple[object, ...]:
     return reply.text, reply.error, reply.prompt_tokens, reply.completion_tokens
 
 
+@pytest.mark.slow
 def test_calls_arriving_together_are_batched_and_answered_as_alone(tiny_model: Path) -> None:
     backend = TransformersBackend(tiny_model, "cpu", max_new_tokens=24)
     calls = _calls()
@@ -59,6 +61,7 @@ def test_calls_arriving_together_are_batched_and_answered_as_alone(tiny_model: P
     assert len({reply.latency_ms for reply in batched}) == 1
 
 
+@pytest.mark.slow
 def test_batches_hold_at_most_max_batch_calls(tiny_model: Path) -> None:
     backend = TransformersBackend(tiny_model, "cpu", max_new_tokens=4)
     model = BatchingModel(backend, max_batch=2)

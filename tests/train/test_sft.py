@@ -4,6 +4,7 @@ LoRA merges back into a plain model, the vision tower learns at its own rate."""
 from __future__ import annotations
 
 import json
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -24,22 +25,44 @@ def _train(export: Path, model: Path, out: Path, *extra: str) -> dict:
     return json.loads((out / "training.json").read_text())
 
 
+@pytest.fixture(scope="module")
+def eight_steps(
+    sft_export: Path, tiny_model: Path, tmp_path_factory: pytest.TempPathFactory
+) -> Path:
+    """Eight steps with a checkpoint every four, trained once for the tests that read or
+    continue such a run (each continues a copy of its own)."""
+    out = tmp_path_factory.mktemp("sft") / "run"
+    _train(sft_export, tiny_model, out, "--max-steps", "8", "--save-steps", "4")
+    return out
+
+
+def _copy(run: Path, out: Path) -> Path:
+    shutil.copytree(run, out)
+    return out
+
+
+@pytest.mark.slow
 def test_loss_falls_and_a_rerun_resumes_from_the_newest_checkpoint(
-    sft_export: Path, tiny_model: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+    eight_steps: Path,
+    sft_export: Path,
+    tiny_model: Path,
+    tmp_path: Path,
+    capsys: pytest.CaptureFixture[str],
 ) -> None:
-    out = tmp_path / "run"
-    first = _train(sft_export, tiny_model, out, "--max-steps", "8", "--save-steps", "4")
+    out = _copy(eight_steps, tmp_path / "run")
+    first = json.loads((out / "training.json").read_text())
     losses = [entry["loss"] for entry in first["losses"]]
     assert [entry["step"] for entry in first["losses"]] == [2, 4, 6, 8]
     assert losses[-1] < losses[0] - 0.5, losses
     assert first["steps"] == 8 and first["resumed_from"] is None
-    assert "loss " in capsys.readouterr().out
     assert {p.name for p in out.glob("checkpoint-*")} == {"checkpoint-4", "checkpoint-8"}
     # A checkpoint is a loadable model folder of its own.
     assert (out / "checkpoint-4" / "tokenizer.json").is_file()
     assert (out / "checkpoint-4" / "preprocessor_config.json").is_file()
 
+    capsys.readouterr()
     second = _train(sft_export, tiny_model, out, "--max-steps", "10", "--save-steps", "4")
+    assert "loss " in capsys.readouterr().out
     assert second["resumed_from"] == str(out / "checkpoint-8")
     # The curve goes on from the checkpoint's own log.
     assert second["losses"][:4] == first["losses"]
@@ -51,11 +74,12 @@ def _same_weights(first: Path, second: Path) -> bool:
     return set(one) == set(other) and all(torch.equal(one[name], other[name]) for name in one)
 
 
+@pytest.mark.slow
 def test_a_resumed_run_goes_on_from_the_checkpoints_weights(
-    sft_export: Path, tiny_model: Path, tmp_path: Path
+    eight_steps: Path, sft_export: Path, tiny_model: Path, tmp_path: Path
 ) -> None:
-    straight, resumed = tmp_path / "straight", tmp_path / "resumed"
-    first = _train(sft_export, tiny_model, straight, "--max-steps", "8", "--save-steps", "4")
+    straight, resumed = eight_steps, tmp_path / "resumed"
+    first = json.loads((straight / "training.json").read_text())
     checkpoint = straight / "checkpoint-4"
     second = _train(
         sft_export, tiny_model, resumed, "--max-steps", "8", "--resume", str(checkpoint)
@@ -67,6 +91,7 @@ def test_a_resumed_run_goes_on_from_the_checkpoints_weights(
     assert not _same_weights(tiny_model, resumed)
 
 
+@pytest.mark.slow
 def test_a_finished_run_rerun_changes_nothing(
     sft_export: Path, tiny_model: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
@@ -87,6 +112,7 @@ def test_a_finished_run_rerun_changes_nothing(
     assert {p.name for p in out.glob("checkpoint-*")} == {"checkpoint-2", "checkpoint-4"}
 
 
+@pytest.mark.slow
 def test_lora_adapters_are_merged_into_the_saved_model(
     sft_export: Path, tiny_model: Path, tmp_path: Path
 ) -> None:
@@ -103,6 +129,7 @@ def test_lora_adapters_are_merged_into_the_saved_model(
     assert all("visual" not in name and name.endswith("_proj.weight") for name in changed)
 
 
+@pytest.mark.slow
 def test_vision_tower_gets_its_own_learning_rate(tiny_model: Path) -> None:
     from transformers import AutoModelForImageTextToText
 
@@ -116,6 +143,7 @@ def test_vision_tower_gets_its_own_learning_rate(tiny_model: Path) -> None:
     assert not is_vision_tower("model.language_model.layers.0.mlp.gate_proj.weight")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "command",
     [
@@ -138,6 +166,7 @@ def test_without_the_model_extra_the_command_says_what_to_install(command: list[
     ]
 
 
+@pytest.mark.slow
 def test_a_model_that_cannot_be_loaded_is_one_clear_error(
     sft_export: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

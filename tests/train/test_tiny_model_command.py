@@ -13,6 +13,7 @@ from safetensors.torch import load_file
 from vlln.cli import main
 
 
+@pytest.mark.slow
 def test_the_command_writes_the_tiny_model_that_sft_trains(
     tiny_model: Path, sft_export: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
@@ -34,6 +35,7 @@ def test_the_command_writes_the_tiny_model_that_sft_trains(
     assert (run / "model.safetensors").is_file()
 
 
+@pytest.mark.slow
 def test_a_rerun_replaces_the_model_and_a_foreign_folder_is_refused(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

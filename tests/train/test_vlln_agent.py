@@ -12,6 +12,7 @@ from vlln.eval.results import read_records
 from vlln.prompt import ParseFailure, TalkOutput, read_output
 
 
+@pytest.mark.slow
 def test_a_trained_checkpoint_plays_episodes_with_recorded_outputs(
     sft_export: Path, tiny_model: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

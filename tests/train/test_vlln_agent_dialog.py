@@ -9,6 +9,8 @@ from itertools import pairwise
 from pathlib import Path
 from typing import Any
 
+import pytest
+
 from vlln.cli import main
 from vlln.eval.results import read_records
 from vlln.prompt import TalkOutput, read_output
@@ -41,6 +43,7 @@ def _questions_only_export(export: Path, out: Path) -> int:
     return len(kept)
 
 
+@pytest.mark.slow
 def test_a_checkpoint_trained_on_dialog_asks_and_the_answers_are_recorded(
     sft_export: Path, tiny_model: Path, tmp_path: Path
 ) -> None:

@@ -5,11 +5,13 @@ from __future__ import annotations
 import itertools
 
 import numpy as np
+import pytest
 
 from vlln.viz.topdown import house_figure
 from vlln.world.generator import generate_house
 
 
+@pytest.mark.slow
 def test_map_axes_are_pose_coordinates() -> None:
     """Reproduction 12: a point read off the map is an (x, z) a pose can use."""
     house = generate_house(0)
@@ -25,6 +27,7 @@ def test_map_axes_are_pose_coordinates() -> None:
     assert np.allclose(patch.get_xy()[: len(room.polygon)], room.polygon)
 
 
+@pytest.mark.slow
 def test_object_labels_do_not_overlap() -> None:
     """Reproduction 12: crowded labels are moved or left out, never drawn over each other."""
     fig = house_figure(generate_house(0))

@@ -14,6 +14,7 @@ from vlln.errors import UnknownCategoryError
 from vlln.world.catalogue import default_catalogue
 
 
+@pytest.mark.slow
 def test_world_show_writes_a_map_and_views(tmp_path: Path) -> None:
     out = tmp_path / "show"
     args = ["world", "show", "--seed", "4", "--out", str(out), "--views", "1"]
@@ -49,6 +50,7 @@ def test_unknown_category_names_the_valid_ones() -> None:
     assert "'unicorn'" in str(error.value) and "chair" in str(error.value)
 
 
+@pytest.mark.slow
 def test_no_egl_gives_the_install_hint(tmp_path: Path) -> None:
     env = dict(os.environ, __EGL_VENDOR_LIBRARY_FILENAMES=str(tmp_path / "none.json"))
     result = subprocess.run(
@@ -77,6 +79,7 @@ def test_no_egl_gives_the_install_hint(tmp_path: Path) -> None:
     assert "Traceback" not in result.stderr
 
 
+@pytest.mark.slow
 def test_world_show_replaces_its_output_folder(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

@@ -117,6 +117,7 @@ def test_made_up_session_codes_share_the_address_bucket(study: Study, tmp_path: 
         assert page.status_code == 200
 
 
+@pytest.mark.slow
 def test_an_idle_episode_is_recorded_as_abandoned(study: Study, tmp_path: Path) -> None:
     config = WebConfig(episodes=tuple(study.episodes), out=tmp_path / "a", idle_limit_s=0.5)
     with TestClient(create_app(config)) as client:

@@ -92,6 +92,7 @@ def _walk(page: Page, route: list[str]) -> None:
     page.wait_for_selector("#result:not(.hidden)", timeout=WAIT_MS)
 
 
+@pytest.mark.slow
 def test_a_person_reaches_the_target_and_the_record_scores_as_a_success(
     browser: Browser, served: Served, study: Study, capsys: pytest.CaptureFixture[str]
 ) -> None:
@@ -132,6 +133,7 @@ def test_a_person_reaches_the_target_and_the_record_scores_as_a_success(
     assert record.oracle == "rules" and record.dialog[0].backend == "rules"
 
 
+@pytest.mark.slow
 def test_two_people_play_one_episode_from_two_browsers_and_markup_shows_as_text(
     browser: Browser, served: Served, study: Study
 ) -> None:
@@ -182,6 +184,7 @@ def test_two_people_play_one_episode_from_two_browsers_and_markup_shows_as_text(
     assert record.dialog[0].question == question and not record.dialog[0].fallback
 
 
+@pytest.mark.slow
 def test_a_person_answers_the_frontier_agents_questions(
     browser: Browser, served: Served, study: Study
 ) -> None:

@@ -7,6 +7,7 @@ import time
 from pathlib import Path
 
 import httpx
+import pytest
 
 from tests.oracle.llm.chat_server import chat_server, completion
 from vlln.eval.results import load_run_records
@@ -17,6 +18,7 @@ from .conftest import Study, start_server
 ANSWER = "It is the <b>silver</b> one, right behind you."
 
 
+@pytest.mark.slow
 def test_the_agents_next_prompt_contains_the_persons_answer(study: Study, tmp_path: Path) -> None:
     script = ["<talk>What color is it?", "<move>←", "<move>STOP"]
     with chat_server([completion(text) for text in script]) as chat:

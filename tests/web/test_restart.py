@@ -12,6 +12,7 @@ import time
 from pathlib import Path
 
 import httpx
+import pytest
 
 from vlln.eval.results import load_run_records
 from vlln.tasks.metrics import success
@@ -70,6 +71,7 @@ def _play(client: httpx.Client, code: str, actions: list[str]) -> dict[str, obje
     return view
 
 
+@pytest.mark.slow
 def test_a_killed_server_resumes_people_and_records_agents_as_abandoned(
     study: Study, tmp_path: Path
 ) -> None:

@@ -68,6 +68,7 @@ def _map_storey(oracle: Page, storey: int, name: str) -> None:
     assert oracle.text_content("#storey") == f": {name}"
 
 
+@pytest.mark.slow
 def test_a_person_climbs_to_a_target_upstairs_and_the_oracle_sees_each_storeys_map(
     browser: Browser, upstairs: tuple[Served, Episode, list[str]]
 ) -> None:

@@ -121,6 +121,7 @@ def test_new_models_are_sane_and_real_sized(category: Category) -> None:
             assert np.any(np.abs(mesh.positions[:, 1] - surface.height) <= 0.002), style
 
 
+@pytest.mark.slow
 def test_every_category_is_seen_by_the_renderer() -> None:
     spec = CameraSpec(width=160, height=120)
     for category in default_catalogue():

@@ -182,6 +182,7 @@ def test_every_declared_style_builds_a_sane_mesh(category: Category) -> None:
         assert np.abs(mesh.colors - named).max(axis=1).min() <= 0.15, style
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("category", CATEGORIES, ids=lambda c: c.name)
 def test_models_respect_their_placement_limits(category: Category) -> None:
     for style, seed in size_cases(category):

@@ -93,6 +93,7 @@ def test_words_are_ones_the_oracle_knows(category: Category) -> None:
         assert shape in fine.split(), f"{shape!r} should name the fine category {fine!r}"
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("category", CATEGORIES, ids=lambda c: c.name)
 def test_every_style_builds_a_sane_model(category: Category) -> None:
     for style in styles(category):
@@ -167,6 +168,7 @@ def _boosted_catalogue() -> Catalogue:
     return Catalogue([boosted.get(c.name, c) for c in default_catalogue()])
 
 
+@pytest.mark.slow
 def test_generated_houses_put_small_objects_where_they_belong() -> None:
     catalogue = _boosted_catalogue()
     placed: set[str] = set()

@@ -79,6 +79,7 @@ def test_same_seed_gives_identical_records_and_mesh() -> None:
         )
 
 
+@pytest.mark.slow
 def test_different_seeds_give_different_houses(houses: list[House]) -> None:
     other = generate_house(12, SMALL)
     small = houses[1]

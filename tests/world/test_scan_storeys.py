@@ -79,6 +79,7 @@ def test_distances_across_storeys_agree(original: Simulator, scene: tuple[Path, 
         assert crossing >= 2
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("style", ["mp3d", "hm3d"])
 def test_three_storeys_come_back_with_both_flights(style: str, tmp_path: Path) -> None:
     house = generate_house(1, replace(SMALL_TWO_STOREYS, floors=3))
@@ -114,6 +115,7 @@ def crossing_episode(original: Simulator) -> Episode:
     return min(crossing, key=lambda episode: episode.info["geodesic_distance"])
 
 
+@pytest.mark.slow
 def test_the_expert_climbs_to_its_target_in_the_imported_scene(
     crossing_episode: Episode, scene: tuple[Path, House], tmp_path: Path
 ) -> None:

@@ -52,6 +52,7 @@ def test_rooms_come_back(house: House, imported: House) -> None:
         assert theirs.floor_y == pytest.approx(mine.floor_y, abs=1e-3)
 
 
+@pytest.mark.slow
 def test_geodesics_and_instance_images_agree(house: House, imported: House) -> None:
     rng = np.random.default_rng(0)
     with Simulator(house) as original, Simulator(imported) as copy:

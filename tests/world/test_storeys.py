@@ -24,6 +24,7 @@ def house() -> House:
     return generate_house(1, SMALL_TWO_STOREYS)
 
 
+@pytest.mark.slow
 def test_three_storeys_have_two_flights_apart() -> None:
     house = generate_house(1, HouseParameters(floors=3))
     assert house.name == "house_00001_3f"

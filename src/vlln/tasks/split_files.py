@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import json
 from dataclasses import asdict
+from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
@@ -131,7 +132,16 @@ def load_or_build_split(
             progress=progress,
             preset=preset,
         )
-    return read_episodes(path)
+    stat = path.stat()
+    return list(_read_split(str(path), stat.st_mtime_ns, stat.st_size))
+
+
+@lru_cache(maxsize=3)
+def _read_split(path: str, mtime_ns: int, size: int) -> tuple[Episode, ...]:
+    """A split file's episodes, parsed once per process while the file is unchanged: runs that
+    share a split (`vlln bench fidelity` plays six, on three tasks' files) would otherwise
+    parse thousands of episodes each. Episodes are frozen, so callers can share them."""
+    return tuple(read_episodes(path))
 
 
 def _build_settings(

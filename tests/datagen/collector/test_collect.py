@@ -44,6 +44,7 @@ def walks(house: tuple[Simulator, list[Episode]]) -> list[Trajectory]:
     return [collect_trajectory(sim, episode, RuleOracle(0)) for episode in episodes]
 
 
+@pytest.mark.slow
 def test_walk_starts_with_a_scan_and_ends_with_stop(walks: list[Trajectory]) -> None:
     trajectory = next(walk for walk in walks if walk.failure is None)  # a finished walk
     actions = [s.action for s in trajectory.steps]
@@ -62,6 +63,7 @@ def test_walk_starts_with_a_scan_and_ends_with_stop(walks: list[Trajectory]) -> 
     )
 
 
+@pytest.mark.slow
 def test_same_seed_same_trajectory(
     house: tuple[Simulator, list[Episode]], walks: list[Trajectory]
 ) -> None:
@@ -70,6 +72,7 @@ def test_same_seed_same_trajectory(
     assert again.steps == walks[1].steps and again.dialog == walks[1].dialog
 
 
+@pytest.mark.slow
 def test_route_questions_follow_progress(walks: list[Trajectory]) -> None:
     """A route question is asked where the agent then walked > 1 m and got closer."""
     for trajectory in walks:
@@ -89,6 +92,7 @@ def test_route_questions_follow_progress(walks: list[Trajectory]) -> None:
             assert any(w > 1.0 and c for w, c in zip(walked[1:], closer, strict=True))
 
 
+@pytest.mark.slow
 def test_disambiguation_answers_agree_with_the_target(
     house: tuple[Simulator, list[Episode]], walks: list[Trajectory]
 ) -> None:
@@ -139,6 +143,7 @@ def _trajectory(
     return Trajectory(episode, steps)
 
 
+@pytest.mark.slow
 def test_filter_reasons(house: tuple[Simulator, list[Episode]], walks: list[Trajectory]) -> None:
     sim, episodes = house
     episode = episodes[0]

@@ -3,12 +3,14 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from vlln.datagen.collector.lattice import LatticeFollower, plan_walk
 from vlln.sim.agent import Action, AgentState, step
 from vlln.tasks.scenes import SceneCache, procedural_scene_id
 
 
+@pytest.mark.slow
 def test_planned_walks_reach_the_goal_without_colliding() -> None:
     cache = SceneCache(capacity=1)
     sim = cache.get(procedural_scene_id(2))

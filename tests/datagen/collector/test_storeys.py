@@ -24,6 +24,7 @@ def sim() -> Iterator[Simulator]:
     cache.close()
 
 
+@pytest.mark.slow
 def test_a_flight_joins_a_landing_below_to_one_above(sim: Simulator) -> None:
     storeys = sim.storeys
     assert storeys is not None
@@ -41,6 +42,7 @@ def test_a_flight_joins_a_landing_below_to_one_above(sim: Simulator) -> None:
     assert (3.6**2 + rise**2) ** 0.5 < walk < (3.6**2 + rise**2) ** 0.5 + 2.0
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("upward", [True, False])
 def test_a_planned_walk_takes_the_stairs_without_colliding(sim: Simulator, upward: bool) -> None:
     storeys = sim.storeys

@@ -26,6 +26,7 @@ def test_a_folder_without_trajectories_is_not_a_dataset(tmp_path: Path) -> None:
     assert not (tmp_path / "out").exists()
 
 
+@pytest.mark.slow
 def test_a_house_of_another_format_version_is_refused(
     hand_dataset: HandDataset, tmp_path: Path
 ) -> None:

@@ -28,6 +28,7 @@ def _walked(parquet: Path) -> float:
     return float(np.linalg.norm(np.diff(poses[:, :2, 3], axis=0), axis=1).sum())
 
 
+@pytest.mark.slow
 def test_counts_agree_with_a_recount_of_the_files(dataset: Dataset) -> None:
     house = dataset.root / "trajectories" / dataset.finished
     stats = dataset_stats(dataset.root)
