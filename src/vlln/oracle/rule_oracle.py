@@ -15,6 +15,7 @@ from __future__ import annotations
 
 from vlln.errors import ConfigError
 from vlln.oracle.answers import answer_attribute, answer_other
+from vlln.oracle.classifier.model import packaged_classifier
 from vlln.oracle.classify import OtherTopic, RouteKind, analysed
 from vlln.oracle.disambiguation import answer_disambiguation
 from vlln.oracle.knowledge import EpisodeKnowledge, HouseIndex
@@ -68,6 +69,9 @@ class RuleOracle:
         self.question_types = frozenset(question_types)
         self.cues = cues
         self._index: HouseIndex | None = None
+        # Load the question classifier now (once per process), not at the first question,
+        # whose answer would otherwise wait a second or two for it.
+        packaged_classifier()
         self._knowledge: EpisodeKnowledge | None = None
 
     def start(self, context: EpisodeContext) -> None:
