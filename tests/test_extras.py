@@ -27,6 +27,7 @@ COMMANDS = [
 
 
 @pytest.mark.parametrize(("missing", "command", "message"), COMMANDS)
+@pytest.mark.slow
 def test_a_missing_serve_extra_is_one_line(
     tmp_path: Path, missing: str, command: list[str], message: str
 ) -> None:

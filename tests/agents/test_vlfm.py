@@ -35,6 +35,7 @@ def one_chair() -> Simulator:
     return Simulator(house)
 
 
+@pytest.mark.slow
 def test_the_prior_is_deterministic_and_learnt_from_training_houses(tmp_path: Path) -> None:
     first, second = tmp_path / "a.json", tmp_path / "b.json"
     assert main(["--houses", "2", "--preset", "small", "--out", str(first)]) == 0

@@ -68,6 +68,7 @@ def _lines(folder: Path) -> list[str]:
     return (folder / EPISODES_FILE).read_text(encoding="utf-8").splitlines()
 
 
+@pytest.mark.slow
 def test_one_plan_on_both_executors_writes_the_same_folder_refusals_included(
     cluster: None, split_cache: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

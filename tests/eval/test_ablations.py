@@ -27,6 +27,8 @@ from vlln.tasks.record import EpisodeRecord
 from vlln.tasks.scenes import SceneCache
 from vlln.tasks.split_files import load_or_build_split
 
+pytestmark = pytest.mark.slow  # plays whole episodes or trains a model
+
 YES = ("Yes.", "Yes, that is the one.", "Yes, this is it.")
 EPISODE: dict[str, Any] = {  # the 6th of 9 episodes spread over the house: the one described above
     "agent": "frontier",

@@ -16,6 +16,8 @@ from vlln.cli.eval_configs import EvalCommand
 from vlln.errors import ConfigError
 from vlln.eval.config import EvalConfig, describe_differences
 
+pytestmark = pytest.mark.slow  # plays whole episodes or trains a model
+
 RUN_FILES = ("episodes.jsonl", "run.json", "summary.json", "summary.md")
 
 

@@ -79,6 +79,7 @@ def test_a_bad_artefact_is_one_line_naming_the_fix(
     assert "vlln oracle train-classifier" in message
 
 
+@pytest.mark.slow
 def test_the_train_command_writes_a_loadable_artefact(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

@@ -64,6 +64,7 @@ def test_leaving_a_set_out_trains_on_no_question_reading_as_one_of_it(
     assert len(trained) > len(SMALL["train"]) // 2
 
 
+@pytest.mark.slow
 def test_a_model_trained_without_v6_types_most_of_v6_right() -> None:
     # An honest out-of-sample figure: v6 was written separately from the other sets.
     report = leave_one_out(SETS, "v6", seed=0)
