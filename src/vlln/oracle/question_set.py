@@ -30,27 +30,6 @@ from vlln.oracle.classify import analyse_question, classify_question
 from vlln.oracle.topics import AttributeTopic, OtherTopic, RouteKind, Topic, label_of
 from vlln.tasks.oracle_protocol import QuestionType
 
-PACKAGED_SETS = (
-    "train",
-    "extra",
-    "v6",
-    "generated",
-    "written_a",
-    "written_b",
-    "written_c",
-    "written_d",
-    "heldout",
-)
-TRAINING_SETS = (
-    "train",
-    "extra",
-    "v6",
-    "generated",
-    "written_a",
-    "written_b",
-    "written_c",
-    "written_d",
-)
 # A held-out set stops being held out once the classifier is trained on it or tuned on its
 # errors; each replacement is a new file, written without looking at the classifier.
 _PACKAGED_FILES = {
@@ -64,6 +43,10 @@ _PACKAGED_FILES = {
     "written_d": "questions_written_d.jsonl",
     "heldout": "questions_heldout_v7.jsonl",
 }
+# written_*: questions written from the task definition alone, in human navigators' (a),
+# vision-language agents' (b), short and non-native (c) and mid-dialog (d) styles.
+PACKAGED_SETS = tuple(_PACKAGED_FILES)
+TRAINING_SETS = tuple(name for name in PACKAGED_SETS if name != "heldout")
 _FIELDS = frozenset({"question", "type", "route_kind", "topic"})
 _TOPICS: dict[QuestionType, type[AttributeTopic] | type[OtherTopic]] = {
     QuestionType.ATTRIBUTE: AttributeTopic,
