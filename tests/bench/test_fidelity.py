@@ -8,6 +8,7 @@ import pytest
 
 from vlln.bench.fidelity import (
     RUNS,
+    comparison_rows,
     dialog_gain,
     fidelity_rows,
     mean_interval,
@@ -60,6 +61,24 @@ def test_dialog_gain_pairs_the_same_episodes() -> None:
     gain = dialog_gain(records, 0, 5)
     assert gain is not None and gain.value == pytest.approx(50.0)
     assert dialog_gain([record("1", 0, True)], 0, 5) is None
+
+
+def test_every_baseline_is_compared_with_fbe_on_the_same_episodes() -> None:
+    """FBE solves episodes 0-4 of 10; VLFM the same and 5-7, but episode 9 is VLFM's alone
+    (FBE never played it), so the pairing sees three more successes in nine shared episodes."""
+    records: dict[Any, list[EpisodeRecord]] = {run: [] for run in RUNS}
+    for run in RUNS:
+        if run.task == "objectnav" and run.agent == "fbe":
+            records[run] = [record(str(k), 0, k < 5) for k in range(9)]
+        if run.task == "objectnav" and run.agent == "vlfm":
+            records[run] = [record(str(k), 0, k < 8) for k in range(10)]
+    rows = comparison_rows(records)
+    assert [(row["agent"], row["task"]) for row in rows] == [("vlfm (noisy detector)", "objectnav")]
+    assert rows[0]["sr_minus_fbe_pp"]["value"] == pytest.approx(33.33)  # type: ignore[index]
+    agents = {run.agent for run in RUNS}
+    assert {"fbe", "vlfm", "frontier", "expert"} <= agents
+    for task in ("objectnav", "ign", "iign"):
+        assert {run.agent for run in RUNS if run.task == task} == agents
 
 
 def test_rows_give_sr_spl_taxonomy_and_gain() -> None:

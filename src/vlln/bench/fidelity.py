@@ -1,17 +1,20 @@
 """``vlln bench fidelity``: how hard the benchmark is, next to the paper's Table 1.
 
-It plays the paper's non-learned baseline, frontier exploration with a detector that sees no
-privileged labels (our ``noisy`` detector), and the privileged shortest-path expert on the
-same episodes of the paper's test protocol (``--split test500``: the 14 test houses of the
-``mp3d`` preset), on ObjectNav, IGN and IIGN (IIGN at dialog budgets 0 to 5, played by prefix
-sharing, whose records equal independent runs'). Every run is an
-ordinary run directory under ``--out``, so a killed benchmark resumes where it stopped and the
-runs can be scored, reported and filmed like any other.
+It plays the paper's table of non-learned baselines on the same episodes of the paper's test
+protocol (``--split test500``: the 14 test houses of the ``mp3d`` preset), on ObjectNav, IGN
+and IIGN, every one with a detector that sees no privileged labels (our ``noisy`` detector):
+the paper's FBE (``fbe``, which never asks), the VLFM-style value-map agent (``vlfm``), our
+frontier agent with questions (``frontier``: IIGN at dialog budgets 0 to 5, played by prefix
+sharing, whose records equal independent runs'; IGN and ObjectNav at budget 5), and the
+privileged shortest-path expert. Every run is an ordinary run directory under ``--out``, so a
+killed benchmark resumes where it stopped and the runs can be scored, reported and filmed like
+any other.
 
 For each task and budget it prints SR and SPL with 95 % intervals (Wilson's interval for the
 success rate, Student's t for the mean SPL), the failure taxonomy's shares, and for IIGN the
 paper's MSP over budgets 0..5 and the dialog gain (SR at budget 5 minus SR at budget 0), each
-over the same episodes with a paired 95 % interval.
+over the same episodes with a paired 95 % interval; and every agent's SR minus FBE's on the
+same episodes, with a paired interval.
 """
 
 from __future__ import annotations
@@ -38,6 +41,7 @@ from vlln.tasks.taxonomy import CLASS_ABBREVIATIONS, FAILURE_CLASSES, classify
 from vlln.tasks.test_protocol import TEST_PROTOCOL_SPLIT
 
 CONFIDENCE = 0.95
+BASELINE = "fbe"  # the paper's frontier baseline, which every other agent is compared with
 
 
 @dataclass(frozen=True)
@@ -67,9 +71,15 @@ class FidelityRun:
 
 
 RUNS: tuple[FidelityRun, ...] = (  # the longest first, so parallel workers end together
-    FidelityRun("frontier", "noisy", "iign", (0, 1, 2, 3, 4, 5)),
-    FidelityRun("frontier", "noisy", "ign", (0,)),
-    FidelityRun("frontier", "noisy", "objectnav", (0,)),
+    FidelityRun("frontier", "noisy", "iign", (0, 1, 2, 3, 4, 5)),  # with questions
+    FidelityRun("frontier", "noisy", "ign", (5,)),
+    FidelityRun("vlfm", "noisy", "iign", (0,)),
+    FidelityRun("vlfm", "noisy", "ign", (0,)),
+    FidelityRun("fbe", "noisy", "iign", (0,)),
+    FidelityRun("fbe", "noisy", "ign", (0,)),
+    FidelityRun("frontier", "noisy", "objectnav", (5,)),
+    FidelityRun("vlfm", "noisy", "objectnav", (0,)),
+    FidelityRun("fbe", "noisy", "objectnav", (0,)),
     FidelityRun("expert", None, "objectnav", (0,)),
     FidelityRun("expert", None, "ign", (0,)),
     FidelityRun("expert", None, "iign", (0,)),
@@ -123,19 +133,24 @@ def group_figures(records: Sequence[EpisodeRecord]) -> dict[str, object]:
     }
 
 
+def paired_difference(
+    base: Sequence[EpisodeRecord], other: Sequence[EpisodeRecord]
+) -> Interval | None:
+    """SR of ``other`` minus SR of ``base`` over the episodes both played, with a paired 95 %
+    interval, in percentage points (each record list holds one budget)."""
+    before = {(r.scene_id, r.episode_id): success(r) for r in base}
+    after = {(r.scene_id, r.episode_id): success(r) for r in other}
+    shared = sorted(set(before) & set(after))
+    if not shared:
+        return None
+    return mean_interval([100.0 * (after[k] - before[k]) for k in shared])
+
+
 def dialog_gain(records: Sequence[EpisodeRecord], low: int, high: int) -> Interval | None:
     """SR at budget ``high`` minus SR at ``low`` on the episodes played at both, with a paired
     95 % interval, in percentage points."""
-    by_budget: dict[int, dict[tuple[str, str], bool]] = {low: {}, high: {}}
-    for record in records:
-        if record.budget in by_budget:
-            key = (record.scene_id, record.episode_id)
-            by_budget[record.budget][key] = success(record)
-    shared = sorted(set(by_budget[low]) & set(by_budget[high]))
-    if not shared:
-        return None
-    gains = [100.0 * (by_budget[high][k] - by_budget[low][k]) for k in shared]
-    return mean_interval(gains)
+    at = {budget: [r for r in records if r.budget == budget] for budget in (low, high)}
+    return paired_difference(at[low], at[high])
 
 
 def msp_interval(records: Sequence[EpisodeRecord], budgets: Sequence[int]) -> Interval | None:
@@ -188,9 +203,9 @@ def run_fidelity_benchmark(settings: FidelityBench) -> list[dict[str, object]]:
             done = pool.map(_play, jobs, chunksize=1)
     for line in done:
         print(f"fidelity: {line}", file=sys.stderr)
-    rows = [
-        row for run in RUNS for row in fidelity_rows(run, RunDirectory(out / run.folder).records())
-    ]
+    records = {run: RunDirectory(out / run.folder).records() for run in RUNS}
+    rows = [row for run in RUNS for row in fidelity_rows(run, records[run])]
+    rows += comparison_rows(records)
     for row in rows:
         print(json.dumps(row) if settings.as_json else _table_line(row))
     return rows
@@ -198,7 +213,7 @@ def run_fidelity_benchmark(settings: FidelityBench) -> list[dict[str, object]]:
 
 def fidelity_rows(run: FidelityRun, records: Sequence[EpisodeRecord]) -> list[dict[str, object]]:
     """One row per budget of a run, and for IIGN the dialog gain between its budgets."""
-    label = run.agent + (f" ({run.detector} detector)" if run.detector else "")
+    label = _label(run)
     rows: list[dict[str, object]] = []
     for budget in run.budgets:
         group = [r for r in records if r.budget == budget]
@@ -225,11 +240,40 @@ def fidelity_rows(run: FidelityRun, records: Sequence[EpisodeRecord]) -> list[di
     return rows
 
 
+def comparison_rows(records: dict[FidelityRun, list[EpisodeRecord]]) -> list[dict[str, object]]:
+    """Each baseline against the paper's FBE on every task: the paired SR difference over the
+    episodes both played (the other's highest budget against FBE's budget 0)."""
+    rows: list[dict[str, object]] = []
+    for base in (run for run in RUNS if run.agent == BASELINE):
+        for run in RUNS:
+            if run.task != base.task or run.agent in (BASELINE, "expert"):
+                continue
+            top = max(run.budgets)
+            other = [r for r in records[run] if r.budget == top]
+            difference = paired_difference(records[base], other)
+            if difference is not None:
+                rows.append(
+                    {
+                        "agent": _label(run),
+                        "task": run.task,
+                        "budget": top,
+                        "sr_minus_fbe_pp": difference.to_json(),
+                    }
+                )
+    return rows
+
+
+def _label(run: FidelityRun) -> str:
+    return run.agent + (f" ({run.detector} detector)" if run.detector else "")
+
+
 def _table_line(row: dict[str, object]) -> str:
     """One row as a line of text (``--json`` prints the row itself)."""
     head = f"{row['agent']:<28} {row['task']:<9}"
     if "msp_pp" in row:
         return f"{head} MSP {row['msp_pp']} pp"
+    if "sr_minus_fbe_pp" in row:
+        return f"{head} SR minus FBE's {row['sr_minus_fbe_pp']} pp (budget {row['budget']})"
     if "dialog_gain_pp" in row:
         gain = row["dialog_gain_pp"]
         return f"{head} dialog gain {gain} pp (budgets {row['budgets']})"
