@@ -5,7 +5,8 @@ protocol (``--split test500``: the 14 test houses of the ``mp3d`` preset), on Ob
 and IIGN, every one with a detector that sees no privileged labels (our ``noisy`` detector):
 the paper's FBE (``fbe``, which never asks), the VLFM-style value-map agent (``vlfm``), our
 frontier agent with questions (``frontier``: IIGN at dialog budgets 0 to 5, played by prefix
-sharing, whose records equal independent runs'; IGN and ObjectNav at budget 5), and the
+sharing, whose records equal independent runs'; IGN at budget 5; ObjectNav has no dialog, so
+there the frontier agent is FBE), and the
 privileged shortest-path expert. Every run is an ordinary run directory under ``--out``, so a
 killed benchmark resumes where it stopped and the runs can be scored, reported and filmed like
 any other.
@@ -77,7 +78,6 @@ RUNS: tuple[FidelityRun, ...] = (  # the longest first, so parallel workers end 
     FidelityRun("vlfm", "noisy", "ign", (0,)),
     FidelityRun("fbe", "noisy", "iign", (0,)),
     FidelityRun("fbe", "noisy", "ign", (0,)),
-    FidelityRun("frontier", "noisy", "objectnav", (5,)),
     FidelityRun("vlfm", "noisy", "objectnav", (0,)),
     FidelityRun("fbe", "noisy", "objectnav", (0,)),
     FidelityRun("expert", None, "objectnav", (0,)),
