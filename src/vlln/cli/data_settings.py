@@ -48,8 +48,8 @@ class BuildCommand(RayOptions, BuildOptions):
 class SftCommand(SftConfig):
     """``vlln data export-sft``: an export's settings and where it reads and writes."""
 
-    dataset: CliPositionalArg[Path]
-    """a folder made by vlln data build"""
+    dataset: CliPositionalArg[list[Path]]
+    """one or more folders made by vlln data build (several: mixed for co-training)"""
     out: Path
     """output folder (sft.jsonl and images)"""
     quiet: bool = False
