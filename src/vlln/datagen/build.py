@@ -360,7 +360,8 @@ def check_settings(root: Path, config: BuildConfig) -> None:
                 f"{path} is not valid JSON ({error}); delete it to rebuild"
             ) from error
         if recorded != wanted:
-            changed = sorted(k for k in wanted if recorded.get(k) != wanted[k])
+            keys = wanted.keys() | recorded.keys()
+            changed = sorted(k for k in keys if recorded.get(k) != wanted.get(k))
             raise ConfigError(
                 f"{root} was built with other settings (differing: {', '.join(changed)}); "
                 "resume with the same options, or build into a new folder"
