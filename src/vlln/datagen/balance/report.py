@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
+from matplotlib.ticker import MaxNLocator
 
 from vlln.datagen.balance.select import Selection, flatness
 from vlln.eval.document import Block, Heading, Image, Paragraph, Table, to_markdown
@@ -95,6 +96,7 @@ def _panel(axes: Axes, what: str, before: dict[str, int], after: dict[str, int],
         f"{a.max_over_mean:.2f}"
     )
     axes.set_ylabel("trajectories")
+    axes.yaxis.set_major_locator(MaxNLocator(integer=True))
     if len(names) <= _MAX_LABELS:
         axes.set_xticks(x, names, rotation=60, ha="right", fontsize=8)
     else:
