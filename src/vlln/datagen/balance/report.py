@@ -55,8 +55,8 @@ def report_blocks(selection: Selection, source: Path) -> list[Block]:
         Heading(1, f"Balanced dataset from {source}"),
         Paragraph(
             f"Kept {len(selection.kept)} of {before} trajectories: at most {selection.per_scene} "
-            f"per scene and {selection.per_category} per target category, the rarest "
-            "categories taken first (vlln.datagen.balance.select). The paper balances its "
+            f"per scene and {selection.per_category} per target category, the categories "
+            "taking turns, rarest first (vlln.datagen.balance.select). The paper balances its "
             "41,891 IIGN trajectories by scene and category down to 11,661."
         ),
         Table(

@@ -4,10 +4,11 @@
 The paper filters its 41,891 IIGN trajectories to 11,661 "with balanced scenes and target
 categories" (docs/reference-facts.md §5) without stating the rule; this is ours. Both caps
 default to the median count (of the scenes, of the categories), so the crowded half is cut
-down to the typical one and the sparse half is kept whole. Trajectories are taken greedily,
-those of the rarest categories first (then of the sparsest scenes, then in an order drawn from
-the seed), while neither cap of a trajectory is reached: a rare category is not squeezed out
-by a crowded scene's cap, and the same dataset, caps and seed always select the same set.
+down to the typical one and the sparse half is kept whole. The categories take turns, rarest
+first, each taking one trajectory per round, from the scene that has the fewest kept so far
+and still has room (among equals, in an order drawn from the seed), until none can take
+more: every category gets its share before a crowded one fills a scene's cap, the scenes
+fill evenly, and the same dataset, caps and seed always select the same set.
 """
 
 from __future__ import annotations
@@ -70,19 +71,28 @@ def select(items: list[Item], config: BalanceConfig) -> Selection:
     per_scene = config.per_scene or median_cap(scenes)
     per_category = config.per_category or median_cap(categories)
     draw = np.random.default_rng(np.random.SeedSequence([config.seed, 17])).permutation(len(items))
-    order = sorted(
-        range(len(items)),
-        key=lambda i: (categories[items[i].category], scenes[items[i].scene], int(draw[i])),
-    )
+    pools: dict[str, list[int]] = {}
+    for i in sorted(range(len(items)), key=lambda i: int(draw[i])):
+        pools.setdefault(items[i].category, []).append(i)
     scene_kept: Counter[str] = Counter()
     category_kept: Counter[str] = Counter()
     chosen: set[int] = set()
-    for i in order:
-        item = items[i]
-        if scene_kept[item.scene] < per_scene and category_kept[item.category] < per_category:
-            scene_kept[item.scene] += 1
-            category_kept[item.category] += 1
-            chosen.add(i)
+    turns = sorted(pools, key=lambda name: (categories[name], name))
+    while turns:
+        again = []
+        for name in turns:
+            pool = pools[name]
+            room = [i for i in pool if scene_kept[items[i].scene] < per_scene]
+            if not room:
+                continue
+            pick = min(room, key=lambda i: scene_kept[items[i].scene])  # first in draw order
+            pool.remove(pick)
+            chosen.add(pick)
+            scene_kept[items[pick].scene] += 1
+            category_kept[name] += 1
+            if category_kept[name] < per_category and pool:
+                again.append(name)
+        turns = again
     return Selection(
         kept=[item for i, item in enumerate(items) if i in chosen],
         per_scene=per_scene,
