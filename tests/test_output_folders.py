@@ -1,5 +1,5 @@
 """An --out that cannot be written (under a regular file, or on a read-only file system) is one
-line naming the path and the fix, before any work, for eval, data build and report.
+line naming the path and the fix, before any work, for eval, data build, data balance and report.
 
 The read-only place is /sys: sysfs refuses new entries to every user, root included (root
 ignores permission bits, so a chmod-ed folder would not fail under the tests' root)."""
@@ -22,6 +22,7 @@ READ_ONLY = Path("/sys/vlln-test-out")
 COMMANDS = {
     "eval": ["eval", "--agent", "random", "--task", "iign", "--budget", "0", "--out"],
     "data build": ["data", "build", "--houses", "1", "--yes", "--out"],
+    "data balance": ["data", "balance", "DATASET", "--out"],
     "report": ["report", "RUN", "--out"],
 }
 

@@ -63,6 +63,7 @@ def test_the_commands_with_settings_are_generated_from_their_configs() -> None:
         "video",
         "demo",
         "data build",
+        "data balance",
         "data export-sft",
         "data episodes",
         "data stats",

@@ -9,7 +9,13 @@ from vlln.cli.generated import add_config_command
 from vlln.cli.options import Commands
 
 if TYPE_CHECKING:
-    from vlln.cli.data_settings import BuildCommand, EpisodesCommand, SftCommand, StatsCommand
+    from vlln.cli.data_settings import (
+        BalanceCommand,
+        BuildCommand,
+        EpisodesCommand,
+        SftCommand,
+        StatsCommand,
+    )
 
 
 def _build_command() -> type[BuildCommand]:
@@ -28,6 +34,12 @@ def _stats_command() -> type[StatsCommand]:
     from vlln.cli.data_settings import StatsCommand
 
     return StatsCommand
+
+
+def _balance_command() -> type[BalanceCommand]:
+    from vlln.cli.data_settings import BalanceCommand
+
+    return BalanceCommand
 
 
 def _sft_command() -> type[SftCommand]:
@@ -75,6 +87,22 @@ def _data_stats(command: StatsCommand) -> int:
 
     paths = write_stats(command.dataset, command.out)
     print("wrote " + ", ".join(str(path) for path in paths))
+    return 0
+
+
+def _data_balance(command: BalanceCommand) -> int:
+    from vlln.datagen.balance import BalanceConfig, balance_dataset
+    from vlln.files import check_output_folder
+
+    check_output_folder(command.out)
+    config = BalanceConfig(**command.model_dump(include=set(BalanceConfig.model_fields)))
+    result = balance_dataset(command.dataset, command.out, config, progress=not command.quiet)
+    selection = result.selection
+    print(
+        f"kept {len(selection.kept)} of {sum(selection.scenes_before.values())} trajectories "
+        f"(at most {selection.per_scene} per scene, {selection.per_category} per category)"
+    )
+    print(f"balanced dataset in {result.out}; report: {result.report[0]}")
     return 0
 
 
@@ -133,6 +161,13 @@ def add_data_commands(commands: Commands) -> None:
         _stats_command,
         _data_stats,
         help="statistics, figure and report of a built dataset",
+    )
+    add_config_command(
+        data,
+        "balance",
+        _balance_command,
+        _data_balance,
+        help="a dataset cut down to even scene and target-category counts, with a report",
     )
     add_config_command(
         data,

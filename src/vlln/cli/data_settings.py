@@ -1,5 +1,6 @@
-"""The settings of ``vlln data build``, ``export-sft``, ``episodes`` and ``stats``: what
-is stored with the data (:class:`BuildOptions`, :class:`SftConfig`) and how a command runs
+"""The settings of ``vlln data build``, ``balance``, ``export-sft``, ``episodes`` and
+``stats``: what is stored with the data (:class:`BuildOptions`, :class:`BalanceConfig`,
+:class:`SftConfig`) and how a command runs
 (where it reads and writes, Ray, progress). Imported when one of these commands is used."""
 
 from __future__ import annotations
@@ -12,6 +13,7 @@ from pydantic_settings import CliPositionalArg
 
 from vlln.cluster.options import RayOptions
 from vlln.config import Config
+from vlln.datagen.balance.select import BalanceConfig
 from vlln.datagen.build import BuildOptions
 from vlln.datagen.sft.config import SftConfig
 from vlln.eval.sharding import Shard
@@ -48,10 +50,21 @@ class BuildCommand(RayOptions, BuildOptions):
 class SftCommand(SftConfig):
     """``vlln data export-sft``: an export's settings and where it reads and writes."""
 
+    dataset: CliPositionalArg[list[Path]]
+    """one or more folders made by vlln data build (several: mixed for co-training)"""
+    out: Path
+    """output folder (sft.jsonl and images)"""
+    quiet: bool = False
+    """no progress bar"""
+
+
+class BalanceCommand(BalanceConfig):
+    """``vlln data balance``: a dataset cut down to even scene and category counts."""
+
     dataset: CliPositionalArg[Path]
     """a folder made by vlln data build"""
     out: Path
-    """output folder (sft.jsonl and images)"""
+    """new folder for the balanced dataset and its report"""
     quiet: bool = False
     """no progress bar"""
 

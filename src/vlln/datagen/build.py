@@ -12,9 +12,12 @@ stages 1-2, which houses are left to build, and progress.
     <out>/trajectories/<house>/           stages 3-5: collected, filtered, written trajectories
 
 (names: :mod:`vlln.datagen.layout`). ``floors`` picks houses of 1, 2 or 3 storeys joined by
-stairs (the scene ids of houses with several storeys end in ``_2f``/``_3f``); a one-storey
-build records no ``floors`` setting, so its ``build.json`` is what it was before houses had
-storeys.
+stairs (the scene ids of houses with several storeys end in ``_2f``/``_3f``). ``task`` picks
+the episodes walked (IIGN with dialog; IGN and ObjectNav without, see
+:mod:`vlln.datagen.collector.collect`) and ``policy`` how (frontier exploration, or the
+shortest path). A setting at its first value (one storey, IIGN, frontier) is not recorded, so
+the ``build.json`` of such a build is what it was before the setting existed, and a folder
+built then resumes.
 
 Houses are the unit of sharding (``--shard i/n`` takes every n-th house), of locking (a build
 holds its houses, :mod:`.house_locks`, so two builds never write one house) and of completion
@@ -29,7 +32,7 @@ import json
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Annotated, Any, Protocol
+from typing import Annotated, Any, Literal, Protocol
 
 import numpy as np
 from pydantic import Field, field_validator
@@ -71,6 +74,8 @@ from vlln.world.catalogue import default_catalogue
 from vlln.world.scene_summary import export_scene_summary
 
 FLOOR_CHOICES = (1, 2, 3)  # storeys a procedural house can have
+# Settings left out of build.json at these values (builds made before they existed).
+_UNRECORDED_DEFAULTS = {"floors": 1, "task": "iign", "policy": "frontier"}
 
 
 class BuildOptions(Config):
@@ -83,9 +88,13 @@ class BuildOptions(Config):
     seed: Annotated[int, Field(ge=0)] = 0
     """seed of every random choice"""
     per_house: Annotated[int, Field(ge=0)] = 20
-    """trajectories tried per house (0: every IIGN episode)"""
+    """trajectories tried per house (0: every episode of the task)"""
     floors: int = 1
     """storeys of every house, joined by stairs, 1 to 3"""
+    task: Literal["iign", "ign", "objectnav"] = "iign"
+    """episodes to walk: iign (with dialog), ign or objectnav (no dialog, as in the paper)"""
+    policy: Literal["frontier", "shortest"] = "frontier"
+    """frontier exploration until the target is seen, or the shortest path to it"""
 
     @field_validator("floors")
     @classmethod
@@ -107,11 +116,12 @@ class BuildConfig(BuildOptions):
         return procedural_scene_id(seed, self.floors)
 
     def to_json(self) -> dict[str, Any]:
-        """The settings; a one-storey build records no ``floors``, as before houses had
-        storeys, so its folders resume."""
+        """The settings; those at their first value (one storey, IIGN, frontier) are left
+        out, as before they existed, so folders built then resume."""
         fields = super().to_json()
-        if self.floors == 1:
-            del fields["floors"]
+        for name, value in _UNRECORDED_DEFAULTS.items():
+            if fields[name] == value:
+                del fields[name]
         return fields
 
     def settings(self) -> dict[str, Any]:
@@ -225,11 +235,11 @@ def prepare_episodes(
     root: Path, config: BuildConfig, seeds: list[int], cache: SceneCache, progress: bool
 ) -> dict[str, list[Episode]]:
     """Stages 1 and 2: scene summaries of ``seeds``, the split's episode files (built once;
-    every shard builds the same bytes), and the IIGN episodes grouped by scene."""
+    every shard builds the same bytes), and the episodes of the build's task by scene."""
     for seed in tqdm(seeds, desc="scene summaries", unit="house", disable=not progress):
         export_scene_summary(cache.get(config.scene_id(seed)).house, root / SCENE_SUMMARY_DIR)
     episodes_dir = root / EPISODES_DIR
-    path = episode_path(episodes_dir, config.split, TaskType.IIGN)
+    path = episode_path(episodes_dir, config.split, TaskType(config.task))
     if not path.exists():
         build_split(
             config.split,
@@ -245,7 +255,8 @@ def prepare_episodes(
 
 
 def choose_episodes(episodes: list[Episode], config: BuildConfig, seed: int) -> list[Episode]:
-    """The house's IIGN episodes to attempt, drawn without replacement, in a fixed order."""
+    """The house's episodes to attempt, drawn without replacement, in a fixed order (the
+    same draw for every task: their episode lists are aligned one to one)."""
     if config.per_house == 0 or config.per_house >= len(episodes):
         return list(episodes)
     rng = np.random.default_rng(np.random.SeedSequence([config.seed, seed, 5]))
@@ -272,7 +283,9 @@ def build_house(
         leave=False,
     )
     for episode in bar:
-        trajectory = collect_trajectory(sim, episode, oracle, config.seed, config.collector)
+        trajectory = collect_trajectory(
+            sim, episode, oracle, config.seed, config.collector, config.policy == "shortest"
+        )
         last = trajectory.steps[-1].state
         finals = tuple(
             sim.render(AgentState(last.position, last.yaw, tilt)) for tilt in (0.0, DOWN_TILT)
@@ -347,7 +360,8 @@ def check_settings(root: Path, config: BuildConfig) -> None:
                 f"{path} is not valid JSON ({error}); delete it to rebuild"
             ) from error
         if recorded != wanted:
-            changed = sorted(k for k in wanted if recorded.get(k) != wanted[k])
+            keys = wanted.keys() | recorded.keys()
+            changed = sorted(k for k in keys if recorded.get(k) != wanted.get(k))
             raise ConfigError(
                 f"{root} was built with other settings (differing: {', '.join(changed)}); "
                 "resume with the same options, or build into a new folder"

@@ -2,8 +2,8 @@
 
 Dropped, with the first reason that applies: the collector gave up (target never found, step
 limit), any collision, more than ``max_consecutive_turns`` turns in a row, or final frames
-(level and 30° down) neither of which shows the target inside the central 3/4 x 3/4 of the
-image.
+(level and 30° down) neither of which shows the target (on ObjectNav: the instance walked to)
+inside the central 3/4 x 3/4 of the image.
 
 The opening 360° scan is 12 turns by design; counted together with the turns that then face
 the first frontier it would exceed 13 in nearly every trajectory, so the turn-run rule applies
@@ -62,7 +62,7 @@ def rejection_reason(
     after_scan = [s.action for s in trajectory.steps[config.scan_turns :]]
     if longest_turn_run(after_scan) > config.max_consecutive_turns:
         return TOO_MANY_TURNS
-    target_id = int(trajectory.episode.instruction.instance_id[0])
+    target_id = int(trajectory.target_key)
     if best_central_pixels(final_frames, target_id) < config.min_target_pixels:
         return TARGET_NOT_CENTRED
     return None

@@ -189,7 +189,7 @@ def episode_row(trajectory: Trajectory, index: int) -> dict[str, Any]:
         "episode_id": episode.episode_id,
         "scene_id": episode.scene_id,
         "target": {
-            "instance_id": episode.instruction.instance_id[0],
+            "instance_id": trajectory.target_key,
             "category": episode.object_category,
         },
         "path_length": round(trajectory.path_length, 4),

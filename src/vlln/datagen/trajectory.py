@@ -42,6 +42,12 @@ class Trajectory:
     steps: list[Step] = field(default_factory=list)
     dialog: list[Exchange] = field(default_factory=list)
     failure: str | None = None  # why the collector gave up, if it did
+    target: str | None = None  # the goal walked to (ObjectNav: one of several); None: the first
+
+    @property
+    def target_key(self) -> str:
+        """The instance id key of the goal walked to, as the episode names it."""
+        return self.target if self.target is not None else self.episode.instruction.instance_id[0]
 
     @property
     def length(self) -> int:

@@ -26,6 +26,15 @@ def test_a_folder_without_trajectories_is_not_a_dataset(tmp_path: Path) -> None:
     assert not (tmp_path / "out").exists()
 
 
+def test_a_dataset_named_twice_is_refused(tmp_path: Path) -> None:
+    (tmp_path / "data").mkdir()
+    with pytest.raises(ConfigError, match="is given more than once; name each dataset once"):
+        export_sft([tmp_path / "data", tmp_path / "." / "data"], tmp_path / "out", progress=False)
+    with pytest.raises(ConfigError, match="no dataset given"):
+        export_sft([], tmp_path / "out", progress=False)
+    assert not (tmp_path / "out").exists()
+
+
 @pytest.mark.slow
 def test_a_house_of_another_format_version_is_refused(
     hand_dataset: HandDataset, tmp_path: Path

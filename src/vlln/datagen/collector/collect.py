@@ -1,10 +1,19 @@
-"""Walking one episode with the collector: the policy acts, the triggers ask, steps are kept."""
+"""Walking one episode with the collector: the policy acts, the triggers ask, steps are kept.
+
+The episode's task decides the goals and the dialog. IIGN: one target, and the dialog
+triggers ask the oracle. IGN: one target and no dialog: the full description is the whole
+instruction, and the paper's IGN training trajectories "contain only navigation actions".
+ObjectNav: every instance of the category is a goal (the episode lists them all, target
+first) and there is no dialog either. ``shortest`` walks the shortest path to the nearest
+goal's view point instead of exploring (:class:`CollectorPolicy` with ``explore`` off).
+"""
 
 from __future__ import annotations
 
 import math
 import zlib
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 
@@ -16,11 +25,20 @@ from vlln.datagen.trajectory import Step, Trajectory
 from vlln.errors import ConfigError
 from vlln.sim.agent import Action, AgentState
 from vlln.sim.simulator import Simulator
+from vlln.sim.storeys import Point3
 from vlln.tasks.episode import Episode
 from vlln.tasks.oracle_protocol import EpisodeContext, Oracle
+from vlln.tasks.spec import TaskType
 from vlln.world.frame import quaternion_to_yaw
+from vlln.world.model import ObjectInstance
 
 TOO_LONG = "too_long"  # the step limit was reached before STOP
+
+
+class _Goal(NamedTuple):
+    key: str  # as the episode names the instance
+    instance: ObjectInstance
+    points: tuple[Point3, ...]  # its view points
 
 
 @dataclass(frozen=True)
@@ -52,20 +70,33 @@ def collect_trajectory(
     oracle: Oracle,
     seed: int = 0,
     config: CollectorConfig | None = None,
+    shortest: bool = False,
 ) -> Trajectory:
     """Walk ``episode`` in ``sim`` (its house) and return every step and dialog exchange."""
     config = config or CollectorConfig()
     house = sim.house
-    target = house.instance_for_key(episode.instruction.instance_id[0])
     state = AgentState(episode.start_position, quaternion_to_yaw(episode.start_rotation), 0.0)
     ground = Ground(sim, state.position[1])
-    points = tuple(ground.point(vp.position) for vp in episode.goals[0].view_points)
-    field_ = ground.field(points)
+    objectnav = episode.instruction.task_type == TaskType.OBJECTNAV
+    goals = _goals(episode, ground, every=objectnav)
+    field_ = ground.field([p for goal in goals for p in goal.points])  # to the nearest goal
+    others: tuple[tuple[ObjectInstance, tuple[Point3, ...]], ...] = ()
+    if objectnav and shortest:
+        goals = [min(goals, key=lambda g: ground.distance(ground.field(g.points), state.position))]
+    elif objectnav:
+        others = tuple((goal.instance, goal.points) for goal in goals)
+    _, target, points = goals[0]
     follower = LatticeFollower(
-        ground.nav, field_, config.goal_radius, sim.config.motion, max_expansions=30000
+        ground.nav,
+        field_ if others else ground.field(points),
+        config.goal_radius,
+        sim.config.motion,
+        max_expansions=30000,
     )
-    told = points if sim.storeys is not None else tuple((x, z) for x, _, z in points)
-    oracle.start(EpisodeContext(sim, target, told))
+    talks = episode.instruction.task_type == TaskType.IIGN
+    if talks:
+        told = points if sim.storeys is not None else tuple((x, z) for x, _, z in points)
+        oracle.start(EpisodeContext(sim, target, told))
     observation = sim.reset(state)
     policy = CollectorPolicy(
         ground,
@@ -75,6 +106,8 @@ def collect_trajectory(
         state,
         episode_rng(seed, episode.episode_id, "explore"),
         config.policy,
+        others=others,
+        explore=not shortest,
     )
     stated = frozenset(episode.instruction.instruction_info or ())
     triggers = DialogTriggers(
@@ -88,14 +121,16 @@ def collect_trajectory(
     )
     trajectory = Trajectory(episode)
     frame = observation.frame
-    triggers.at_start(state, frame)
+    if talks:
+        triggers.at_start(state, frame)
     distance = math.inf
     for index in range(config.max_steps):
         distance = ground.distance(field_, state.position)
         action = policy.act(state, frame)
-        triggers.at_frame(
-            index, state, frame, distance, policy.chooser.choices, policy.seen_at is not None
-        )
+        if talks:
+            triggers.at_frame(
+                index, state, frame, distance, policy.chooser.choices, policy.seen_at is not None
+            )
         if action == Action.STOP:
             trajectory.steps.append(Step(state, action, False, distance))
             break
@@ -106,4 +141,20 @@ def collect_trajectory(
         trajectory.failure = TOO_LONG
     trajectory.failure = trajectory.failure or policy.failure
     trajectory.dialog = triggers.finish(distance)
+    trajectory.target = next(g.key for g in goals if g.instance.id == policy.target.id)
     return trajectory
+
+
+def _goals(episode: Episode, ground: Ground, every: bool) -> list[_Goal]:
+    """The episode's goal instances with their view points: the target alone, or (``every``)
+    each goal the episode lists, in its order (ids and goals are listed alike)."""
+    house = ground.sim.house
+    pairs = list(zip(episode.instruction.instance_id, episode.goals, strict=False))
+    return [
+        _Goal(
+            key,
+            house.instance_for_key(key),
+            tuple(ground.point(v.position) for v in goal.view_points),
+        )
+        for key, goal in (pairs if every else pairs[:1])
+    ]

@@ -6,6 +6,10 @@ has been seen); the walk to a chosen frontier follows the navigable grid, like t
 shortest-path follower, so the kept trajectories are free of collisions. Once the target
 itself has been seen (the ground-truth instance image shows enough of it within range), the
 shortest path to its nearest view point, then turns until it is straight ahead, then STOP.
+On ObjectNav any instance of the category is a goal (``others``): the first one seen becomes
+the target. With ``explore`` off (the shortest-path strategy) there is no scan and no
+exploration: the target counts as seen from the first frame, so the walk is the shortest path
+to its nearest view point, the turns to face it, and STOP.
 
 In a house with several storeys each storey has its own map. A flight of stairs whose landing
 the map of the agent's storey shows, and which leads toward the target (privileged, like the
@@ -90,8 +94,11 @@ class CollectorPolicy:
         start: AgentState,
         rng: np.random.Generator,
         config: PolicyConfig | None = None,
+        others: tuple[tuple[ObjectInstance, tuple[Point3, ...]], ...] = (),
+        explore: bool = True,
     ) -> None:
         self.config = config or PolicyConfig()
+        self.others = others  # every goal with its view points, where any instance will do
         self.ground = ground
         self.sim = ground.sim
         self.target = target
@@ -104,9 +111,10 @@ class CollectorPolicy:
         self.chooser = TargetAwareChooser(follower.field, self.origin)
         start_level = ground.level(start.position[1])
         self.maps.of(start_level, start)
-        self.scan_left = self.config.scan_turns
+        self.scan_left = self.config.scan_turns if explore else 0
         self._scan_turn = Action.TURN_LEFT
-        self.seen_at: int | None = None  # the frame at which the target was first seen
+        # the frame at which the target was first seen (without exploring: known from the start)
+        self.seen_at: int | None = None if explore else 0
         self.failure: str | None = None
         self._frames = 0
         self._goal: Point3 | None = None  # where the frontier is walked to
@@ -134,8 +142,12 @@ class CollectorPolicy:
             level = self.ground.level(y)
             self.maps.of(level, state).update(frame.depth, self.maps.pose(state), 0.0)
             self.stairs.note(level, self.maps)
-        if self.seen_at is None and self._sees_target(frame):
-            self.seen_at = self._frames
+        if self.seen_at is None:
+            seen = self._seen_goal(frame)
+            if seen is not None:
+                self.seen_at = self._frames
+                if self.others:
+                    self._aim_at(*seen)
         self._frames += 1
         if self.scan_left > 0:
             self.scan_left -= 1
@@ -374,13 +386,25 @@ class CollectorPolicy:
         return arrival
 
     # ----------------------------------------------------------------- helpers
-    def _sees_target(self, frame: Frame) -> bool:
-        mine = frame.instance_ids == self.target.id
-        count = int(np.count_nonzero(mine))
-        if count < self.config.seen_pixels:
-            return False
-        depth = frame.depth[mine]
-        return bool(depth[depth > 0.0].min(initial=math.inf) <= self.config.seen_range)
+    def _seen_goal(self, frame: Frame) -> tuple[ObjectInstance, tuple[Point3, ...]] | None:
+        """The goal the frame shows enough of within range (of several, the most visible)."""
+        best, most = None, 0
+        for goal in self.others or ((self.target, self.view_points),):
+            mine = frame.instance_ids == goal[0].id
+            count = int(np.count_nonzero(mine))
+            if count < self.config.seen_pixels or count <= most:
+                continue
+            depth = frame.depth[mine]
+            if depth[depth > 0.0].min(initial=math.inf) <= self.config.seen_range:
+                best, most = goal, count
+        return best
+
+    def _aim_at(self, target: ObjectInstance, view_points: tuple[Point3, ...]) -> None:
+        """Make the seen goal the target: walk to its own nearest view point."""
+        self.target, self.view_points = target, view_points
+        field_ = self.ground.field(view_points)
+        radius, motion = self.follower.goal_radius, self.sim.config.motion
+        self.follower = LatticeFollower(self.ground.nav, field_, radius, motion, 30000)
 
     def _greedy(self, field_: GeodesicField | StoreyField) -> GreedyFollower:
         radius = self.follower.goal_radius

@@ -8,6 +8,13 @@
     <out>/export.json      format, settings, houses and counts; written last, so its presence
                            marks a complete export
 
+Several datasets (say one per task, as the paper co-trains on IIGN, IGN and ObjectNav) are
+mixed into one export: each is given a tag (its task, from its ``build.json``; numbered where
+two share a task), its images go under ``images/<tag>/`` and its sample ids start with
+``<tag>/``, and ``export.json`` adds ``datasets`` (each one's tag, folder, task, strategy,
+houses and counts) and ``counts_by_task``. Samples are written dataset after dataset; the
+trainer draws them in random order. One dataset exports as it always did, without tags.
+
 Which frames become samples is the reference's sampling (:mod:`vlln.datagen.sft.sampling`);
 the text of every sample is made by :mod:`vlln.prompt`, the functions the model agents call,
 so a sample is exactly what an agent would send in the same state. Random choices (the answers
@@ -25,9 +32,10 @@ import os
 import shutil
 import tempfile
 import zlib
-from collections.abc import Iterator
+from collections import Counter
+from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import IO, Any
 
@@ -35,6 +43,7 @@ import numpy as np
 from tqdm import tqdm
 
 from vlln import __version__
+from vlln.datagen.layout import SETTINGS_FILE
 from vlln.datagen.reader import HouseDataset
 from vlln.datagen.sft.config import SftConfig
 from vlln.datagen.sft.images import IMAGES_DIR, ImageStore
@@ -79,48 +88,131 @@ class SftSummary:
         }
 
 
+@dataclass(frozen=True)
+class _Source:
+    """One dataset of an export: where it is, what it holds, and its tag ("" when alone)."""
+
+    root: Path
+    houses: list[HouseDataset]
+    task: str  # from build.json ("unknown": a folder without one); "" when alone
+    policy: str
+    tag: str = ""
+
+    @property
+    def prefix(self) -> str:
+        return f"{self.tag}/" if self.tag else ""
+
+
 def export_sft(
-    dataset_root: str | Path,
+    dataset_root: str | Path | Sequence[str | Path],
     out_dir: str | Path,
     config: SftConfig | None = None,
     progress: bool = True,
 ) -> SftSummary:
-    """Export every trajectory of a built dataset into ``out_dir``."""
+    """Export every trajectory of one built dataset, or of several mixed, into ``out_dir``."""
     config = config or SftConfig()
-    houses = open_houses(dataset_root)
+    sources = _sources(dataset_root)
     out = Path(out_dir)
     _prepare_out(out)
     store = ImageStore(out)
     summary = SftSummary(out)
+    mix: list[dict[str, Any]] = []
     bar = tqdm(
-        total=sum(len(house.episodes) for house in houses),
+        total=sum(len(house.episodes) for s in sources for house in s.houses),
         desc="export-sft",
         unit="traj",
         disable=not progress,
     )
     with bar, _lines_atomic(out / SFT_FILE) as sink:
-        for house in houses:
-            for trajectory in read_trajectories(house):
-                try:
-                    _export_trajectory(house, trajectory, config, store, sink, summary)
-                except FileNotFoundError as error:
-                    raise DataFormatError(
-                        f"{house.root}, episode {trajectory.episode_index}: {error}; the "
-                        "dataset is incomplete: rebuild that house with `vlln data build`"
-                    ) from error
-                summary.trajectories += 1
-                bar.update()
+        for source in sources:
+            before = (summary.trajectories, summary.samples)
+            for house in source.houses:
+                for trajectory in read_trajectories(house):
+                    if source.tag:
+                        trajectory = replace(trajectory, house=source.prefix + trajectory.house)
+                    try:
+                        _export_trajectory(
+                            house, trajectory, config, store, sink, summary, source.prefix
+                        )
+                    except FileNotFoundError as error:
+                        raise DataFormatError(
+                            f"{house.root}, episode {trajectory.episode_index}: {error}; the "
+                            "dataset is incomplete: rebuild that house with `vlln data build`"
+                        ) from error
+                    summary.trajectories += 1
+                    bar.update()
+            mix.append(
+                _mix_entry(source, summary.trajectories - before[0], summary.samples - before[1])
+            )
     summary.images = len(store.written)
-    document = {
+    document: dict[str, Any] = {
         "format_version": FORMAT_VERSION,
         "vlln_version": __version__,
         "files": {"conversations": SFT_FILE, "images": f"{IMAGES_DIR}/"},
         "settings": config.to_json(),
-        "houses": [house.root.name for house in houses],
+        "houses": [s.prefix + house.root.name for s in sources for house in s.houses],
         "counts": summary.counts(),
     }
+    if len(sources) > 1:
+        document["datasets"] = mix
+        document["counts_by_task"] = _by_task(mix)
     write_text_atomic(out / SUMMARY_FILE, json.dumps(document, indent=2) + "\n")
     return summary
+
+
+def _sources(dataset_root: str | Path | Sequence[str | Path]) -> list[_Source]:
+    """The datasets to export, each tagged by its task where there are several."""
+    roots = [dataset_root] if isinstance(dataset_root, str | Path) else list(dataset_root)
+    if not roots:
+        raise ConfigError("no dataset given; name one or more folders made by `vlln data build`")
+    resolved = [Path(root).resolve() for root in roots]
+    twice = sorted({str(r) for r in resolved if resolved.count(r) > 1})
+    if twice:
+        raise ConfigError(f"{twice[0]} is given more than once; name each dataset once")
+    if len(roots) == 1:
+        return [_Source(Path(roots[0]), open_houses(roots[0]), "", "")]
+    sources = [_Source(Path(root), open_houses(root), *_strategy(Path(root))) for root in roots]
+    tasks = Counter(source.task for source in sources)
+    seen: Counter[str] = Counter()
+    tagged = []
+    for source in sources:
+        seen[source.task] += 1
+        tag = source.task if tasks[source.task] == 1 else f"{source.task}-{seen[source.task]}"
+        tagged.append(replace(source, tag=tag))
+    return tagged
+
+
+def _strategy(root: Path) -> tuple[str, str]:
+    """(task, policy) of a dataset, from its build.json (absent settings: iign, frontier)."""
+    path = root / SETTINGS_FILE
+    if not path.exists():
+        return "unknown", "unknown"
+    try:
+        recorded = json.loads(path.read_text(encoding="utf-8"))
+        return str(recorded.get("task", "iign")), str(recorded.get("policy", "frontier"))
+    except (ValueError, AttributeError) as error:
+        raise DataFormatError(f"{path} is not a JSON object of settings ({error})") from None
+
+
+def _mix_entry(source: _Source, trajectories: int, samples: int) -> dict[str, Any]:
+    return {
+        "tag": source.tag,
+        "path": str(source.root),
+        "task": source.task,
+        "policy": source.policy,
+        "houses": [house.root.name for house in source.houses],
+        "trajectories": trajectories,
+        "samples": samples,
+    }
+
+
+def _by_task(mix: list[dict[str, Any]]) -> dict[str, dict[str, int]]:
+    totals: dict[str, dict[str, int]] = {}
+    for entry in mix:
+        counts = totals.setdefault(entry["task"], {"trajectories": 0, "samples": 0})
+        counts["trajectories"] += entry["trajectories"]
+        counts["samples"] += entry["samples"]
+    return totals
 
 
 def sample_conversation(
@@ -164,6 +256,7 @@ def _export_trajectory(
     store: ImageStore,
     sink: IO[str],
     summary: SftSummary,
+    prefix: str = "",
 ) -> None:
     rng = _answers_left_draws(trajectory, config)
     for plan in plan_samples(trajectory, config):
@@ -173,7 +266,10 @@ def _export_trajectory(
         for copy in range(plan.copies):
             answers_left = int(rng.integers(0, config.max_answers + 1))
             conversation = sample_conversation(trajectory, plan, answers_left, config)
-            paths = [store.add(house, trajectory.episode_index, ref) for ref in conversation.images]
+            paths = [
+                store.add(house, trajectory.episode_index, ref, prefix)
+                for ref in conversation.images
+            ]
             sample_id = (
                 f"{trajectory.house}/episode_{trajectory.episode_index:06d}/"
                 f"frame_{plan.frame:06d}/{plan.kind}/{copy}"

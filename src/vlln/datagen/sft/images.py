@@ -18,6 +18,7 @@ IMAGES_DIR = "images"
 
 
 def image_name(house: str, episode_index: int, ref: ImageRef) -> str:
+    """``house`` is the house folder's name, after its dataset's tag where several are mixed."""
     return f"{IMAGES_DIR}/{house}/episode_{episode_index:06d}/{ref.camera}_{ref.frame:06d}.jpg"
 
 
@@ -28,9 +29,10 @@ class ImageStore:
         self.out = out
         self.written: set[str] = set()
 
-    def add(self, house: HouseDataset, episode_index: int, ref: ImageRef) -> str:
-        """The image's path relative to ``out``; written on first use."""
-        name = image_name(house.root.name, episode_index, ref)
+    def add(self, house: HouseDataset, episode_index: int, ref: ImageRef, prefix: str = "") -> str:
+        """The image's path relative to ``out`` (under ``prefix``, the dataset's tag and a
+        slash where several are mixed); written on first use."""
+        name = image_name(prefix + house.root.name, episode_index, ref)
         if name not in self.written:
             source = house.image_file(ref.camera, episode_index, ref.frame)
             path = self.out / name
