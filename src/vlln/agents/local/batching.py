@@ -1,5 +1,6 @@
 """Requests from many callers answered in batches: what one model shared by a node's workers
-needs (:mod:`vlln.cluster.model_server`).
+needs (:mod:`vlln.cluster.model_server`), and episodes played side by side in one process
+(:class:`ThreadedBatching`, for ``vlln eval --concurrent``).
 
 Requests that arrive while the model is busy wait, and the next forward pass answers up to
 ``max_batch`` of them together; no request ever waits for company, so a lone caller is
@@ -10,6 +11,7 @@ the reply it gets alone (tested with the tiny model).
 from __future__ import annotations
 
 import asyncio
+import threading
 from collections.abc import Sequence
 
 from vlln.agents.local.backend import TransformersBackend
@@ -34,6 +36,12 @@ class BatchingModel:
         self.requests = self.batches = self.largest_batch = 0
         self._waiting: list[_Waiting] = []
         self._drainer: asyncio.Task[None] | None = None  # answering the waiting calls
+
+    def describe(self) -> str:
+        """What it did, e.g. ``52 calls in 20 batches (up to 4 at once)``."""
+        return (
+            f"{self.requests} calls in {self.batches} batches (up to {self.largest_batch} at once)"
+        )
 
     async def generate(self, conversation: Conversation, images: Sequence[bytes]) -> ModelReply:
         """The reply to one call, computed in a batch with the calls waiting beside it."""
@@ -61,3 +69,38 @@ class BatchingModel:
                 continue
             for (_, _, future), reply in zip(batch, replies, strict=True):
                 future.set_result(reply)
+
+
+class ThreadedBatching:
+    """A :class:`BatchingModel` for callers on threads: its event loop runs in a thread of its
+    own, and :meth:`generate` blocks the calling thread until its reply is in, so each caller
+    sees a plain :class:`~vlln.agents.model.backend.VisionLanguageModel`. :meth:`close` stops
+    the loop."""
+
+    def __init__(self, backend: TransformersBackend, max_batch: int = DEFAULT_MAX_BATCH) -> None:
+        self.model = BatchingModel(backend, max_batch)
+        self._loop = asyncio.new_event_loop()
+        self._thread = threading.Thread(
+            target=self._loop.run_forever, name="vlln-model-batching", daemon=True
+        )
+        self._thread.start()
+
+    @property
+    def backend(self) -> str:
+        return self.model.backend.backend
+
+    def generate(self, conversation: Conversation, images: Sequence[bytes]) -> ModelReply:
+        """The reply to one call, answered in a batch with the calls of the other threads."""
+        call = self.model.generate(conversation, images)
+        return asyncio.run_coroutine_threadsafe(call, self._loop).result()
+
+    def close(self) -> None:
+        self._loop.call_soon_threadsafe(self._loop.stop)
+        self._thread.join()
+        self._loop.close()
+
+    def __enter__(self) -> ThreadedBatching:
+        return self
+
+    def __exit__(self, *_: object) -> None:
+        self.close()
