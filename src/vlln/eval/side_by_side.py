@@ -94,7 +94,8 @@ def play_side_by_side(
         turn = threading.Lock()  # the right to run episode code (module doc)
         factory = partial(_agent_on, _WaitingModel(model, turn))
         play = group_player(config, factory, oracle_factory, sweep)
-        yield from _SideBySide(groups, play, turn, concurrent, scenes, config.scenes).results()
+        side_by_side = _SideBySide(groups, play, model, turn, concurrent, scenes, config.scenes)
+        yield from side_by_side.results()
         if on_model_stats is not None:
             on_model_stats(model.model)
 
@@ -106,12 +107,13 @@ class _SideBySide:
         self,
         groups: list[list[WorkItem]],
         play: GroupPlayer,
+        model: ThreadedBatching,
         turn: threading.Lock,
         threads: int,
         scenes: SceneCache | None,
         scenes_dir: str | None,
     ) -> None:
-        self.groups, self.play, self.turn = groups, play, turn
+        self.groups, self.play, self.model, self.turn = groups, play, model, turn
         self.done: dict[int, list[Played] | BaseException] = {}
         self.taken = 0  # groups handed to a thread so far
         self.stopping = False
@@ -130,6 +132,8 @@ class _SideBySide:
     def results(self) -> Iterator[list[Played]]:
         """Each group's results in order, as soon as it and every earlier one are in; an
         error of a group is raised at its place."""
+        for _ in self.threads:
+            self.model.join()  # before any thread calls, so the first batch waits for all
         for thread in self.threads:
             thread.start()
         try:
@@ -160,23 +164,32 @@ class _SideBySide:
                 cache.close()
 
     def _work(self, scenes: SceneCache) -> None:
-        """Play the next group not yet taken until none is left (or the run stops)."""
-        scene: str | None = None
-        with self.turn:
-            while True:
-                with self.changed:
-                    if self.stopping or self.taken == len(self.groups):
-                        return
-                    index, self.taken = self.taken, self.taken + 1
-                group = self.groups[index]
-                if scene is not None and group[0].episode.scene_id != scene:
-                    scenes.close()  # the plan never returns to a scene it has left
-                scene = group[0].episode.scene_id
-                result: list[Played] | BaseException
-                try:
-                    result = self.play(group, scenes)
-                except BaseException as error:  # handed to the runner at its place
-                    result = error
-                with self.changed:
-                    self.done[index] = result
-                    self.changed.notify_all()
+        """Play the next group not yet taken until none is left (or the run stops), then
+        leave the model's callers (joined for this thread by :meth:`results`)."""
+        try:
+            with self.turn:
+                scene: str | None = None
+                while (index := self._take()) is not None:
+                    group = self.groups[index]
+                    if scene is not None and group[0].episode.scene_id != scene:
+                        scenes.close()  # the plan never returns to a scene it has left
+                    scene = group[0].episode.scene_id
+                    result: list[Played] | BaseException
+                    try:
+                        result = self.play(group, scenes)
+                    except BaseException as error:  # handed to the runner at its place
+                        result = error
+                    with self.changed:
+                        self.done[index] = result
+                        self.changed.notify_all()
+        finally:
+            self.model.leave()
+
+    def _take(self) -> int | None:
+        """The index of the next group to play, or None when there is none (or the run
+        stops)."""
+        with self.changed:
+            if self.stopping or self.taken == len(self.groups):
+                return None
+            self.taken += 1
+            return self.taken - 1
