@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import threading
 from collections.abc import Callable, Iterator, Sequence
-from functools import partial
+from functools import lru_cache, partial
 
 from vlln.agents.local.backend import load_backend
 from vlln.agents.local.batching import BatchingModel, ThreadedBatching
@@ -33,7 +33,7 @@ from vlln.errors import ConfigError
 from vlln.eval.config import EvalConfig
 from vlln.eval.play import GroupPlayer, OracleFactory, Played, WorkItem, by_episode, group_player
 from vlln.prompt import Conversation
-from vlln.tasks.scenes import SceneCache
+from vlln.tasks.scenes import SceneCache, scene_house
 
 BATCHED_AGENTS = ("vlln",)
 """Agents whose model calls are batched, so that playing episodes side by side pays."""
@@ -119,7 +119,8 @@ class _SideBySide:
         self.stopping = False
         self.changed = threading.Condition()
         count = min(threads, len(groups))
-        new = partial(SceneCache, scenes_dir=scenes_dir)
+        houses = lru_cache(maxsize=2)(scene_house)  # each house built once for all threads
+        new = partial(SceneCache, scenes_dir=scenes_dir, houses=houses)
         self.caches = [scenes or new()] + [new() for _ in range(count - 1)]
         self.own = self.caches if scenes is None else self.caches[1:]
         self.threads = [
