@@ -140,3 +140,25 @@ class WorldBench(BenchOptions, PresetOptions):
     test_houses: Annotated[int, Field(ge=0)] = 14
     """test houses whose statistics are printed beside the Matterport3D anchors (14: the
     whole test split; 0: none)"""
+
+
+class GpuCheckBench(BenchOptions):
+    """``vlln bench gpu-check``: training steps/s, decisions/s side by side, frame rate, on
+    Qwen2.5-VL-3B-Instruct's architecture with random weights (``--tiny``: the tiny model)."""
+
+    tiny: bool = False
+    """the tiny model instead of the 3B architecture (runs on a CPU)"""
+    decisions: Count = 50
+    """model calls per timed run (4 episodes share them)"""
+    sft_steps: Count = 20
+    """vlln train sft steps"""
+    max_tokens: Count = 128
+    """longest reply in tokens (the agent's default; a random model rarely stops earlier)"""
+    device: str | None = None
+    """torch device (none: cuda if present, else cpu)"""
+    torch_threads: Count | None = None
+    """torch CPU threads (none: torch's default; 1 is often faster on a busy machine)"""
+    seed: int = 0
+    """seed of the weights, the data and the episodes"""
+    work: Path | None = None
+    """folder kept for the model, data and runs (none: a temporary one)"""

@@ -69,6 +69,12 @@ COMMANDS = (
         "catalogue size; objects, triangles and build time per house",
     ),
     (
+        "gpu-check",
+        "GpuCheckBench",
+        ("gpu_check:run_gpu_check",),
+        "training, side-by-side decisions and frame rate on the Qwen2.5-VL-3B architecture",
+    ),
+    (
         "web",
         "WebBench",
         ("web:run_web_benchmark",),

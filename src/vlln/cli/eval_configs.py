@@ -10,7 +10,7 @@ agent's options class (:data:`vlln.agents.registry.OPTIONS`), where their defaul
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
+from typing import Annotated, Any
 
 from pydantic import AliasChoices, Field, model_validator
 from pydantic_settings import CliPositionalArg, SettingsConfigDict
@@ -52,6 +52,9 @@ class EvalCommand(EvalConfig, RayChunkOptions, ServingOptions):
     sweep: bool = True
     """play an episode's budgets together, sharing prefixes (--no-sweep: each on its own;
     the same records, slower)"""
+    concurrent: Annotated[int, Field(ge=1)] = 1
+    """vlln: episodes played side by side in this process, their model calls answered in
+    batches of up to N (the same records, faster on a GPU); never stored in run.json"""
     base_url: str | None = None
     """openai-vlm, aiuta: the OpenAI-compatible server, e.g. http://localhost:8000/v1"""
     model: str | None = None

@@ -40,6 +40,11 @@ def _eval(command: EvalCommand) -> int:
 
         if config.scenes is not None:
             raise ConfigError("--scenes and --ray do not mix yet: evaluate scanned scenes locally")
+        if command.concurrent > 1:
+            raise ConfigError(
+                "--concurrent and --ray do not mix: on Ray each node's model server batches "
+                "the calls of its workers (--model-batch)"
+            )
         outcome = run_ray_evaluation(
             config,
             command.out,
@@ -67,6 +72,8 @@ def _eval(command: EvalCommand) -> int:
                 progress=not command.quiet,
                 scenes=scenes,
                 sweep=command.sweep,
+                concurrent=command.concurrent,
+                on_model_stats=lambda model: print(f"model: {model.describe()}", file=sys.stderr),
             )
         finally:
             scenes.close()

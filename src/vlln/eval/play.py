@@ -116,24 +116,40 @@ def play_in_order(
     """What each episode of ``items`` came to (its budgets' records, or their refusals), one
     episode at a time in order. The plan never returns to a scene it has left, so the last
     house's simulator is closed when the scene changes and memory stays that of one house."""
-    if agent_factory is None:
-        agent_factory = partial(make_agent, options=config.agent_options)
-    if oracle_factory is None:
-        oracle_factory = config.oracle_settings().make
-    task = TaskType.parse(config.task)
+    play = group_player(config, agent_factory, oracle_factory, sweep)
     scene: str | None = None
     for group in by_episode(items):
         if scene is not None and group[0].episode.scene_id != scene:
             scenes.close()
         scene = group[0].episode.scene_id
-        played: list[Played]
+        yield play(group, scenes)
+
+
+GroupPlayer = Callable[[list[WorkItem], SceneCache], list[Played]]
+"""Plays one episode's items (:func:`by_episode`) with a scene cache."""
+
+
+def group_player(
+    config: EvalConfig,
+    agent_factory: AgentFactory | None = None,
+    oracle_factory: OracleFactory | None = None,
+    sweep: bool = True,
+) -> GroupPlayer:
+    """What one episode's items come to: their records, or a refusal per budget."""
+    if agent_factory is None:
+        agent_factory = partial(make_agent, options=config.agent_options)
+    if oracle_factory is None:
+        oracle_factory = config.oracle_settings().make
+    task = TaskType.parse(config.task)
+    agents, oracles = agent_factory, oracle_factory
+
+    def play(group: list[WorkItem], scenes: SceneCache) -> list[Played]:
         try:
-            played = list(
-                _play_group(group, config, task, scenes, agent_factory, oracle_factory, sweep)
-            )
+            return list(_play_group(group, config, task, scenes, agents, oracles, sweep))
         except EpisodeRefusedError as refused:
-            played = [Refusal(*item.key(config), refused.reason) for item in group]
-        yield played
+            return [Refusal(*item.key(config), refused.reason) for item in group]
+
+    return play
 
 
 def _play_group(

@@ -32,6 +32,7 @@ from typing import Protocol
 
 from tqdm import tqdm
 
+from vlln.agents.local.batching import BatchingModel
 from vlln.agents.registry import make_agent
 from vlln.errors import ConfigError, EpisodeRefusedError
 from vlln.eval.config import EvalConfig
@@ -47,6 +48,7 @@ from vlln.eval.play import (
 )
 from vlln.eval.refusals import Refusal, append_refusals, read_refusals
 from vlln.eval.results import RunDirectory, SkippedLine, load_runs, record_key
+from vlln.eval.side_by_side import check_concurrent, play_side_by_side
 from vlln.eval.summary import GroupSummary, summarize_run, summary_json, summary_markdown
 from vlln.oracle.rule_oracle import RuleOracle
 from vlln.tasks.episode import Episode, read_episodes
@@ -81,17 +83,21 @@ class Executor(Protocol):
 
 @dataclass
 class LocalExecutor:
-    """Plays in this process, one episode after the other. ``scenes`` shares simulators
-    between calls (it is then not closed here); ``sweep`` plays an episode's budgets together
-    by prefix sharing where the agent allows it (the same records, in less time);
-    ``agent_factory`` defaults to the registry with the run's agent options, ``oracle_factory``
-    to the run's oracle settings."""
+    """Plays in this process, one episode after the other, or ``concurrent`` side by side
+    with their model calls batched (:mod:`vlln.eval.side_by_side`; the same records).
+    ``scenes`` shares simulators between calls (it is then not closed here); ``sweep`` plays
+    an episode's budgets together by prefix sharing where the agent allows it (the same
+    records, in less time); ``agent_factory`` defaults to the registry with the run's agent
+    options (side by side, to the ``vlln`` agent on the batched model), ``oracle_factory`` to
+    the run's oracle settings."""
 
     scenes: SceneCache | None = None
     agent_factory: AgentFactory | None = None
     oracle_factory: OracleFactory | None = None
     sweep: bool = True
     label: str = ""
+    concurrent: int = 1
+    on_model_stats: Callable[[BatchingModel], None] | None = None  # side by side: batches
 
     def _factory(self, config: EvalConfig) -> AgentFactory:
         if self.agent_factory is not None:
@@ -99,9 +105,24 @@ class LocalExecutor:
         return partial(make_agent, options=config.agent_options)
 
     def check(self, config: EvalConfig) -> None:
+        check_concurrent(config, self.concurrent)
+        if self.concurrent > 1 and self.agent_factory is not None:
+            raise ConfigError("episodes played side by side make their own agents")
         self._factory(config)(config.agent, config.seed, config.detector)
 
     def play(self, config: EvalConfig, items: list[WorkItem], commit: Commit) -> None:
+        if self.concurrent > 1:
+            for played in play_side_by_side(
+                items,
+                config,
+                self.concurrent,
+                self.scenes,
+                self.oracle_factory,
+                self.sweep,
+                self.on_model_stats,
+            ):
+                commit(played)
+            return
         cache = self.scenes if self.scenes is not None else SceneCache(scenes_dir=config.scenes)
         factory = self._factory(config)
         try:
@@ -227,10 +248,14 @@ def run_evaluation(
     scenes: SceneCache | None = None,
     sweep: bool = True,
     provenance: dict[str, str | None] | None = None,
+    concurrent: int = 1,
+    on_model_stats: Callable[[BatchingModel], None] | None = None,
 ) -> RunOutcome:
     """Play ``config`` in this process into the run directory ``out``, resuming what is
     already there (:class:`LocalExecutor` says what the playing options do)."""
-    executor = LocalExecutor(scenes, agent_factory, oracle_factory, sweep)
+    executor = LocalExecutor(
+        scenes, agent_factory, oracle_factory, sweep, "", concurrent, on_model_stats
+    )
     return evaluate(
         config,
         out,

@@ -18,6 +18,7 @@ from __future__ import annotations
 import logging
 import re
 from collections import OrderedDict
+from collections.abc import Callable
 from pathlib import Path
 
 from vlln.errors import ConfigError
@@ -135,17 +136,22 @@ def canonical_seed(scene_id: str) -> int:
 
 
 class SceneCache:
-    """Simulators by scene id, least recently used dropped first."""
+    """Simulators by scene id, least recently used dropped first. ``houses`` gives the house
+    of a scene id (by default :func:`scene_house`, built or read anew): caches used side by
+    side share one that keeps what it built, since a house is never changed by its
+    simulator."""
 
     def __init__(
         self,
         config: SimulatorConfig | None = None,
         capacity: int = 2,
         scenes_dir: str | Path | None = None,
+        houses: Callable[[str, Path | None], House] | None = None,
     ) -> None:
         self.config = config
         self.capacity = capacity
         self.scenes_dir = None if scenes_dir is None else Path(scenes_dir)
+        self.houses = houses or scene_house
         self._sims: OrderedDict[str, Simulator] = OrderedDict()
         self._told = False  # whether it said that procedural scenes ignore scenes_dir
 
@@ -171,7 +177,7 @@ class SceneCache:
                 scene_id,
                 self.scenes_dir,
             )
-        return scene_house(scene_id, self.scenes_dir)
+        return self.houses(scene_id, self.scenes_dir)
 
     def holds(self, scene_id: str) -> bool:
         """Whether the scene's simulator is built and kept (getting it builds nothing)."""

@@ -11,6 +11,7 @@ a chat template laid out as Qwen's.
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 from vlln.agents.local.dependencies import require_model_extra
 from vlln.agents.local.encoding import ChatEncoder
@@ -73,19 +74,49 @@ def is_tiny_model_file(path: Path) -> bool:
     return path.is_file() and path.suffix in (".json", ".safetensors", ".jinja")
 
 
+# The tiny model's architecture: a few layers of a few units, every image a few patches.
+TINY_TEXT = {
+    "hidden_size": 64,
+    "intermediate_size": 128,
+    "num_hidden_layers": 2,
+    "num_attention_heads": 4,
+    "num_key_value_heads": 2,
+    "max_position_embeddings": 4096,
+    "rope_parameters": {"rope_type": "default", "mrope_section": [2, 3, 3]},
+}
+TINY_VISION = {
+    "depth": 2,
+    "hidden_size": 32,
+    "intermediate_size": 64,
+    "num_heads": 2,
+    "out_hidden_size": 64,
+    "patch_size": 14,
+    "spatial_merge_size": 2,
+    "temporal_patch_size": 2,
+    "window_size": 56,
+    "fullatt_block_indexes": [1],
+}
+
+
 def build_tiny_model(out_dir: str | Path, seed: int = 0, max_pixels: int = 56 * 56) -> Path:
     """Write a tiny Qwen2.5-VL model, its processor and chat template to ``out_dir``."""
     require_model_extra()
-    import torch
-    from tokenizers import Tokenizer, decoders, models, pre_tokenizers, trainers
-    from transformers import (
-        PreTrainedTokenizerFast,
-        Qwen2_5_VLConfig,
-        Qwen2_5_VLForConditionalGeneration,
-        Qwen2VLImageProcessorPil,
-    )
+    from transformers import Qwen2VLImageProcessorPil
 
-    out = Path(out_dir)
+    tokenizer = local_tokenizer()
+    image_processor = Qwen2VLImageProcessorPil(
+        min_pixels=28 * 28, max_pixels=max_pixels, patch_size=14, merge_size=2
+    )
+    text = TINY_TEXT | {"vocab_size": len(tokenizer)}
+    return write_random_model(out_dir, tokenizer, image_processor, text, TINY_VISION, seed)
+
+
+def local_tokenizer() -> Any:
+    """A byte-level BPE tokenizer learnt here from the prompt's sentences, knowing Qwen's
+    special tokens and the prompt's tags (module doc)."""
+    from tokenizers import Tokenizer, decoders, models, pre_tokenizers, trainers
+    from transformers import PreTrainedTokenizerFast
+
     backend = Tokenizer(models.BPE())
     backend.pre_tokenizer = pre_tokenizers.ByteLevel(add_prefix_space=False)
     backend.decoder = decoders.ByteLevel()
@@ -96,52 +127,57 @@ def build_tiny_model(out_dir: str | Path, seed: int = 0, max_pixels: int = 56 * 
         show_progress=False,
     )
     backend.train_from_iterator(_CORPUS, trainer=trainer)
-    tokenizer = PreTrainedTokenizerFast(
+    return PreTrainedTokenizerFast(
         tokenizer_object=backend,
         eos_token="<|im_end|>",
         pad_token="<|endoftext|>",
         additional_special_tokens=list(SPECIAL_TOKENS[1:] + PROMPT_TOKENS),
     )
-    image_processor = Qwen2VLImageProcessorPil(
-        min_pixels=28 * 28, max_pixels=max_pixels, patch_size=14, merge_size=2
-    )
+
+
+def write_random_model(
+    out_dir: str | Path,
+    tokenizer: Any,
+    image_processor: Any,
+    text_config: dict[str, Any],
+    vision_config: dict[str, Any],
+    seed: int = 0,
+    device: str = "cpu",
+    dtype: Any = None,
+) -> Path:
+    """A Qwen2.5-VL of the given text and vision configuration with weights drawn from
+    ``seed`` (made on ``device`` in ``dtype``, float32 by default), its special tokens those
+    of ``tokenizer``, saved to ``out_dir`` with the tokenizer, image processor and template."""
+    import torch
+    from transformers import Qwen2_5_VLConfig, Qwen2_5_VLForConditionalGeneration
+
     vocabulary = tokenizer.get_vocab()
     ids = {token: vocabulary[token] for token in SPECIAL_TOKENS}
+    text = text_config | {
+        "bos_token_id": ids["<|endoftext|>"],
+        "eos_token_id": ids["<|im_end|>"],
+        "pad_token_id": ids["<|endoftext|>"],
+    }
     config = Qwen2_5_VLConfig(
-        text_config={
-            "vocab_size": len(tokenizer),
-            "hidden_size": 64,
-            "intermediate_size": 128,
-            "num_hidden_layers": 2,
-            "num_attention_heads": 4,
-            "num_key_value_heads": 2,
-            "max_position_embeddings": 4096,
-            "rope_parameters": {"rope_type": "default", "mrope_section": [2, 3, 3]},
-            "bos_token_id": ids["<|endoftext|>"],
-            "eos_token_id": ids["<|im_end|>"],
-            "pad_token_id": ids["<|endoftext|>"],
-        },
-        vision_config={
-            "depth": 2,
-            "hidden_size": 32,
-            "intermediate_size": 64,
-            "num_heads": 2,
-            "out_hidden_size": 64,
-            "patch_size": 14,
-            "spatial_merge_size": 2,
-            "temporal_patch_size": 2,
-            "window_size": 56,
-            "fullatt_block_indexes": [1],
-        },
+        text_config=text,
+        vision_config=vision_config,
         image_token_id=ids["<|image_pad|>"],
         video_token_id=ids["<|video_pad|>"],
         vision_start_token_id=ids["<|vision_start|>"],
         vision_end_token_id=ids["<|vision_end|>"],
+        tie_word_embeddings=bool(text.get("tie_word_embeddings", False)),
     )
     torch.manual_seed(seed)
-    model = Qwen2_5_VLForConditionalGeneration(config)
+    default_dtype = torch.get_default_dtype()
+    torch.set_default_dtype(dtype or torch.float32)
+    try:
+        with torch.device(device):
+            model = Qwen2_5_VLForConditionalGeneration(config)
+    finally:
+        torch.set_default_dtype(default_dtype)
     model.generation_config.eos_token_id = ids["<|im_end|>"]
     model.generation_config.pad_token_id = ids["<|endoftext|>"]
+    out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     model.save_pretrained(out)
     ChatEncoder(tokenizer, image_processor, CHAT_TEMPLATE).save(out)
