@@ -60,7 +60,7 @@ class _Check:
         except Exception as error:  # a failed stage (out of memory, an old library) is a finding
             where = traceback.extract_tb(error.__traceback__)[-1]
             self.note(
-                f"{name} failed: {type(error).__name__}: {str(error).strip()[:300]} "
+                f"{name} failed: {type(error).__name__}: {' '.join(str(error).split())[:300]} "
                 f"(at {Path(where.filename).name}:{where.lineno})"
             )
 
