@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from tests.oracle.episodes import iign_episode
 from tests.oracle.llm.chat_server import Scripted, chat_server, completion
 from vlln.errors import ConfigError
 from vlln.oracle.llm.offline import OfflineLanguageModel
@@ -16,12 +17,10 @@ from vlln.sim.agent import AgentState
 from vlln.sim.simulator import Simulator
 from vlln.sim.viewpoints import view_points
 from vlln.tasks.env import NavigationEnv
-from vlln.tasks.episode import Episode, Goal, Instruction, ViewPoint
 from vlln.tasks.oracle_protocol import EpisodeContext, Oracle, Question, QuestionType
 from vlln.tasks.record import DialogTurn, EpisodeRecord
 from vlln.tasks.scenes import SceneCache
 from vlln.tasks.spec import Talk, TaskConfig
-from vlln.world.frame import yaw_to_quaternion
 from vlln.world.model import ObjectInstance
 
 QUESTIONS = (
@@ -203,26 +202,7 @@ def test_misuse_raises_config_errors(sim: Simulator) -> None:
 def test_the_environment_records_backend_latency_and_tokens(
     scenes: SceneCache, sim: Simulator, target: ObjectInstance
 ) -> None:
-    goals = view_points(sim.grid, target.box)
-    x, z = sim.grid.sample_navigable_point(np.random.default_rng(5), sim.grid.largest_component())
-    box = target.box
-    qx, qy, qz, qw = yaw_to_quaternion(0.3)
-    episode = Episode(
-        episode_id="llm-oracle-test",
-        scene_id=f"vlln/{sim.house.name}",
-        start_position=(x, 0.0, z),
-        start_rotation=(qx, qy, qz, qw),
-        object_category=target.category,
-        goals=(
-            Goal(
-                box.center,
-                None,
-                (*box.min, *box.max),
-                tuple(ViewPoint((gx, 0.0, gz)) for gx, gz in goals),
-            ),
-        ),
-        instruction=Instruction("IIGN", f"Search for the {target.category}.", (str(target.id),)),
-    )
+    episode = iign_episode(sim, target, "llm-oracle-test")
     script = [completion("attribute", 60, 1), completion("It is red.", 90, 5)]
     with chat_server(script) as server:
         env = NavigationEnv(

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from tests.oracle.episodes import iign_episode
 from tests.oracle.llm.chat_server import chat_server, completion
 from tests.oracle.test_llm_oracle import context, question, target
 from tests.oracle.test_rule_oracle import QUESTIONS, _states
@@ -13,14 +14,12 @@ from vlln.oracle.llm.openai_client import OpenAIChatClient, OpenAISettings
 from vlln.oracle.llm_oracle import LLMOracle
 from vlln.oracle.rule_oracle import TYPE_REFUSAL, RuleOracle
 from vlln.sim.simulator import Simulator
-from vlln.sim.viewpoints import view_points
 from vlln.tasks.env import NavigationEnv
-from vlln.tasks.episode import Episode, Goal, Instruction, ViewPoint
+from vlln.tasks.episode import Episode
 from vlln.tasks.oracle_protocol import Question, QuestionType
 from vlln.tasks.record import EpisodeRecord
 from vlln.tasks.scenes import SceneCache
 from vlln.tasks.spec import REFUSAL_MESSAGE, Talk, TaskConfig
-from vlln.world.frame import yaw_to_quaternion
 from vlln.world.model import ObjectInstance
 
 __all__ = ["target"]  # the module fixture, shared with the language-model oracle's tests
@@ -34,26 +33,7 @@ def test_the_refusal_is_the_papers_cannot_answer_text() -> None:
 
 
 def _episode(sim: Simulator, target: ObjectInstance) -> Episode:
-    goals = view_points(sim.grid, target.box)
-    x, z = sim.grid.sample_navigable_point(np.random.default_rng(5), sim.grid.largest_component())
-    box = target.box
-    qx, qy, qz, qw = yaw_to_quaternion(0.3)
-    return Episode(
-        episode_id="ablation-test",
-        scene_id=f"vlln/{sim.house.name}",
-        start_position=(x, 0.0, z),
-        start_rotation=(qx, qy, qz, qw),
-        object_category=target.category,
-        goals=(
-            Goal(
-                box.center,
-                None,
-                (*box.min, *box.max),
-                tuple(ViewPoint((gx, 0.0, gz)) for gx, gz in goals),
-            ),
-        ),
-        instruction=Instruction("IIGN", f"Search for the {target.category}.", (str(target.id),)),
-    )
+    return iign_episode(sim, target, "ablation-test")
 
 
 def test_a_refused_type_spends_its_turn_and_is_marked_in_the_record(

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from tests.oracle.episodes import iign_episode
 from vlln.errors import ConfigError
 from vlln.oracle.classify import classify_question
 from vlln.oracle.rule_oracle import RuleOracle
@@ -12,11 +13,9 @@ from vlln.sim.agent import AgentState
 from vlln.sim.simulator import Simulator
 from vlln.sim.viewpoints import view_points
 from vlln.tasks.env import NavigationEnv
-from vlln.tasks.episode import Episode, Goal, Instruction, ViewPoint
 from vlln.tasks.oracle_protocol import EpisodeContext, Oracle, Question
 from vlln.tasks.scenes import SceneCache
 from vlln.tasks.spec import REFUSAL_MESSAGE, Talk, TaskConfig
-from vlln.world.frame import yaw_to_quaternion
 from vlln.world.model import ObjectInstance
 
 QUESTIONS = (
@@ -135,26 +134,8 @@ def test_the_environment_asks_the_oracle_and_enforces_the_budget(
     scenes: SceneCache, sim: Simulator
 ) -> None:
     target = _targets(sim, 1)[0]
-    goals = view_points(sim.grid, target.box)
-    x, z = sim.grid.sample_navigable_point(np.random.default_rng(5), sim.grid.largest_component())
-    box = target.box
-    qx, qy, qz, qw = yaw_to_quaternion(0.3)
-    episode = Episode(
-        episode_id="oracle-test",
-        scene_id=f"vlln/{sim.house.name}",
-        start_position=(x, 0.0, z),
-        start_rotation=(qx, qy, qz, qw),
-        object_category=target.category,
-        goals=(
-            Goal(
-                box.center,
-                None,
-                (*box.min, *box.max),
-                tuple(ViewPoint((gx, 0.0, gz)) for gx, gz in goals),
-            ),
-        ),
-        instruction=Instruction("IIGN", f"Search for the {target.category}.", (str(target.id),)),
-    )
+    episode = iign_episode(sim, target, "oracle-test")
+    x, _, z = episode.start_position
     env = NavigationEnv([episode], TaskConfig(dialog_budget=2), scenes, RuleOracle(seed=7))
     env.reset(options={"episode_index": 0})
     observation, *_ = env.step(Talk("What colour is it?"))
