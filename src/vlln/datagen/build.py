@@ -57,7 +57,7 @@ from vlln.datagen.layout import (
 from vlln.datagen.reader import HouseDataset, house_folders
 from vlln.datagen.trajectory import Trajectory
 from vlln.datagen.writer import HouseWriter
-from vlln.errors import ConfigError
+from vlln.errors import ConfigError, DataFormatError
 from vlln.eval.sharding import Shard
 from vlln.files import write_text_atomic
 from vlln.oracle.rule_oracle import RuleOracle
@@ -74,8 +74,8 @@ from vlln.world.catalogue import default_catalogue
 from vlln.world.scene_summary import export_scene_summary
 
 FLOOR_CHOICES = (1, 2, 3)  # storeys a procedural house can have
-# Settings left out of build.json at these values (builds made before they existed).
-_UNRECORDED_DEFAULTS = {"floors": 1, "task": "iign", "policy": "frontier"}
+# Settings left out of build.json at their defaults (builds made before they existed).
+_UNRECORDED = ("floors", "task", "policy")
 
 
 class BuildOptions(Config):
@@ -119,8 +119,8 @@ class BuildConfig(BuildOptions):
         """The settings; those at their first value (one storey, IIGN, frontier) are left
         out, as before they existed, so folders built then resume."""
         fields = super().to_json()
-        for name, value in _UNRECORDED_DEFAULTS.items():
-            if fields[name] == value:
+        for name in _UNRECORDED:
+            if fields[name] == BuildOptions.model_fields[name].default:
                 del fields[name]
         return fields
 
@@ -346,6 +346,23 @@ def _episodes_by_scene(episodes: list[Episode]) -> dict[str, list[Episode]]:
     for episode in episodes:
         grouped.setdefault(episode.scene_id, []).append(episode)
     return grouped
+
+
+def recorded_strategy(root: Path) -> tuple[str, str] | None:
+    """(task, policy) of the dataset at ``root``, from its ``build.json`` (a setting left out
+    is at its default); None for a folder without one."""
+    path = root / SETTINGS_FILE
+    if not path.exists():
+        return None
+    try:
+        recorded = json.loads(path.read_text(encoding="utf-8"))
+        task, policy = (
+            str(recorded.get(name, BuildOptions.model_fields[name].default))
+            for name in ("task", "policy")
+        )
+    except (ValueError, AttributeError) as error:
+        raise DataFormatError(f"{path} is not a JSON object of settings ({error})") from None
+    return task, policy
 
 
 def check_settings(root: Path, config: BuildConfig) -> None:

@@ -43,7 +43,7 @@ import numpy as np
 from tqdm import tqdm
 
 from vlln import __version__
-from vlln.datagen.layout import SETTINGS_FILE
+from vlln.datagen.build import recorded_strategy
 from vlln.datagen.reader import HouseDataset
 from vlln.datagen.sft.config import SftConfig
 from vlln.datagen.sft.images import IMAGES_DIR, ImageStore
@@ -183,15 +183,8 @@ def _sources(dataset_root: str | Path | Sequence[str | Path]) -> list[_Source]:
 
 
 def _strategy(root: Path) -> tuple[str, str]:
-    """(task, policy) of a dataset, from its build.json (absent settings: iign, frontier)."""
-    path = root / SETTINGS_FILE
-    if not path.exists():
-        return "unknown", "unknown"
-    try:
-        recorded = json.loads(path.read_text(encoding="utf-8"))
-        return str(recorded.get("task", "iign")), str(recorded.get("policy", "frontier"))
-    except (ValueError, AttributeError) as error:
-        raise DataFormatError(f"{path} is not a JSON object of settings ({error})") from None
+    """(task, policy) of a dataset ("unknown" for a folder without ``build.json``)."""
+    return recorded_strategy(root) or ("unknown", "unknown")
 
 
 def _mix_entry(source: _Source, trajectories: int, samples: int) -> dict[str, Any]:
