@@ -457,16 +457,37 @@ def _parse_goal(data: Any, name: str) -> Goal:
         raise _FieldError(f"{name}.view_points", "a list of view points", view_points)
     points = []
     for i, view_point in enumerate(view_points):
-        vp_name = f"{name}.view_points[{i}]"
-        state = _check_keys(view_point, vp_name, ("agent_state",))["agent_state"]
-        state = _check_keys(state, f"{vp_name}.agent_state", ("position",), (), ("rotation",))
-        points.append(ViewPoint(_point(state["position"], f"{vp_name}.agent_state.position")))
+        position = _written_view_point(view_point)
+        if position is None:  # another shape: the checks accept it or name what is wrong
+            vp_name = f"{name}.view_points[{i}]"
+            state = _check_keys(view_point, vp_name, ("agent_state",))["agent_state"]
+            state = _check_keys(state, f"{vp_name}.agent_state", ("position",), (), ("rotation",))
+            position = _point(state["position"], f"{vp_name}.agent_state.position")
+        points.append(ViewPoint(position))
     return Goal(
         position=_point(data["position"], f"{name}.position"),
         radius=radius,
         bbox=bbox,
         view_points=tuple(points),
     )
+
+
+def _written_view_point(data: Any) -> Point3 | None:
+    """The position of a view point in the shape :func:`write_episodes` gives it (a split
+    holds hundreds of thousands), checked without the general path's per-field names; None
+    for any other shape."""
+    if type(data) is not dict or len(data) != 1:
+        return None
+    state = data.get("agent_state")
+    if type(state) is not dict or len(state) != 1:
+        return None
+    position = state.get("position")
+    if type(position) is not list or len(position) != 3:
+        return None
+    x, y, z = position
+    if type(x) is float and type(y) is float and type(z) is float and math.isfinite(x + y + z):
+        return (x, y, z)  # a finite sum: each is finite
+    return None
 
 
 def _parse_instruction(data: Any) -> Instruction:
