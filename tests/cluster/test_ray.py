@@ -15,9 +15,9 @@ import psutil
 import pytest
 import ray
 
+from tests.conftest import ONE_HOUSE
 from vlln.cluster.data import build_dataset_ray
 from vlln.cluster.evaluation import run_ray_evaluation
-from vlln.datagen.build import BuildConfig, build_dataset
 from vlln.datagen.layout import INFO_FILE
 from vlln.errors import ConfigError
 from vlln.eval.config import EvalConfig
@@ -144,9 +144,10 @@ def test_a_killed_worker_is_retried_and_the_folder_equals_a_local_run(
 
 
 @pytest.mark.slow
-def test_data_build_on_ray_equals_a_local_build(cluster: None, tmp_path: Path) -> None:
-    config = BuildConfig(houses=1, per_house=1)
-    local = build_dataset(tmp_path / "local", config, progress=False)
+def test_data_build_on_ray_equals_a_local_build(
+    cluster: None, one_house_dataset: Path, tmp_path: Path
+) -> None:
+    config, local = ONE_HOUSE, one_house_dataset  # built by build_dataset in this process
     remote = build_dataset_ray(tmp_path / "ray", config, progress=False)
 
     def files(root: Path) -> dict[str, bytes]:

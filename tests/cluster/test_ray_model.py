@@ -15,7 +15,6 @@ import psutil
 import pytest
 import ray
 
-from tests.train.conftest import tiny_model  # noqa: F401  (the shared tiny-model fixture)
 from vlln.cluster.evaluation import run_ray_evaluation
 from vlln.cluster.model_server import ServerStats
 from vlln.cluster.options import ServingOptions
@@ -37,7 +36,7 @@ def cluster() -> Iterator[None]:
 
 
 @pytest.fixture(scope="module")
-def config(tiny_model: Path) -> EvalConfig:  # noqa: F811
+def config(tiny_model: Path) -> EvalConfig:
     return EvalConfig(
         agent="vlln",
         task="iign",
