@@ -21,6 +21,17 @@ def one_house_dataset(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 
 @pytest.fixture(scope="session")
+def split_cache(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """A cache folder holding the test split's first house (its three tasks' episodes),
+    built once for every evaluation, gym and cluster test."""
+    from vlln.tasks.split_files import load_or_build_split
+
+    cache = tmp_path_factory.mktemp("episodes")
+    load_or_build_split("test", "iign", 1, cache, progress=False)
+    return cache
+
+
+@pytest.fixture(scope="session")
 def tiny_model(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """A tiny Qwen2.5-VL-style model built from a small config."""
     from vlln.train.tiny import build_tiny_model  # the model extra: only where a test asks

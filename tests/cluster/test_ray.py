@@ -36,13 +36,6 @@ def cluster() -> Iterator[None]:
     ray.shutdown()
 
 
-@pytest.fixture(scope="module")
-def split_cache(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    cache = tmp_path_factory.mktemp("episodes")
-    load_or_build_split("test", "iign", 1, cache, progress=False)
-    return cache
-
-
 def _kill_a_worker_playing_a_chunk(stop: threading.Event) -> list[int]:
     """Start a thread that SIGKILLs the first worker it finds busy with a chunk.
 

@@ -50,14 +50,11 @@ def config(tiny_model: Path) -> EvalConfig:
 
 
 @pytest.fixture(scope="module")
-def splits(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    return tmp_path_factory.mktemp("splits")
-
-
-@pytest.fixture(scope="module")
-def local_run(config: EvalConfig, splits: Path, tmp_path_factory: pytest.TempPathFactory) -> Path:
+def local_run(
+    config: EvalConfig, split_cache: Path, tmp_path_factory: pytest.TempPathFactory
+) -> Path:
     out = tmp_path_factory.mktemp("local") / "run"
-    run_evaluation(config, out, cache_dir=splits, progress=False)
+    run_evaluation(config, out, cache_dir=split_cache, progress=False)
     return out
 
 
@@ -98,18 +95,18 @@ def test_a_bad_batch_size_is_one_error_before_any_cluster_starts() -> None:
 
 @pytest.mark.slow
 def test_a_server_nowhere_possible_is_one_error_before_any_episode(
-    cluster: None, config: EvalConfig, splits: Path, tmp_path: Path
+    cluster: None, config: EvalConfig, split_cache: Path, tmp_path: Path
 ) -> None:
     with pytest.raises(ConfigError, match="no node of the cluster has 1 CPUs and 1 GPUs"):
         run_ray_evaluation(
-            config, tmp_path / "run", cache_dir=splits, serving=ServingOptions(model_gpus=1)
+            config, tmp_path / "run", cache_dir=split_cache, serving=ServingOptions(model_gpus=1)
         )
     assert (tmp_path / "run" / "episodes.jsonl").read_text(encoding="utf-8") == ""
 
 
 @pytest.mark.slow
 def test_two_workers_share_one_model_and_the_folder_equals_a_local_run(
-    cluster: None, config: EvalConfig, splits: Path, local_run: Path, tmp_path: Path
+    cluster: None, config: EvalConfig, split_cache: Path, local_run: Path, tmp_path: Path
 ) -> None:
     busy: list[int] = []
     stop = threading.Event()
@@ -119,7 +116,7 @@ def test_two_workers_share_one_model_and_the_folder_equals_a_local_run(
         outcome = run_ray_evaluation(
             config,
             tmp_path / "ray",
-            cache_dir=splits,
+            cache_dir=split_cache,
             episodes_per_chunk=1,
             progress=False,
             on_model_stats=stats.extend,
@@ -158,7 +155,7 @@ def _kill_the_server_once(results: Path, after_lines: int) -> tuple[threading.Ev
 
 @pytest.mark.slow
 def test_a_killed_model_server_fails_its_chunk_or_is_restarted_and_no_episode_changes(
-    cluster: None, config: EvalConfig, splits: Path, local_run: Path, tmp_path: Path
+    cluster: None, config: EvalConfig, split_cache: Path, local_run: Path, tmp_path: Path
 ) -> None:
     out = tmp_path / "ray"
     expected = {(r["episode_id"], r["budget"]): r for r in _records_without_timing(local_run)}
@@ -169,7 +166,12 @@ def test_a_killed_model_server_fails_its_chunk_or_is_restarted_and_no_episode_ch
     try:
         with pytest.raises(ClusterError, match="ModelServerLost: the model server died") as error:
             run_ray_evaluation(
-                config, out, cache_dir=splits, episodes_per_chunk=1, max_retries=0, progress=False
+                config,
+                out,
+                cache_dir=split_cache,
+                episodes_per_chunk=1,
+                max_retries=0,
+                progress=False,
             )
     finally:
         stop.set()
@@ -187,7 +189,7 @@ def test_a_killed_model_server_fails_its_chunk_or_is_restarted_and_no_episode_ch
         outcome = run_ray_evaluation(
             config,
             out,
-            cache_dir=splits,
+            cache_dir=split_cache,
             episodes_per_chunk=1,
             max_retries=2,
             progress=False,

@@ -29,11 +29,9 @@ SMALL = {"houses": 1, "width": 64, "height": 48}
 
 
 @pytest.fixture(scope="module")
-def cache_dir(tmp_path_factory: pytest.TempPathFactory) -> str:
-    """The test split's first house, built once for this module."""
-    cache = tmp_path_factory.mktemp("episodes")
-    load_or_build_split("test", "iign", 1, cache, progress=False)
-    return str(cache)
+def cache_dir(split_cache: Path) -> str:
+    """The test split's first house (the session's, tests/conftest.py)."""
+    return str(split_cache)
 
 
 @pytest.mark.slow
