@@ -207,7 +207,9 @@ def build_dataset(
     check_settings(root, config)
     mine = (shard or Shard(0, 1)).take(house_seeds(config.split, config.houses))
     with lock_houses(root, mine, config.scene_id):
-        cache = SceneCache(capacity=1)
+        # Two simulators, SceneCache's default: a build or shard of two houses makes each
+        # once, not once per stage (summaries, episodes, trajectories).
+        cache = SceneCache(capacity=2)
         try:
             by_house = prepare_episodes(root, config, mine, cache, progress)
             todo = [
