@@ -38,6 +38,7 @@ from vlln.eval.results import RunDirectory
 from vlln.eval.runner import default_cache_dir, load_episodes, run_evaluation
 from vlln.tasks.metrics import record_spl, success
 from vlln.tasks.record import EpisodeRecord
+from vlln.tasks.scenes import SceneCache
 from vlln.tasks.taxonomy import CLASS_ABBREVIATIONS, FAILURE_CLASSES, classify
 from vlln.tasks.test_protocol import TEST_PROTOCOL_SPLIT
 
@@ -173,11 +174,15 @@ def msp_interval(records: Sequence[EpisodeRecord], budgets: Sequence[int]) -> In
     return mean_interval(gains) if gains else None
 
 
-def _play(job: tuple[FidelityRun, int, str, str, str | None]) -> str:
+def _play(
+    job: tuple[FidelityRun, int, str, str, str | None], scenes: SceneCache | None = None
+) -> str:
     run, episodes, preset, out, cache_dir = job
     config = run.config(episodes, preset)
     cache = None if cache_dir is None else Path(cache_dir)
-    outcome = run_evaluation(config, Path(out) / run.folder, cache_dir=cache, progress=False)
+    outcome = run_evaluation(
+        config, Path(out) / run.folder, cache_dir=cache, progress=False, scenes=scenes
+    )
     return f"{run.folder}: {len(outcome.records)} of {outcome.planned} episode lines"
 
 
@@ -195,8 +200,12 @@ def run_fidelity_benchmark(settings: FidelityBench) -> list[dict[str, object]]:
             cache_dir or default_cache_dir(),
             progress=False,
         )
-    if workers == 1:
-        done = [_play(job) for job in jobs]
+    if workers == 1:  # the runs share the houses: each run plays the same episodes
+        scenes = SceneCache()
+        try:
+            done = [_play(job, scenes) for job in jobs]
+        finally:
+            scenes.close()
     else:  # spawned, not forked: a forked child would share the parent's GL state
         # One process per run (maxtasksperchild): each run's memory is its own.
         with multiprocessing.get_context("spawn").Pool(workers, maxtasksperchild=1) as pool:
