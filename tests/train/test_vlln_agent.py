@@ -14,7 +14,11 @@ from vlln.prompt import ParseFailure, TalkOutput, read_output
 
 @pytest.mark.slow
 def test_a_trained_checkpoint_plays_episodes_with_recorded_outputs(
-    sft_export: Path, tiny_model: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+    sft_export: Path,
+    tiny_model: Path,
+    split_cache: Path,
+    tmp_path: Path,
+    capsys: pytest.CaptureFixture[str],
 ) -> None:
     trained = tmp_path / "trained"
     train = ["train", "sft", "--data", str(sft_export), "--model", str(tiny_model)]
@@ -24,7 +28,7 @@ def test_a_trained_checkpoint_plays_episodes_with_recorded_outputs(
     evaluate = ["eval", "--agent", "vlln", "--model", str(trained), "--task", "iign"]
     evaluate += ["--houses", "1", "--episodes", "2", "--budget", "5", "--max-steps", "12"]
     evaluate += ["--preset", "small"]
-    evaluate += ["--cache-dir", str(tmp_path / "splits"), "--out", str(run), "--quiet"]
+    evaluate += ["--cache-dir", str(split_cache), "--out", str(run), "--quiet"]
     assert main(evaluate) == 0
     assert "vlln on IIGN" in capsys.readouterr().out
 

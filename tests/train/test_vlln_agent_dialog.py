@@ -45,7 +45,7 @@ def _questions_only_export(export: Path, out: Path) -> int:
 
 @pytest.mark.slow
 def test_a_checkpoint_trained_on_dialog_asks_and_the_answers_are_recorded(
-    sft_export: Path, tiny_model: Path, tmp_path: Path
+    sft_export: Path, tiny_model: Path, split_cache: Path, tmp_path: Path
 ) -> None:
     dialog_export = tmp_path / "dialog_export"
     assert _questions_only_export(sft_export, dialog_export) > 0
@@ -62,7 +62,7 @@ def test_a_checkpoint_trained_on_dialog_asks_and_the_answers_are_recorded(
     evaluate = ["eval", "--agent", "vlln", "--model", str(trained), "--task", "iign"]
     evaluate += ["--houses", "1", "--episodes", "1", "--budget", "5", "--max-steps", "3"]
     evaluate += ["--preset", "small"]
-    evaluate += ["--cache-dir", str(tmp_path / "splits"), "--out", str(run), "--quiet"]
+    evaluate += ["--cache-dir", str(split_cache), "--out", str(run), "--quiet"]
     assert main(evaluate) == 0
 
     (record,) = read_records(run / "episodes.jsonl")

@@ -27,12 +27,12 @@ def _lines(run: Path) -> list[dict[str, Any]]:
 
 @pytest.mark.slow
 def test_side_by_side_play_writes_the_records_of_one_at_a_time_play(
-    tiny_model: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+    tiny_model: Path, split_cache: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
     common = ["eval", "--agent", "vlln", "--model", str(tiny_model), "--task", "iign"]
     common += ["--houses", "1", "--episodes", "4", "--budgets", "0,2", "--max-steps", "6"]
     common += ["--preset", "small", "--max-tokens", "16", "--quiet"]
-    common += ["--cache-dir", str(tmp_path / "splits")]
+    common += ["--cache-dir", str(split_cache)]
     alone, together = tmp_path / "alone", tmp_path / "together"
     assert main([*common, "--out", str(alone)]) == 0
     capsys.readouterr()
