@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 import os
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -19,7 +20,15 @@ ROOT = Path(__file__).resolve().parents[2]
 
 
 @pytest.mark.slow
-def test_the_tiny_gpu_check_prints_every_figure(tmp_path: Path) -> None:
+def test_the_tiny_gpu_check_prints_every_figure(
+    tmp_path: Path, one_house_dataset: Path, split_cache: Path
+) -> None:
+    # A kept --work folder: the check resumes the one-house build it makes (the session's,
+    # built with the same settings) and reads the test split it plays from the cache there.
+    shutil.copytree(one_house_dataset, tmp_path / "dataset")
+    (tmp_path / "splits").mkdir()
+    for built in split_cache.glob("test_*"):
+        shutil.copy2(built, tmp_path / "splits" / built.name)
     env = os.environ | {"PYTHON": sys.executable, "VLLN_GPU_CHECK_TINY": "1"}
     flags = ["--decisions", "8", "--sft-steps", "2", "--max-tokens", "8", "--torch-threads", "1"]
     done = subprocess.run(
