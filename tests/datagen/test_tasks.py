@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import math
+import shutil
 from pathlib import Path
 
 import pytest
@@ -17,20 +18,25 @@ from vlln.sim.agent import Action
 from vlln.tasks.episode import Episode, read_episodes
 
 
-def build(out: Path, *flags: str) -> Path:
+def build(out: Path, episodes: Path, *flags: str) -> Path:
+    """``vlln data build`` of the train split's first house; its episode files (stage 2, the
+    same for every task and policy) are copied from ``episodes``, a build of that house."""
+    shutil.copytree(episodes, out / "episodes")
     command = ["data", "build", "--houses", "1", "--per-house", "3", "--quiet"]
     assert main([*command, *flags, "--out", str(out)]) == 0
     return out
 
 
 @pytest.fixture(scope="module")
-def ign_shortest(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    return build(tmp_path_factory.mktemp("ign"), "--task", "ign", "--policy", "shortest")
+def ign_shortest(tmp_path_factory: pytest.TempPathFactory, one_house_dataset: Path) -> Path:
+    folder, episodes = tmp_path_factory.mktemp("ign"), one_house_dataset / "episodes"
+    return build(folder, episodes, "--task", "ign", "--policy", "shortest")
 
 
 @pytest.fixture(scope="module")
-def objectnav(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    return build(tmp_path_factory.mktemp("objectnav"), "--task", "objectnav")
+def objectnav(tmp_path_factory: pytest.TempPathFactory, one_house_dataset: Path) -> Path:
+    folder, episodes = tmp_path_factory.mktemp("objectnav"), one_house_dataset / "episodes"
+    return build(folder, episodes, "--task", "objectnav")
 
 
 def rows(dataset: Path) -> list[tuple[HouseDataset, dict]]:
