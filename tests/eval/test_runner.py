@@ -230,7 +230,9 @@ def test_ign_with_budgets_0_to_5_talks_and_reports_msp(
 
 @pytest.mark.slow
 def test_plan_spreads_n_episodes_and_shards_round_robin(split_cache: Path) -> None:
-    config = EvalConfig(agent="random", task="iign", houses=1, episodes=5, budgets=(0, 2))
+    config = EvalConfig(
+        agent="random", task="iign", houses=1, episodes=5, budgets=(0, 2), preset="small"
+    )
     episodes = load_episodes(config, split_cache, progress=False)
     plan = plan_work(episodes, config)
     ordered = order_by_scene(episodes)
