@@ -41,10 +41,14 @@ _PACKAGED_FILES = {
     "written_b": "questions_written_b.jsonl",
     "written_c": "questions_written_c.jsonl",
     "written_d": "questions_written_d.jsonl",
-    "heldout": "questions_heldout_v7.jsonl",
+    "written_e": "questions_written_e.jsonl",
+    "v7": "questions_v7.jsonl",
+    "heldout": "questions_heldout_v8.jsonl",
 }
 # written_*: questions written from the task definition alone, in human navigators' (a),
-# vision-language agents' (b), short and non-native (c) and mid-dialog (d) styles.
+# vision-language agents' (b), short and non-native (c) and mid-dialog (d) styles, and (e)
+# from the labelling guide (docs/oracle-classifier.md), weighted to short utterances, chatter
+# and yes/no questions that read like another type.
 PACKAGED_SETS = tuple(_PACKAGED_FILES)
 TRAINING_SETS = tuple(name for name in PACKAGED_SETS if name != "heldout")
 _FIELDS = frozenset({"question", "type", "route_kind", "topic"})
