@@ -42,13 +42,16 @@ _PACKAGED_FILES = {
     "written_c": "questions_written_c.jsonl",
     "written_d": "questions_written_d.jsonl",
     "written_e": "questions_written_e.jsonl",
+    "written_f": "questions_written_f.jsonl",
     "v7": "questions_v7.jsonl",
-    "heldout": "questions_heldout_v8.jsonl",
+    "v8": "questions_v8.jsonl",
+    "heldout": "questions_heldout_v9.jsonl",
 }
 # written_*: questions written from the task definition alone, in human navigators' (a),
 # vision-language agents' (b), short and non-native (c) and mid-dialog (d) styles, and (e)
 # from the labelling guide (docs/oracle-classifier.md), weighted to short utterances, chatter
-# and yes/no questions that read like another type.
+# and yes/no questions that read like another type, and (f) as mid-episode dialog by four
+# kinds of navigator, narration included.
 PACKAGED_SETS = tuple(_PACKAGED_FILES)
 TRAINING_SETS = tuple(name for name in PACKAGED_SETS if name != "heldout")
 _FIELDS = frozenset({"question", "type", "route_kind", "topic"})
