@@ -14,6 +14,7 @@ from vlln.cli import main
 from vlln.errors import DataFormatError
 from vlln.oracle.classifier.model import (
     FEATURE_SETS,
+    FORMAT,
     load_classifier,
     packaged_classifier,
     vectoriser,
@@ -63,7 +64,8 @@ def test_the_shipped_artefact_is_trained_on_the_shipped_questions() -> None:
         (b"not gzip at all", "is damaged"),
         (gzip.compress(b"{not json"), "is damaged"),
         (gzip.compress(json.dumps({"format": 99}).encode()), "has format 99"),
-        (gzip.compress(json.dumps({"format": 1, "labels": []}).encode()), "is damaged"),
+        (gzip.compress(json.dumps({"format": FORMAT, "labels": []}).encode()), "is damaged"),
+        (gzip.compress(json.dumps({"format": FORMAT - 1}).encode()), f"format {FORMAT - 1}"),
     ],
 )
 def test_a_bad_artefact_is_one_line_naming_the_fix(

@@ -3,8 +3,9 @@
 The classifier is learned (:mod:`vlln.oracle.classifier`), so its accuracy means something
 only on questions it was not trained on. It is trained on ``train`` (navigator questions),
 ``extra`` (questions written for training: every topic, typos, chat spellings, word orders),
-``v6`` (a former held-out set, tuned on and so trained on since) and ``generated`` (written
-from templates by :mod:`vlln.oracle.classifier.generator`, reproducible from a seed);
+``v6`` ... ``v9`` (former held-out sets, each measured and then trained on), ``written_*``
+(written for training by other writers) and ``generated`` (written from templates by
+:mod:`vlln.oracle.classifier.generator`, reproducible from a seed);
 ``heldout`` is written separately and frozen, only ever measured. All are JSON Lines, one
 question a line::
 
@@ -41,10 +42,18 @@ _PACKAGED_FILES = {
     "written_b": "questions_written_b.jsonl",
     "written_c": "questions_written_c.jsonl",
     "written_d": "questions_written_d.jsonl",
-    "heldout": "questions_heldout_v7.jsonl",
+    "written_e": "questions_written_e.jsonl",
+    "written_f": "questions_written_f.jsonl",
+    "v7": "questions_v7.jsonl",
+    "v8": "questions_v8.jsonl",
+    "v9": "questions_v9.jsonl",
+    "heldout": "questions_heldout_v10.jsonl",
 }
 # written_*: questions written from the task definition alone, in human navigators' (a),
-# vision-language agents' (b), short and non-native (c) and mid-dialog (d) styles.
+# vision-language agents' (b), short and non-native (c) and mid-dialog (d) styles, and (e)
+# from the labelling guide (docs/oracle-classifier.md), weighted to short utterances, chatter
+# and yes/no questions that read like another type, and (f) as mid-episode dialog by four
+# kinds of navigator, narration included.
 PACKAGED_SETS = tuple(_PACKAGED_FILES)
 TRAINING_SETS = tuple(name for name in PACKAGED_SETS if name != "heldout")
 _FIELDS = frozenset({"question", "type", "route_kind", "topic"})

@@ -331,11 +331,6 @@ class MeshBuilder:
         )
 
 
-def _unit(v: NDArray[np.float64]) -> NDArray[np.float64]:
-    norm = float(np.linalg.norm(v))
-    return v / norm if norm > 0 else v
-
-
 def _orient_axis(
     positions: NDArray[np.float64], normals: NDArray[np.float64], axis: str
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:

@@ -33,7 +33,7 @@ from vlln.oracle.topics import LABELS
 if TYPE_CHECKING:
     from sklearn.feature_extraction.text import TfidfVectorizer
 
-FORMAT = 1  # bump when the artefact's layout changes; older files are then refused
+FORMAT = 2  # bump when the artefact's layout or features change; older files are then refused
 ARTEFACT_NAME = "question_classifier.json.gz"
 RETRAIN = "rebuild it with `vlln oracle train-classifier`"
 # The two feature sets (scikit-learn TfidfVectorizer settings), in the order they are joined.
@@ -45,10 +45,20 @@ TFIDF_SETTINGS: dict[str, Any] = {"sublinear_tf": True, "norm": "l2"}
 _WORD = re.compile(r"[a-z0-9]+")
 
 
+QUESTION_MARK = "zqmark"  # the word the features see for a question mark (no real word)
+
+
 def prepared(text: str) -> str:
-    """The text the features are read from: lower-case letters and digits, one space between
-    words (case, punctuation and spacing say nothing about the intent)."""
+    """The words of ``text``: lower-case letters and digits, one space between them (case,
+    spacing and most punctuation say nothing about the intent)."""
     return " ".join(_WORD.findall(text.lower()))
+
+
+def featured(text: str) -> str:
+    """The text the features are read from: :func:`prepared`, and :data:`QUESTION_MARK` when
+    ``text`` holds a question mark, which tells "Got it?" (did I find it) from "Got it."."""
+    words = prepared(text)
+    return f"{words} {QUESTION_MARK}" if "?" in text else words
 
 
 def vectoriser(name: str, **extra: Any) -> TfidfVectorizer:
@@ -56,7 +66,7 @@ def vectoriser(name: str, **extra: Any) -> TfidfVectorizer:
     # Imported here: scikit-learn takes a second to import, which only classifying needs.
     from sklearn.feature_extraction.text import TfidfVectorizer
 
-    return TfidfVectorizer(**FEATURE_SETS[name], **TFIDF_SETTINGS, preprocessor=prepared, **extra)
+    return TfidfVectorizer(**FEATURE_SETS[name], **TFIDF_SETTINGS, preprocessor=featured, **extra)
 
 
 def packaged_artefact_path() -> Path:

@@ -259,7 +259,7 @@ TEMPLATES: dict[str, tuple[str, ...]] = {
         "Am I looking at the right {obj}?",
         "This {color} {obj}, is that it?",
         "Is the {obj} in front of me the one you mean?",
-        "Got it?",
+        "Have I got it?",
         "Is this {obj} correct?",
         "I see a {obj} right here. Is that the target?",
         "The {obj} on my left, that one?",

@@ -1,10 +1,8 @@
 """Fitting the question classifier from the packaged labelled questions.
 
 Training reads the training sets (:data:`~vlln.oracle.question_set.TRAINING_SETS`), less any
-question that reads the same as one of ``heldout`` (which is only measured; while the held-out
-file is itself a training set, as ``v6`` is until its successor lands, only the other sets
-give way), adds to each question
-:data:`TYPO_COPIES` copies with random one-letter slips (a letter dropped, doubled, swapped
+question that reads the same as one of ``heldout`` (which is only measured), adds to each
+question :data:`TYPO_COPIES` copies with random one-letter slips (a letter dropped, doubled, swapped
 with its neighbour or replaced), so that the character n-grams learn what typing errors look
 like, and fits a linear support-vector classifier on TF-IDF features of word 1-2-grams and
 character 2-5-grams. Everything random draws from ``seed``, and the artefact is written with
@@ -56,15 +54,13 @@ def training_digest() -> str:
 
 def training_sets() -> dict[str, list[LabelledQuestion]]:
     """Each packaged training set's questions, less those that read the same as a held-out
-    one (so that the held-out set stays unseen) unless the set is the held-out file itself;
-    raises when one lacks the topic training needs."""
-    heldout_path = packaged_question_set_path("heldout")
+    one (so that the held-out set stays unseen); raises when one lacks the topic training
+    needs."""
     heldout = {prepared(q.question) for q in load_packaged_question_set("heldout")}
     sets = {}
     for name in TRAINING_SETS:
         questions = load_packaged_question_set(name)
-        if packaged_question_set_path(name) != heldout_path:
-            questions = [q for q in questions if prepared(q.question) not in heldout]
+        questions = [q for q in questions if prepared(q.question) not in heldout]
         unlabelled = next((q for q in questions if q.label is None), None)
         if unlabelled is not None:
             raise DataFormatError(

@@ -175,7 +175,3 @@ def _cross(a: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64
     return np.array(
         [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
     )
-
-
-def _vec(a: NDArray[np.float64]) -> Vec3:
-    return (float(a[0]), float(a[1]), float(a[2]))
