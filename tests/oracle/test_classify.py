@@ -77,9 +77,14 @@ def test_accuracy_on_the_heldout_set() -> None:
 
 
 def test_route_granularity_on_the_heldout_set() -> None:
-    routes = [q for q in HELDOUT if q.question_type == R]
-    wrong = [(q.question, analyse_question(q.question).route_kind, q.route_kind) for q in routes]
-    wrong = [w for w in wrong if w[1] != w[2]]
+    # Of the route questions typed as route (a wrong type is the accuracy test's miss), the
+    # share given the wrong kind: orientation, path or step. v10: 6 of 212.
+    analysed = [(q, analyse_question(q.question)) for q in HELDOUT if q.question_type == R]
+    routes = [(q, a) for q, a in analysed if a.question_type == R]
+    wrong = [
+        (q.question, a.route_kind, q.route_kind) for q, a in routes if a.route_kind != q.route_kind
+    ]
+    assert len(routes) >= 0.9 * len(analysed)
     assert len(wrong) <= 0.05 * len(routes), wrong
 
 
