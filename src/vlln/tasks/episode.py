@@ -51,6 +51,16 @@ from typing import Any
 
 from vlln.errors import DataFormatError
 from vlln.files import parse_json, write_bytes_atomic
+from vlln.tasks.json_fields import (
+    Absent,
+    FieldError,
+    check_keys,
+    id_text_of,
+    numbers_of,
+    point_of,
+    text_of,
+    texts_of,
+)
 from vlln.world.catalogue.aliases import canonical_category
 from vlln.world.model import Point3
 
@@ -146,7 +156,7 @@ class Episode:
         so a goal object that several episodes share is parsed once."""
         try:
             return _parse_episode(data, shared_goals)
-        except _FieldError as err:
+        except FieldError as err:
             shown = repr(err.got) if len(repr(err.got)) <= 80 else repr(err.got)[:77] + "..."
             raise DataFormatError(
                 f"{where}: field {err.field!r}: expected {err.expected}, got {shown}"
@@ -260,19 +270,6 @@ def scene_name(scene_id: str) -> str:
 # --- validation -------------------------------------------------------------------------
 
 
-class _Absent:
-    def __repr__(self) -> str:
-        return "no such key"
-
-
-class _FieldError(Exception):
-    """A field that does not follow the format; turned into a DataFormatError with context."""
-
-    def __init__(self, field: str, expected: str, got: Any) -> None:
-        super().__init__(field)
-        self.field, self.expected, self.got = field, expected, got
-
-
 def _parse_file(data: Any, source: str) -> list[Episode]:
     if not isinstance(data, dict) or "episodes" not in data:
         raise DataFormatError(f"{source}: expected a JSON object with an 'episodes' list")
@@ -301,66 +298,6 @@ def _check_unique_ids(episodes: Sequence[Episode], source: str) -> None:
             )
 
 
-def _check_keys(
-    data: Any,
-    name: str,
-    required: tuple[str, ...],
-    optional: tuple[str, ...] = (),
-    ignored: tuple[str, ...] = (),
-) -> dict[str, Any]:
-    if not isinstance(data, dict):
-        raise _FieldError(name or "episode", "a JSON object", data)
-    prefix = f"{name}." if name else ""
-    unknown = sorted(set(data) - set(required) - set(optional) - set(ignored))
-    if unknown:
-        raise _FieldError(
-            prefix + unknown[0], f"only the keys {[*required, *optional]}", data[unknown[0]]
-        )
-    for key in required:
-        if key not in data:
-            raise _FieldError(prefix + key, "a value", _Absent())
-    return data
-
-
-def _text(value: Any, name: str) -> str:
-    if not isinstance(value, str):
-        raise _FieldError(name, "a string", value)
-    return value
-
-
-def _numbers(value: Any, name: str, count: int) -> tuple[float, ...]:
-    if not (
-        isinstance(value, list)
-        and len(value) == count
-        and all(
-            isinstance(v, int | float) and not isinstance(v, bool) and math.isfinite(v)
-            for v in value
-        )
-    ):
-        raise _FieldError(name, f"a list of {count} finite numbers", value)
-    return tuple(float(v) for v in value)
-
-
-def _point(value: Any, name: str) -> Point3:
-    x, y, z = _numbers(value, name, 3)
-    return (x, y, z)
-
-
-def _texts(value: Any, name: str) -> tuple[str, ...]:
-    if not isinstance(value, list):
-        raise _FieldError(name, "a list of strings", value)
-    return tuple(_text(v, f"{name}[{i}]") for i, v in enumerate(value))
-
-
-def _id_text(value: Any, name: str) -> str:
-    """An id written as a string or an integer (hand-made and Habitat files use both)."""
-    if isinstance(value, int) and not isinstance(value, bool):
-        return str(value)
-    if not isinstance(value, str):
-        raise _FieldError(name, "a string or an integer", value)
-    return value
-
-
 def _parse_episode(data: Any, shared_goals: dict[int, Goal] | None = None) -> Episode:
     optional = ("info", "object_category")
     required = (
@@ -371,19 +308,19 @@ def _parse_episode(data: Any, shared_goals: dict[int, Goal] | None = None) -> Ep
         "goals",
         "instruction",
     )
-    data = _check_keys(data, "", required, optional, IGNORED_EPISODE_KEYS)
+    data = check_keys(data, "", required, optional, IGNORED_EPISODE_KEYS)
     goals = data["goals"]
     if not isinstance(goals, list) or not goals:
-        raise _FieldError("goals", "a non-empty list of goals (goals[0] is the target)", goals)
+        raise FieldError("goals", "a non-empty list of goals (goals[0] is the target)", goals)
     info = data.get("info")
     if info is not None and not isinstance(info, dict):
-        raise _FieldError("info", "a JSON object or null", info)
-    x, y, z, w = _numbers(data["start_rotation"], "start_rotation", 4)
+        raise FieldError("info", "a JSON object or null", info)
+    x, y, z, w = numbers_of(data["start_rotation"], "start_rotation", 4)
     instruction = _parse_instruction(data["instruction"])
     return Episode(
-        episode_id=_id_text(data["episode_id"], "episode_id"),
-        scene_id=_text(data["scene_id"], "scene_id"),
-        start_position=_point(data["start_position"], "start_position"),
+        episode_id=id_text_of(data["episode_id"], "episode_id"),
+        scene_id=text_of(data["scene_id"], "scene_id"),
+        start_position=point_of(data["start_position"], "start_position"),
         start_rotation=(x, y, z, w),
         object_category=_category_of(data, instruction),
         goals=tuple(
@@ -406,7 +343,7 @@ def _named_category(data: dict[str, Any], instruction: Instruction) -> str:
     """``object_category``, else the target goal's, else from an instance id, else the text."""
     given = data.get("object_category")
     if given is not None:
-        return _text(given, "object_category")
+        return text_of(given, "object_category")
     target = data["goals"][0]
     from_goal = target.get("object_category") if isinstance(target, dict) else None
     if isinstance(from_goal, str) and from_goal:
@@ -418,11 +355,11 @@ def _named_category(data: dict[str, Any], instruction: Instruction) -> str:
     match = _INSTRUCTION_CATEGORY.search(instruction.instruction_text)
     if match is not None:
         return match.group(1).strip().lower()
-    raise _FieldError(
+    raise FieldError(
         "object_category",
         "a category here, in goals[0].object_category, in an instance id such as "
         "'3/chair_12' or in an instruction '... the <category>.'",
-        _Absent(),
+        Absent(),
     )
 
 
@@ -442,30 +379,30 @@ def _shared_goal(data: Any, name: str, shared: dict[int, Goal] | None) -> Goal:
 
 
 def _parse_goal(data: Any, name: str) -> Goal:
-    data = _check_keys(
+    data = check_keys(
         data, name, ("position",), ("radius", "bbox", "view_points"), IGNORED_GOAL_KEYS
     )
     radius = data.get("radius")
     if radius is not None:
-        (radius,) = _numbers([radius], f"{name}.radius", 1)
+        (radius,) = numbers_of([radius], f"{name}.radius", 1)
     bbox: BBox | None = None
     if data.get("bbox") is not None:
-        b = _numbers(data["bbox"], f"{name}.bbox", 6)
+        b = numbers_of(data["bbox"], f"{name}.bbox", 6)
         bbox = (b[0], b[1], b[2], b[3], b[4], b[5])
     view_points = data.get("view_points") or []
     if not isinstance(view_points, list):
-        raise _FieldError(f"{name}.view_points", "a list of view points", view_points)
+        raise FieldError(f"{name}.view_points", "a list of view points", view_points)
     points = []
     for i, view_point in enumerate(view_points):
         position = _written_view_point(view_point)
         if position is None:  # another shape: the checks accept it or name what is wrong
             vp_name = f"{name}.view_points[{i}]"
-            state = _check_keys(view_point, vp_name, ("agent_state",))["agent_state"]
-            state = _check_keys(state, f"{vp_name}.agent_state", ("position",), (), ("rotation",))
-            position = _point(state["position"], f"{vp_name}.agent_state.position")
+            state = check_keys(view_point, vp_name, ("agent_state",))["agent_state"]
+            state = check_keys(state, f"{vp_name}.agent_state", ("position",), (), ("rotation",))
+            position = point_of(state["position"], f"{vp_name}.agent_state.position")
         points.append(ViewPoint(position))
     return Goal(
-        position=_point(data["position"], f"{name}.position"),
+        position=point_of(data["position"], f"{name}.position"),
         radius=radius,
         bbox=bbox,
         view_points=tuple(points),
@@ -492,14 +429,16 @@ def _written_view_point(data: Any) -> Point3 | None:
 
 def _parse_instruction(data: Any) -> Instruction:
     required = ("task_type", "instruction_text", "instance_id")
-    data = _check_keys(data, "instruction", required, ("instruction_info",))
+    data = check_keys(data, "instruction", required, ("instruction_info",))
     info = data.get("instruction_info")
     ids = data["instance_id"]
     if not isinstance(ids, list):
-        raise _FieldError("instruction.instance_id", "a list of instance ids", ids)
+        raise FieldError("instruction.instance_id", "a list of instance ids", ids)
     return Instruction(
-        task_type=_text(data["task_type"], "instruction.task_type"),
-        instruction_text=_text(data["instruction_text"], "instruction.instruction_text"),
-        instance_id=tuple(_id_text(v, f"instruction.instance_id[{i}]") for i, v in enumerate(ids)),
-        instruction_info=None if info is None else _texts(info, "instruction.instruction_info"),
+        task_type=text_of(data["task_type"], "instruction.task_type"),
+        instruction_text=text_of(data["instruction_text"], "instruction.instruction_text"),
+        instance_id=tuple(
+            id_text_of(v, f"instruction.instance_id[{i}]") for i, v in enumerate(ids)
+        ),
+        instruction_info=None if info is None else texts_of(info, "instruction.instruction_info"),
     )
