@@ -1,9 +1,12 @@
-"""The house index finds the objects a question names, and no object in its grammar."""
+"""The house index finds the objects a question names, and no object in its grammar, and the
+room of a point on the storey asked about."""
 
+import numpy as np
 import pytest
+from matplotlib.path import Path
 
 from vlln.oracle.knowledge import HouseIndex
-from vlln.world.generator import generate_house
+from vlln.world.generator import HouseParameters, generate_house
 
 
 @pytest.mark.slow
@@ -15,3 +18,22 @@ def test_the_auxiliary_can_is_not_the_object_can() -> None:
     question = "can you see it by the cans"
     assert [m.start() for m in pattern.finditer(question)] == [question.index("cans")]
     assert not list(pattern.finditer("can i find it there? can we go?"))
+
+
+def test_rooms_at_agrees_with_matplotlib_on_every_storey() -> None:
+    house = generate_house(3, HouseParameters(floors=3))
+    index = HouseIndex.build(house)
+    rng = np.random.default_rng(0)
+    corners = np.array([p for room in house.rooms for p in room.polygon], np.float64)
+    low, high = corners.min(axis=0) - 1.0, corners.max(axis=0) + 1.0
+    points = rng.uniform(low, high, size=(2000, 2))
+    levels = sorted({room.level for room in house.rooms})
+    assert len(levels) == 3
+    for level in levels:
+        rooms = [room for room in house.rooms if room.level == level]
+        expected = np.full(len(points), -1)
+        for room in reversed(rooms):  # the first room that holds a point names it
+            expected[Path(np.asarray(room.polygon)).contains_points(points)] = room.id
+        found = index.rooms_at(points, rooms[0].floor_y)
+        assert (found == expected).all()
+        assert 0.2 < (found >= 0).mean() < 1.0  # points both inside and outside rooms

@@ -59,7 +59,7 @@ def answer_disambiguation(
     rng = knowledge.rng
     ids = frame.instance_ids
     counts = centre_counts(ids)
-    categories = {i: inst.category for i, inst in index.instances.items()}
+    categories = {i: index.instances[i].category for i in counts if i in index.instances}
     candidate = most_visible_of(counts, ids.shape, categories, target.category)
     if candidate == target.id and is_centred(counts, target.id, ids):
         x, _, z = state.position

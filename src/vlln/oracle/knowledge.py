@@ -70,6 +70,43 @@ def choose(rng: np.random.Generator, variants: tuple[str, ...]) -> str:
 
 
 @dataclass(frozen=True)
+class _RoomEdges:
+    """The outline edges of several rooms, one array, each room's edges together, so that one
+    array expression tests a point against every room."""
+
+    start: NDArray[np.float64]  # (edges, 2)
+    end: NDArray[np.float64]  # (edges, 2)
+    first_edge: NDArray[np.int64]  # (rooms,) where each room's edges begin
+    room_ids: NDArray[np.int64]  # (rooms,) in the house's order
+
+    @staticmethod
+    def of(rooms: list[Room]) -> _RoomEdges:
+        starts = [np.asarray(room.polygon, np.float64) for room in rooms]
+        counts = [len(start) for start in starts]
+        return _RoomEdges(
+            np.concatenate(starts),
+            np.concatenate([np.roll(start, -1, axis=0) for start in starts]),
+            np.cumsum([0, *counts[:-1]], dtype=np.int64),
+            np.array([room.id for room in rooms], np.int64),
+        )
+
+    def first_room_containing(self, points: NDArray[np.float64]) -> NDArray[np.int64]:
+        """For each point ``(n, 2)``, the first room (in the house's order) whose outline
+        contains it by the even-odd rule; -1 where none does."""
+        x = points[:, 0:1]
+        z = points[:, 1:2]
+        start_z, end_z = self.start[:, 1], self.end[:, 1]
+        crosses = (start_z > z) != (end_z > z)
+        dz = np.where(crosses, end_z - start_z, 1.0)
+        x_cross = self.start[:, 0] + (z - start_z) * (self.end[:, 0] - self.start[:, 0]) / dz
+        hits = (crosses & (x < x_cross)).astype(np.int32)
+        inside = np.add.reduceat(hits, self.first_edge, axis=1) % 2 == 1
+        first = inside.argmax(axis=1)
+        found = inside[np.arange(len(points)), first]
+        return np.where(found, self.room_ids[first], -1)
+
+
+@dataclass(frozen=True)
 class HouseIndex:
     """Look-ups over one house: which room a point is in, instances, relations, landmarks."""
 
@@ -79,8 +116,8 @@ class HouseIndex:
     relations_to: dict[int, list[Relation]]  # by object id, nearest first
     category_pattern: re.Pattern[str]  # finds category names, aliases (or plurals) in text
     landmarks: dict[int, list[ObjectInstance]]  # by room id
-    _room_ids: NDArray[np.int64]
     _edges: list[tuple[NDArray[np.float64], NDArray[np.float64]]]  # per room: start, end
+    _storey_edges: dict[int | None, _RoomEdges]  # by storey level; None: every room
 
     @staticmethod
     def build(house: House) -> HouseIndex:
@@ -98,6 +135,9 @@ class HouseIndex:
         for room in house.rooms:
             start = np.asarray(room.polygon, np.float64)
             edges.append((start, np.roll(start, -1, axis=0)))
+        storey_edges: dict[int | None, _RoomEdges] = {None: _RoomEdges.of(list(house.rooms))}
+        for level in {room.level for room in house.rooms}:
+            storey_edges[level] = _RoomEdges.of([r for r in house.rooms if r.level == level])
         return HouseIndex(
             house,
             {inst.id: inst for inst in house.instances},
@@ -105,8 +145,8 @@ class HouseIndex:
             relations_to,
             _category_pattern({inst.category for inst in house.instances}),
             landmarks,
-            np.array([room.id for room in house.rooms], np.int64),
             edges,
+            storey_edges,
         )
 
     def storey_at(self, y: float | None) -> int | None:
@@ -120,21 +160,7 @@ class HouseIndex:
     def rooms_at(self, points: NDArray[np.float64], y: float | None = None) -> NDArray[np.int64]:
         """Room id of each floor-plan point ``(n, 2)``; -1 where no room contains it. With
         several storeys, ``y`` (the height) picks the storey's rooms."""
-        result = np.full(len(points), -1, np.int64)
-        x = points[:, 0:1]
-        z = points[:, 1:2]
-        storey = self.storey_at(y)
-        for room, room_id, (start, end) in zip(
-            self.house.rooms, self._room_ids, self._edges, strict=True
-        ):
-            if storey is not None and room.level != storey:
-                continue
-            crosses = (start[:, 1] > z) != (end[:, 1] > z)
-            dz = np.where(crosses, end[:, 1] - start[:, 1], 1.0)
-            x_cross = start[:, 0] + (z - start[:, 1]) * (end[:, 0] - start[:, 0]) / dz
-            inside = np.count_nonzero(crosses & (x < x_cross), axis=1) % 2 == 1
-            result[inside & (result < 0)] = room_id
-        return result
+        return self._storey_edges[self.storey_at(y)].first_room_containing(points)
 
     def room_at(self, x: float, z: float, y: float | None = None) -> Room | None:
         """The room containing the point or, for a point in a wall or doorway, the nearest
