@@ -35,9 +35,9 @@ STEP = RouteKind.STEP
 TRAIN = load_packaged_question_set("train")
 HELDOUT = load_packaged_question_set("heldout")
 # Training leaves out any question of another set that reads the same as a held-out one. The
-# held-out set (v10) was written without sight of the classifier; the shipped model types
-# 96.4 % of it (docs/oracle-classifier.md). The floor guards regressions below that.
-HELDOUT_FLOOR = 0.95
+# held-out set (v11) was written without sight of the classifier; the shipped model types
+# 98.4 % of it (docs/oracle-classifier.md). The floor guards regressions below that.
+HELDOUT_FLOOR = 0.97
 TRAINED = training_sets()
 
 
@@ -78,7 +78,7 @@ def test_accuracy_on_the_heldout_set() -> None:
 
 def test_route_granularity_on_the_heldout_set() -> None:
     # Of the route questions typed as route (a wrong type is the accuracy test's miss), the
-    # share given the wrong kind: orientation, path or step. v10: 6 of 212.
+    # share given the wrong kind: orientation, path or step. v11: 0 of 224.
     analysed = [(q, analyse_question(q.question)) for q in HELDOUT if q.question_type == R]
     routes = [(q, a) for q, a in analysed if a.question_type == R]
     wrong = [
@@ -88,14 +88,23 @@ def test_route_granularity_on_the_heldout_set() -> None:
     assert len(wrong) <= 0.05 * len(routes), wrong
 
 
+def _ending(question: str) -> str:
+    return "?!" if "?" in question else "!."
+
+
+def _doubled_spaces(question: str) -> str:
+    return question.replace(" ", "  ")
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize(
     "transform",
-    [str.upper, str.lower, lambda q: f"  {q.rstrip('?.!')}?!  ", lambda q: q.replace(" ", "  ")],
+    [str.upper, str.lower, lambda q: f"  {q.rstrip('?.!')}{_ending(q)}  ", _doubled_spaces],
 )
 def test_case_punctuation_and_spacing_do_not_change_the_type(
     transform: Callable[[str], str],
 ) -> None:
+    # Only whether a question mark is there is read ("Got it?" asks, "Got it." acknowledges).
     for item in TRAIN[::7]:
         question = item.question
         changed = transform(question)

@@ -47,7 +47,8 @@ _PACKAGED_FILES = {
     "v7": "questions_v7.jsonl",
     "v8": "questions_v8.jsonl",
     "v9": "questions_v9.jsonl",
-    "heldout": "questions_heldout_v10.jsonl",
+    "v10": "questions_v10.jsonl",
+    "heldout": "questions_heldout_v11.jsonl",
 }
 # written_*: questions written from the task definition alone, in human navigators' (a),
 # vision-language agents' (b), short and non-native (c) and mid-dialog (d) styles, and (e)

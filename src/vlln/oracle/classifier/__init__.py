@@ -3,5 +3,6 @@
 :mod:`~vlln.oracle.classifier.model` loads the shipped artefact and labels questions;
 :mod:`~vlln.oracle.classifier.training` fits it from the packaged labelled questions
 (``vlln oracle train-classifier``); :mod:`~vlln.oracle.classifier.entities` finds the colours,
-materials and rooms a question names.
+materials and rooms a question names, and :mod:`~vlln.oracle.classifier.roles` reads them by
+role for the features.
 """

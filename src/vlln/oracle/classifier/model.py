@@ -1,7 +1,8 @@
 """Loading the question classifier's artefact and labelling questions with it.
 
-The artefact is gzipped JSON: for each of the two TF-IDF feature sets (word 1-2-grams and
-character 2-5-grams within word boundaries) its vocabulary and idf weights, then the linear
+The artefact is gzipped JSON: for each of the two TF-IDF feature sets (character 2-5-grams
+within word boundaries, and word 1-3-grams with house words read by role) its vocabulary and
+idf weights, then the linear
 model's weights per label. Plain numbers rather than a pickle, so that a newer scikit-learn
 still reads it. At load, scikit-learn builds each feature set's analyser (the n-gram
 splitting, with the fitted settings), and the weighting and the linear model are a few array
@@ -28,18 +29,20 @@ import numpy as np
 from numpy.typing import NDArray
 
 from vlln.errors import DataFormatError
+from vlln.oracle.classifier.roles import with_roles
 from vlln.oracle.topics import LABELS
 
 if TYPE_CHECKING:
     from sklearn.feature_extraction.text import TfidfVectorizer
 
-FORMAT = 2  # bump when the artefact's layout or features change; older files are then refused
+FORMAT = 3  # bump when the artefact's layout or features change; older files are then refused
 ARTEFACT_NAME = "question_classifier.json.gz"
 RETRAIN = "rebuild it with `vlln oracle train-classifier`"
-# The two feature sets (scikit-learn TfidfVectorizer settings), in the order they are joined.
+_WORDS = r"(?u)\b\w+\b"
+# The feature sets (scikit-learn TfidfVectorizer settings), in the order they are joined.
 FEATURE_SETS: dict[str, dict[str, Any]] = {
-    "word": {"analyzer": "word", "ngram_range": (1, 2), "token_pattern": r"(?u)\b\w+\b"},
     "char": {"analyzer": "char_wb", "ngram_range": (2, 5)},
+    "roles": {"analyzer": "word", "ngram_range": (1, 3), "token_pattern": _WORDS},
 }
 TFIDF_SETTINGS: dict[str, Any] = {"sublinear_tf": True, "norm": "l2"}
 _WORD = re.compile(r"[a-z0-9]+")
@@ -61,12 +64,25 @@ def featured(text: str) -> str:
     return f"{words} {QUESTION_MARK}" if "?" in text else words
 
 
+def featured_by_role(text: str) -> str:
+    """:func:`featured` with house words replaced by their role (:mod:`.roles`)."""
+    return " ".join(with_roles(featured(text).split()))
+
+
+# The text each feature set reads.
+PREPROCESSORS: dict[str, Callable[[str], str]] = {
+    "char": featured,
+    "roles": featured_by_role,
+}
+
+
 def vectoriser(name: str, **extra: Any) -> TfidfVectorizer:
     """A TF-IDF vectoriser with the settings of feature set ``name``."""
     # Imported here: scikit-learn takes a second to import, which only classifying needs.
     from sklearn.feature_extraction.text import TfidfVectorizer
 
-    return TfidfVectorizer(**FEATURE_SETS[name], **TFIDF_SETTINGS, preprocessor=featured, **extra)
+    settings = FEATURE_SETS[name]
+    return TfidfVectorizer(**settings, **TFIDF_SETTINGS, preprocessor=PREPROCESSORS[name], **extra)
 
 
 def packaged_artefact_path() -> Path:

@@ -4,10 +4,10 @@ Training reads the training sets (:data:`~vlln.oracle.question_set.TRAINING_SETS
 question that reads the same as one of ``heldout`` (which is only measured), adds to each
 question :data:`TYPO_COPIES` copies with random one-letter slips (a letter dropped, doubled, swapped
 with its neighbour or replaced), so that the character n-grams learn what typing errors look
-like, and fits a linear support-vector classifier on TF-IDF features of word 1-2-grams and
-character 2-5-grams. Everything random draws from ``seed``, and the artefact is written with
-sorted keys, rounded numbers and a zero gzip time stamp: the same data and seed give the same
-bytes.
+like, and fits a linear support-vector classifier on TF-IDF features of character 2-5-grams
+and of word 1-3-grams with house words read by role. Everything random draws from
+``seed``, and the artefact is written with sorted keys, rounded numbers and a zero gzip time
+stamp: the same data and seed give the same bytes.
 """
 
 from __future__ import annotations
