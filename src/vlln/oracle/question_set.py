@@ -48,7 +48,7 @@ _PACKAGED_FILES = {
     "v8": "questions_v8.jsonl",
     "v9": "questions_v9.jsonl",
     "v10": "questions_v10.jsonl",
-    "heldout": "questions_heldout_v11.jsonl",
+    "heldout": "questions_heldout_v11_v12.jsonl",
 }
 # written_*: questions written from the task definition alone, in human navigators' (a),
 # vision-language agents' (b), short and non-native (c) and mid-dialog (d) styles, and (e)
