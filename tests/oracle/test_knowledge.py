@@ -37,3 +37,21 @@ def test_rooms_at_agrees_with_matplotlib_on_every_storey() -> None:
         found = index.rooms_at(points, rooms[0].floor_y)
         assert (found == expected).all()
         assert 0.2 < (found >= 0).mean() < 1.0  # points both inside and outside rooms
+
+
+def test_a_point_just_outside_the_house_belongs_to_the_room_whose_wall_it_faces() -> None:
+    house = generate_house(3, HouseParameters(floors=3))
+    index = HouseIndex.build(house)
+    checked = 0
+    for room in house.rooms:
+        corners = np.asarray(room.polygon, np.float64)
+        for start, end in zip(corners, np.roll(corners, -1, axis=0), strict=True):
+            outer_x = max(p[0] for r in house.rooms if r.level == room.level for p in r.polygon)
+            if start[0] == end[0] == outer_x and abs(end[1] - start[1]) > 1.0:
+                # 0.3 m beyond the middle of an outer wall at least 1 m long: that room's wall
+                # is nearest, every other room's outline at least 0.5 m away.
+                outside = (outer_x + 0.3, (start[1] + end[1]) / 2)
+                assert index.rooms_at(np.array([outside]), room.floor_y)[0] == -1
+                assert index.room_at(*outside, room.floor_y) == room
+                checked += 1
+    assert checked >= 3

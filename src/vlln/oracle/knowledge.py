@@ -84,8 +84,8 @@ class _RoomEdges:
         starts = [np.asarray(room.polygon, np.float64) for room in rooms]
         counts = [len(start) for start in starts]
         return _RoomEdges(
-            np.concatenate(starts),
-            np.concatenate([np.roll(start, -1, axis=0) for start in starts]),
+            np.concatenate([np.zeros((0, 2)), *starts]),
+            np.concatenate([np.zeros((0, 2)), *(np.roll(start, -1, axis=0) for start in starts)]),
             np.cumsum([0, *counts[:-1]], dtype=np.int64),
             np.array([room.id for room in rooms], np.int64),
         )
@@ -93,6 +93,8 @@ class _RoomEdges:
     def first_room_containing(self, points: NDArray[np.float64]) -> NDArray[np.int64]:
         """For each point ``(n, 2)``, the first room (in the house's order) whose outline
         contains it by the even-odd rule; -1 where none does."""
+        if not len(self.room_ids):
+            return np.full(len(points), -1, np.int64)
         x = points[:, 0:1]
         z = points[:, 1:2]
         start_z, end_z = self.start[:, 1], self.end[:, 1]
@@ -105,6 +107,15 @@ class _RoomEdges:
         found = inside[np.arange(len(points)), first]
         return np.where(found, self.room_ids[first], -1)
 
+    def nearest_room(self, x: float, z: float) -> int:
+        """The id of the room whose outline passes nearest the point (the first on a tie)."""
+        edge = self.end - self.start
+        offset = np.array([x, z]) - self.start
+        length2 = np.maximum(np.sum(edge * edge, axis=1), 1e-18)
+        t = np.clip(np.sum(offset * edge, axis=1) / length2, 0.0, 1.0)
+        gaps = np.linalg.norm(offset - t[:, None] * edge, axis=1)
+        return int(self.room_ids[int(np.argmin(np.minimum.reduceat(gaps, self.first_edge)))])
+
 
 @dataclass(frozen=True)
 class HouseIndex:
@@ -116,7 +127,6 @@ class HouseIndex:
     relations_to: dict[int, list[Relation]]  # by object id, nearest first
     category_pattern: re.Pattern[str]  # finds category names, aliases (or plurals) in text
     landmarks: dict[int, list[ObjectInstance]]  # by room id
-    _edges: list[tuple[NDArray[np.float64], NDArray[np.float64]]]  # per room: start, end
     _storey_edges: dict[int | None, _RoomEdges]  # by storey level; None: every room
 
     @staticmethod
@@ -131,10 +141,6 @@ class HouseIndex:
         for inst in house.instances:
             if _is_landmark(inst, floors.get(inst.room_id, 0.0)):
                 landmarks.setdefault(inst.room_id, []).append(inst)
-        edges = []
-        for room in house.rooms:
-            start = np.asarray(room.polygon, np.float64)
-            edges.append((start, np.roll(start, -1, axis=0)))
         storey_edges: dict[int | None, _RoomEdges] = {None: _RoomEdges.of(list(house.rooms))}
         for level in {room.level for room in house.rooms}:
             storey_edges[level] = _RoomEdges.of([r for r in house.rooms if r.level == level])
@@ -145,7 +151,6 @@ class HouseIndex:
             relations_to,
             _category_pattern({inst.category for inst in house.instances}),
             landmarks,
-            edges,
             storey_edges,
         )
 
@@ -165,18 +170,11 @@ class HouseIndex:
     def room_at(self, x: float, z: float, y: float | None = None) -> Room | None:
         """The room containing the point or, for a point in a wall or doorway, the nearest
         (on the storey of height ``y`` when the house has several)."""
-        room_id = int(self.rooms_at(np.array([[x, z]]), y)[0])
-        if room_id >= 0:
-            return self.house.room(room_id)
-        storey = self.storey_at(y)
-        best: tuple[float, Room] | None = None
-        for room, (start, end) in zip(self.house.rooms, self._edges, strict=True):
-            if storey is not None and room.level != storey:
-                continue
-            gap = _distance_to_edges(x, z, start, end)
-            if best is None or gap < best[0]:
-                best = (gap, room)
-        return None if best is None else best[1]
+        edges = self._storey_edges[self.storey_at(y)]
+        if not len(edges.room_ids):
+            return None
+        room_id = int(edges.first_room_containing(np.array([[x, z]]))[0])
+        return self.house.room(room_id if room_id >= 0 else edges.nearest_room(x, z))
 
     def same_type_rooms(self, room: Room) -> int:
         return sum(1 for other in self.house.rooms if other.type == room.type)
@@ -199,16 +197,6 @@ def _is_landmark(inst: ObjectInstance, floor_y: float) -> bool:
     return max(inst.box.size) >= LANDMARK_MIN_SIZE and (
         inst.box.min[1] - floor_y <= LANDMARK_MAX_HEIGHT
     )
-
-
-def _distance_to_edges(
-    x: float, z: float, start: NDArray[np.float64], end: NDArray[np.float64]
-) -> float:
-    edge = end - start
-    offset = np.array([x, z]) - start
-    length2 = np.maximum(np.sum(edge * edge, axis=1), 1e-18)
-    t = np.clip(np.sum(offset * edge, axis=1) / length2, 0.0, 1.0)
-    return float(np.min(np.linalg.norm(offset - t[:, None] * edge, axis=1)))
 
 
 @dataclass
