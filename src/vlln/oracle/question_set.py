@@ -3,7 +3,7 @@
 The classifier is learned (:mod:`vlln.oracle.classifier`), so its accuracy means something
 only on questions it was not trained on. It is trained on ``train`` (navigator questions),
 ``extra`` (questions written for training: every topic, typos, chat spellings, word orders),
-``v6`` ... ``v9`` (former held-out sets, each measured and then trained on), ``written_*``
+``v6`` ... ``v10`` (former held-out sets, each measured and then trained on), ``written_*``
 (written for training by other writers) and ``generated`` (written from templates by
 :mod:`vlln.oracle.classifier.generator`, reproducible from a seed);
 ``heldout`` is written separately and frozen, only ever measured. All are JSON Lines, one

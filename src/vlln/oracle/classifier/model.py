@@ -2,12 +2,11 @@
 
 The artefact is gzipped JSON: for each of the two TF-IDF feature sets (character 2-5-grams
 within word boundaries, and word 1-3-grams with house words read by role) its vocabulary and
-idf weights, then the linear
-model's weights per label. Plain numbers rather than a pickle, so that a newer scikit-learn
-still reads it. At load, scikit-learn builds each feature set's analyser (the n-gram
-splitting, with the fitted settings), and the weighting and the linear model are a few array
-operations: the same numbers as the fitted vectoriser, without its per-call overhead of
-about a millisecond.
+idf weights, then the linear model's weights per label. Plain numbers rather than a pickle,
+so that a newer scikit-learn still reads it. At load, scikit-learn builds each feature set's
+analyser (the n-gram splitting, with the fitted settings), and the weighting and the linear
+model are a few array operations: the same numbers as the fitted vectoriser, without its
+per-call overhead of about a millisecond.
 """
 
 from __future__ import annotations
