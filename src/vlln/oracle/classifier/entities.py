@@ -66,18 +66,23 @@ _FORWARD = ("forward", "straight", "ahead", "continue", "keep going")
 
 
 @cache
-def category_phrases() -> tuple[str, ...]:
-    """Catalogue names (and aliases) of several words, which claim their words first: the
-    "kitchen" of a kitchen island is no room."""
+def object_names() -> frozenset[str]:
+    """The catalogue's names and their aliases ("sofa" for a couch)."""
     names = {c.name for c in default_catalogue()}
-    return tuple(n for n in names | set(aliases_of(names)) if " " in n)
+    return frozenset(names | set(aliases_of(names)))
+
+
+@cache
+def category_phrases() -> tuple[str, ...]:
+    """Catalogue names (and aliases) of several words, longest first, which claim their words
+    first: the "kitchen" of a kitchen island is no room."""
+    return tuple(sorted((n for n in object_names() if " " in n), key=lambda n: (-len(n), n)))
 
 
 @cache
 def vocabulary_words() -> tuple[str, ...]:
     """Single words of every vocabulary a typed word may be corrected to."""
-    names = {c.name for c in default_catalogue()}
-    phrases = [*COLORS, *MATERIAL_SYNONYMS, *ROOM_SYNONYMS, *names, *aliases_of(names)]
+    phrases = [*COLORS, *MATERIAL_SYNONYMS, *ROOM_SYNONYMS, *object_names()]
     return tuple(sorted({w for p in phrases for w in p.split()}))
 
 

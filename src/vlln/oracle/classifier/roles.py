@@ -11,9 +11,7 @@ from __future__ import annotations
 
 from functools import cache
 
-from vlln.oracle.classifier.entities import MATERIAL_SYNONYMS, ROOM_SYNONYMS
-from vlln.world.catalogue.aliases import aliases_of
-from vlln.world.catalogue.registry import default_catalogue
+from vlln.oracle.classifier.entities import MATERIAL_SYNONYMS, ROOM_SYNONYMS, object_names
 from vlln.world.materials import COLORS
 
 # Role words: no English word, so they never meet a real one in the features.
@@ -24,9 +22,8 @@ OBJECT, ROOM, COLOUR, MATERIAL = "zzobject", "zzroom", "zzcolour", "zzmaterial"
 def role_of_phrase() -> dict[str, str]:
     """Each house phrase (one to three words) and its role word. An object name that is also
     a room ("toilet") reads as an object: the question names the thing it looks for."""
-    names = {c.name for c in default_catalogue()}
-    objects = names | set(aliases_of(names))
-    objects |= {f"{name}s" for name in objects} | {f"{name}es" for name in objects}
+    names = object_names()
+    objects = names | {f"{name}s" for name in names} | {f"{name}es" for name in names}
     roles: dict[str, str] = {}
     for phrases, role in (
         (objects, OBJECT),
