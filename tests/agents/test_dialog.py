@@ -3,7 +3,11 @@ import math
 import pytest
 
 from vlln.agents.frontier import dialog
+from vlln.oracle.classify import analyse_question
+from vlln.oracle.topics import RouteKind
+from vlln.tasks.oracle_protocol import QuestionType
 from vlln.tasks.spec import REFUSAL_MESSAGE
+from vlln.world.catalogue.registry import default_catalogue
 from vlln.world.model import Attributes
 
 
@@ -102,3 +106,22 @@ def test_known_attributes_filter_candidates() -> None:
     assert dialog.matches_known(red, {})
     assert dialog.matches_known(red, {"color": "red"})
     assert not dialog.matches_known(red, {"color": "red", "material": "metal"})
+
+
+AGENT_QUESTIONS = [
+    *((t, QuestionType.ATTRIBUTE, None) for ts in dialog.ATTRIBUTE_TEMPLATES.values() for t in ts),
+    *((t, QuestionType.DISAMBIGUATION, None) for t in dialog.DISAMBIGUATION_TEMPLATES),
+    *((t, QuestionType.ROUTE, RouteKind.ORIENTATION) for t in dialog.ROUTE_TEMPLATES),
+]
+
+
+@pytest.mark.parametrize(("template", "question_type", "route_kind"), AGENT_QUESTIONS)
+def test_the_oracle_reads_each_agent_question_alike_for_every_category(
+    template: str, question_type: QuestionType, route_kind: RouteKind | None
+) -> None:
+    # Which object the agent looks for must not change the kind of answer it gets.
+    read = {
+        (a.question_type, a.route_kind)
+        for a in (analyse_question(template.format(category=c.name)) for c in default_catalogue())
+    }
+    assert read == {(question_type, route_kind)}

@@ -3,9 +3,9 @@
 The classifier is learned (:mod:`vlln.oracle.classifier`), so its accuracy means something
 only on questions it was not trained on. It is trained on ``train`` (navigator questions),
 ``extra`` (questions written for training: every topic, typos, chat spellings, word orders),
-``v6`` ... ``v10`` (former held-out sets, each measured and then trained on), ``written_*``
-(written for training by other writers) and ``generated`` (written from templates by
-:mod:`vlln.oracle.classifier.generator`, reproducible from a seed);
+``v6`` ... ``v12`` (former held-out sets, each measured and then trained on), ``written_*``
+and ``v13`` ... ``v16`` (written for training by other writers) and ``generated`` (written
+from templates by :mod:`vlln.oracle.classifier.generator`, reproducible from a seed);
 ``heldout`` is written separately and frozen, only ever measured. All are JSON Lines, one
 question a line::
 
@@ -48,13 +48,20 @@ _PACKAGED_FILES = {
     "v8": "questions_v8.jsonl",
     "v9": "questions_v9.jsonl",
     "v10": "questions_v10.jsonl",
-    "heldout": "questions_heldout_v11_v12.jsonl",
+    "v11": "questions_v11.jsonl",
+    "v12": "questions_v12.jsonl",
+    "v13": "questions_v13.jsonl",
+    "v14": "questions_v14.jsonl",
+    "v15": "questions_v15.jsonl",
+    "v16": "questions_v16.jsonl",
+    "heldout": "questions_heldout_v17_v18.jsonl",
 }
 # written_*: questions written from the task definition alone, in human navigators' (a),
 # vision-language agents' (b), short and non-native (c) and mid-dialog (d) styles, and (e)
 # from the labelling guide (docs/oracle-classifier.md), weighted to short utterances, chatter
 # and yes/no questions that read like another type, and (f) as mid-episode dialog by four
-# kinds of navigator, narration included.
+# kinds of navigator, narration included; v13 ... v16 from the guide, each by eight personas
+# (people and model agents) the writer was given (v13-v15) or chose (v16).
 PACKAGED_SETS = tuple(_PACKAGED_FILES)
 TRAINING_SETS = tuple(name for name in PACKAGED_SETS if name != "heldout")
 _FIELDS = frozenset({"question", "type", "route_kind", "topic"})

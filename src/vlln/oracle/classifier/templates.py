@@ -213,6 +213,7 @@ TEMPLATES: dict[str, tuple[str, ...]] = {
         "Is the goal on my left or my right?",
         "What's the heading to the {obj}?",
         "Is the {room} behind me?",
+        "Which direction should I go to find the {obj}?",
     ),
     "route:path": (
         "How do I get to the {obj}?",
