@@ -35,9 +35,9 @@ STEP = RouteKind.STEP
 TRAIN = load_packaged_question_set("train")
 HELDOUT = load_packaged_question_set("heldout")
 # Training leaves out any question of another set that reads the same as a held-out one. The
-# held-out set (v17 and v18, two writers) was written without sight of the classifier; the
-# shipped model types 96.9 % of it (docs/oracle-classifier.md). The floor guards regressions.
-HELDOUT_FLOOR = 0.96
+# held-out set (v23 and v24, two writers) was written without sight of the classifier; the
+# shipped model types 98.2 % of it (docs/oracle-classifier.md). The floor guards regressions.
+HELDOUT_FLOOR = 0.975
 TRAINED = training_sets()
 
 
@@ -78,7 +78,7 @@ def test_accuracy_on_the_heldout_set() -> None:
 
 def test_route_granularity_on_the_heldout_set() -> None:
     # Of the route questions typed as route (a wrong type is the accuracy test's miss), the
-    # share given the wrong kind: orientation, path or step. v17 and v18: 9 of 443.
+    # share given the wrong kind: orientation, path or step. v23 and v24: 7 of 442.
     analysed = [(q, analyse_question(q.question)) for q in HELDOUT if q.question_type == R]
     routes = [(q, a) for q, a in analysed if a.question_type == R]
     wrong = [

@@ -3,9 +3,10 @@
 The classifier is learned (:mod:`vlln.oracle.classifier`), so its accuracy means something
 only on questions it was not trained on. It is trained on ``train`` (navigator questions),
 ``extra`` (questions written for training: every topic, typos, chat spellings, word orders),
-``v6`` ... ``v12`` (former held-out sets, each measured and then trained on), ``written_*``
-and ``v13`` ... ``v16`` (written for training by other writers) and ``generated`` (written
-from templates by :mod:`vlln.oracle.classifier.generator`, reproducible from a seed);
+``v6`` ... ``v12``, ``v17``, ``v18`` (former held-out sets, each measured and then trained
+on), ``written_*``, ``v13`` ... ``v16`` and ``v19`` ... ``v22`` (written for training by other
+writers) and ``generated`` (written from templates by :mod:`vlln.oracle.classifier.generator`,
+reproducible from a seed);
 ``heldout`` is written separately and frozen, only ever measured. All are JSON Lines, one
 question a line::
 
@@ -54,14 +55,21 @@ _PACKAGED_FILES = {
     "v14": "questions_v14.jsonl",
     "v15": "questions_v15.jsonl",
     "v16": "questions_v16.jsonl",
-    "heldout": "questions_heldout_v17_v18.jsonl",
+    "v17": "questions_v17.jsonl",
+    "v18": "questions_v18.jsonl",
+    "v19": "questions_v19.jsonl",
+    "v20": "questions_v20.jsonl",
+    "v21": "questions_v21.jsonl",
+    "v22": "questions_v22.jsonl",
+    "heldout": "questions_heldout_v23_v24.jsonl",
 }
 # written_*: questions written from the task definition alone, in human navigators' (a),
 # vision-language agents' (b), short and non-native (c) and mid-dialog (d) styles, and (e)
 # from the labelling guide (docs/oracle-classifier.md), weighted to short utterances, chatter
 # and yes/no questions that read like another type, and (f) as mid-episode dialog by four
 # kinds of navigator, narration included; v13 ... v16 from the guide, each by eight personas
-# (people and model agents) the writer was given (v13-v15) or chose (v16).
+# (people and model agents) the writer was given (v13-v15) or chose (v16); v19 ... v22 as
+# contrasting pairs, two utterances that read almost alike but differ in type.
 PACKAGED_SETS = tuple(_PACKAGED_FILES)
 TRAINING_SETS = tuple(name for name in PACKAGED_SETS if name != "heldout")
 _FIELDS = frozenset({"question", "type", "route_kind", "topic"})
