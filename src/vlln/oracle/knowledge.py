@@ -128,6 +128,7 @@ class HouseIndex:
     category_pattern: re.Pattern[str]  # finds category names, aliases (or plurals) in text
     landmarks: dict[int, list[ObjectInstance]]  # by room id
     _storey_edges: dict[int | None, _RoomEdges]  # by storey level; None: every room
+    _storey_floors: dict[int, float]  # floor height by storey level
 
     @staticmethod
     def build(house: House) -> HouseIndex:
@@ -152,12 +153,13 @@ class HouseIndex:
             _category_pattern({inst.category for inst in house.instances}),
             landmarks,
             storey_edges,
+            {room.level: room.floor_y for room in house.rooms},
         )
 
     def storey_at(self, y: float | None) -> int | None:
         """The storey whose floor is nearest the height; None in a one-storey house (or
         without a height), where every room is on the one storey."""
-        floors = {room.level: room.floor_y for room in self.house.rooms}
+        floors = self._storey_floors
         if y is None or len(floors) < 2:
             return None
         return min(floors, key=lambda level: (abs(floors[level] - y), level))
