@@ -42,11 +42,15 @@ def test_rooms_at_agrees_with_matplotlib_on_every_storey() -> None:
 def test_a_point_just_outside_the_house_belongs_to_the_room_whose_wall_it_faces() -> None:
     house = generate_house(3, HouseParameters(floors=3))
     index = HouseIndex.build(house)
+    outer_x_of_storey: dict[int, float] = {}
+    for room in house.rooms:
+        x = max(p[0] for p in room.polygon)
+        outer_x_of_storey[room.level] = max(x, outer_x_of_storey.get(room.level, x))
     checked = 0
     for room in house.rooms:
         corners = np.asarray(room.polygon, np.float64)
+        outer_x = outer_x_of_storey[room.level]
         for start, end in zip(corners, np.roll(corners, -1, axis=0), strict=True):
-            outer_x = max(p[0] for r in house.rooms if r.level == room.level for p in r.polygon)
             if start[0] == end[0] == outer_x and abs(end[1] - start[1]) > 1.0:
                 # 0.3 m beyond the middle of an outer wall at least 1 m long: that room's wall
                 # is nearest, every other room's outline at least 0.5 m away.
