@@ -127,7 +127,7 @@ class HouseIndex:
     relations_to: dict[int, list[Relation]]  # by object id, nearest first
     category_pattern: re.Pattern[str]  # finds category names, aliases (or plurals) in text
     landmarks: dict[int, list[ObjectInstance]]  # by room id
-    _storey_edges: dict[int | None, _RoomEdges]  # by storey level; None: every room
+    _storey_edges: dict[int | None, _RoomEdges]  # None: every room; by level if several
     _storey_floors: dict[int, float]  # floor height by storey level
 
     @staticmethod
@@ -143,7 +143,8 @@ class HouseIndex:
             if _is_landmark(inst, floors.get(inst.room_id, 0.0)):
                 landmarks.setdefault(inst.room_id, []).append(inst)
         storey_edges: dict[int | None, _RoomEdges] = {None: _RoomEdges.of(list(house.rooms))}
-        for level in {room.level for room in house.rooms}:
+        levels = {room.level for room in house.rooms}
+        for level in levels if len(levels) > 1 else ():  # one storey: storey_at gives None
             storey_edges[level] = _RoomEdges.of([r for r in house.rooms if r.level == level])
         return HouseIndex(
             house,
