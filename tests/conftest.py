@@ -9,7 +9,7 @@ import pytest
 
 from vlln.datagen.build import BuildConfig, build_dataset
 
-ONE_HOUSE = BuildConfig(houses=1, per_house=1)
+ONE_HOUSE = BuildConfig(houses=1, per_house=1, preset="small")
 """``vlln data build --houses 1 --per-house 1``: the train split's first house, one trajectory."""
 
 
@@ -34,6 +34,6 @@ def split_cache(tmp_path_factory: pytest.TempPathFactory) -> Path:
 @pytest.fixture(scope="session")
 def tiny_model(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """A tiny Qwen2.5-VL-style model built from a small config."""
-    from vlln.train.tiny import build_tiny_model  # the model extra: only where a test asks
+    from vlln.train.scratch import build_tiny_model  # the model extra: only where a test asks
 
     return build_tiny_model(tmp_path_factory.mktemp("tiny_model"))

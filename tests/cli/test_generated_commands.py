@@ -69,7 +69,7 @@ def test_the_commands_with_settings_are_generated_from_their_configs() -> None:
         "data stats",
         "oracle classify-report",
         "oracle train-classifier",
-        "train tiny-model",
+        "train new-model",
         "world show",
         "world export",
         "world import",

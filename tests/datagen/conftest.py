@@ -8,7 +8,7 @@ import pytest
 
 from vlln.datagen.build import BuildConfig, build_dataset
 
-SMALL = BuildConfig(houses=2, per_house=1)
+SMALL = BuildConfig(houses=2, per_house=1, preset="small")
 
 
 @pytest.fixture(scope="session")

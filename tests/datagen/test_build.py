@@ -67,7 +67,7 @@ def test_the_commands_report_what_they_wrote(
 ) -> None:
     """The build (here resuming a finished dataset) ends with kept/attempted and the disk
     used; the export of what it built writes conversations."""
-    build = ["data", "build", "--houses", "2", "--per-house", "1", "--quiet"]
+    build = ["data", "build", "--houses", "2", "--per-house", "1", "--preset", "small", "--quiet"]
     assert main([*build, "--out", str(small_dataset)]) == 0
     assert summarize(small_dataset).line() in capsys.readouterr().out
     assert main(["data", "export-sft", str(small_dataset), "--out", str(tmp_path), "--quiet"]) == 0
@@ -88,6 +88,8 @@ def test_a_killed_build_resumes_to_the_same_dataset(small_dataset: Path, tmp_pat
         str(SMALL.houses),
         "--per-house",
         str(SMALL.per_house),
+        "--preset",
+        "small",
         "--out",
         str(out),
         "--quiet",
@@ -117,11 +119,13 @@ def test_two_shards_equal_one_build(small_dataset: Path, tmp_path: Path) -> None
 @pytest.mark.slow
 def test_other_settings_in_the_same_folder_are_refused(small_dataset: Path) -> None:
     with pytest.raises(ConfigError, match="per_house"):
-        build_dataset(small_dataset, BuildConfig(houses=2, per_house=3), progress=False)
+        build_dataset(
+            small_dataset, BuildConfig(houses=2, per_house=3, preset="small"), progress=False
+        )
 
 
 def test_a_folder_built_from_another_catalogue_is_refused(tmp_path: Path) -> None:
-    config = BuildConfig(houses=1)
+    config = BuildConfig(houses=1, preset="small")
     check_settings(tmp_path, config)
     recorded = json.loads((tmp_path / "build.json").read_text())
     assert recorded["catalogue"] == default_catalogue().fingerprint()
@@ -144,7 +148,7 @@ from vlln.datagen.build import BuildConfig
 from vlln.datagen.house_locks import lock_houses
 from vlln.eval.sharding import Shard
 from vlln.tasks.splits import house_seeds
-config = BuildConfig(houses=2, per_house=1)
+config = BuildConfig(houses=2, per_house=1, preset="small")
 with lock_houses(Path(sys.argv[1]), Shard(0, 2).take(house_seeds("train", 2)), config.scene_id):
     print("held", flush=True)
     sys.stdin.read()
@@ -164,7 +168,17 @@ def test_a_build_of_houses_another_build_holds_stops_in_one_line(
     )
     try:
         assert holder.stdout is not None and holder.stdout.readline() == "held\n"
-        build = ["data", "build", "--houses", "2", "--per-house", "1", "--quiet"]
+        build = [
+            "data",
+            "build",
+            "--houses",
+            "2",
+            "--per-house",
+            "1",
+            "--preset",
+            "small",
+            "--quiet",
+        ]
         assert main([*build, "--out", str(out)]) == 2
         err = capsys.readouterr().err.splitlines()  # the estimate, then the error
         assert len(err) == 2 and "Traceback" not in err[0]

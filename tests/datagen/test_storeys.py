@@ -17,7 +17,7 @@ from vlln.tasks.episode import Episode
 from vlln.tasks.scenes import SceneCache
 from vlln.tasks.splits import house_seeds
 
-TWO_STOREYS = BuildConfig(houses=1, per_house=1, floors=2)
+TWO_STOREYS = BuildConfig(houses=1, per_house=1, floors=2, preset="small")
 CAMERA_HEIGHT = 1.25
 # What `BuildConfig(houses=2, per_house=1)` wrote before houses had storeys (the same data;
 # the settings since list the map's `below_floor` and `stair_step` too). A deliberate change
@@ -99,7 +99,19 @@ def test_one_storey_data_is_what_it_was(small_dataset: Path) -> None:
 def test_storeys_outside_one_to_three_are_refused(capsys: pytest.CaptureFixture[str]) -> None:
     with pytest.raises(ConfigError, match=r"^--floors: must be one of 1, 2, 3, got 4$"):
         BuildConfig.build({"houses": 1, "floors": 4})
-    build = ["data", "build", "--houses", "1", "--floors", "0", "--out", "unused", "--quiet"]
+    build = [
+        "data",
+        "build",
+        "--houses",
+        "1",
+        "--floors",
+        "0",
+        "--preset",
+        "small",
+        "--out",
+        "unused",
+        "--quiet",
+    ]
     assert main(build) != 0
     error = capsys.readouterr().err.strip()
     assert error == "error: --floors: must be one of 1, 2, 3, got 0"

@@ -11,18 +11,19 @@ from pathlib import Path
 import pytest
 
 from vlln.cli import main
-from vlln.datagen.build import BuildConfig, check_settings
+from vlln.datagen.build import BuildConfig, Strategy, check_settings, recorded_strategy
 from vlln.datagen.reader import HouseDataset, house_folders
 from vlln.errors import ConfigError
 from vlln.sim.agent import Action
 from vlln.tasks.episode import Episode, read_episodes
+from vlln.tasks.generation import episode_config
 
 
 def build(out: Path, episodes: Path, *flags: str) -> Path:
     """``vlln data build`` of the train split's first house; its episode files (stage 2, the
     same for every task and policy) are copied from ``episodes``, a build of that house."""
     shutil.copytree(episodes, out / "episodes")
-    command = ["data", "build", "--houses", "1", "--per-house", "3", "--quiet"]
+    command = ["data", "build", "--houses", "1", "--per-house", "3", "--preset", "small", "--quiet"]
     assert main([*command, *flags, "--out", str(out)]) == 0
     return out
 
@@ -67,6 +68,33 @@ def test_a_folder_built_before_tasks_resumes_as_iign_frontier(tmp_path: Path) ->
     check_settings(tmp_path, BuildConfig(houses=1))
     with pytest.raises(ConfigError, match="differing: task"):
         check_settings(tmp_path, BuildConfig(houses=1, task="objectnav"))
+
+
+def test_the_preset_is_recorded_and_defaults_to_the_benchmarks_houses(tmp_path: Path) -> None:
+    """A build walks mp3d houses unless told, as evaluation scores on them, and says so in
+    build.json; its episodes are drawn as the preset's evaluation splits draw them."""
+    mp3d = BuildConfig(houses=1)
+    assert (
+        mp3d.settings()["preset"] == "mp3d" and mp3d.scene_id(3) == "vlln/mp3d_00003/mp3d_00003.glb"
+    )
+    assert mp3d.episodes == episode_config("mp3d") != BuildConfig(houses=1, preset="small").episodes
+    with pytest.raises(ConfigError, match="--floors sets the storeys of small houses"):
+        BuildConfig.build({"houses": 1, "floors": 2})
+    check_settings(tmp_path, BuildConfig(houses=1, preset="small"))
+    assert json.loads((tmp_path / "build.json").read_text())["preset"] == "small"
+    assert recorded_strategy(tmp_path) == Strategy("small", "iign", "frontier")
+
+
+def test_a_folder_built_before_presets_resumes_as_small_houses(tmp_path: Path) -> None:
+    """An older build.json has no preset: its houses were small, and an mp3d build of the
+    same folder is refused by name."""
+    settings = BuildConfig(houses=1, preset="small").settings()
+    del settings["preset"]
+    (tmp_path / "build.json").write_text(json.dumps(settings))
+    check_settings(tmp_path, BuildConfig(houses=1, preset="small"))
+    assert recorded_strategy(tmp_path) == Strategy("small", "iign", "frontier")
+    with pytest.raises(ConfigError, match="differing: episodes, preset"):
+        check_settings(tmp_path, BuildConfig(houses=1))
 
 
 @pytest.mark.slow
@@ -155,6 +183,7 @@ def test_a_balanced_dataset_is_exported_like_a_built_one(
     capsys.readouterr()
     assert main([*command, "--quiet"]) != 0
     assert "not an empty folder; choose a new --out" in capsys.readouterr().err
-    rebuild = ["data", "build", "--houses", "1", "--per-house", "3", "--task", "objectnav"]
+    rebuild = ["data", "build", "--houses", "1", "--per-house", "3", "--preset", "small"]
+    rebuild += ["--task", "objectnav"]
     assert main([*rebuild, "--out", str(balanced), "--quiet"]) != 0
     assert "other settings (differing: balance)" in capsys.readouterr().err

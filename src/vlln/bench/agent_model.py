@@ -1,5 +1,5 @@
 """`vlln bench agent`, the model part: decisions per second of the ``vlln`` agent's local
-model, measured with the tiny randomly initialised Qwen2.5-VL of :mod:`vlln.train.tiny` on a
+model, measured with the tiny randomly initialised Qwen2.5-VL of :mod:`vlln.train.scratch` on a
 late-episode prompt (8 history frames, 3 dialog frames, the current frame; real renders).
 
 The figures time the backend's whole call (chat template, image processing, greedy decoding
@@ -44,7 +44,7 @@ def run_model_benchmark(
     from vlln.bench.agent import DIALOG_FRAMES, FRAME, _rendered_frames
     from vlln.prompt import DialogExchange, build_conversation, connective_for
     from vlln.prompt.images import model_image
-    from vlln.train.tiny import build_tiny_model
+    from vlln.train.scratch import build_tiny_model
 
     figures: list[Figure] = []
 

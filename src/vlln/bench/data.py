@@ -1,6 +1,6 @@
 """`vlln bench data`: how many trajectories per hour one core collects, filters and writes.
 
-The workload is the pipeline's trajectory stage on the first ``houses`` training houses,
+The workload is the pipeline's trajectory stage on the first ``houses`` small training houses,
 ``per_house`` episodes each, in one process (so the rate is per core). Scene summaries, episode
 files and the houses' simulators are made before the clock starts; the timed part is
 collection, filtering, rendering both cameras again and encoding every kept frame.
@@ -23,14 +23,14 @@ from vlln.datagen.build import (
     prepare_episodes,
     summarize,
 )
-from vlln.tasks.scenes import SceneCache, procedural_scene_id
+from vlln.tasks.scenes import SceneCache
 from vlln.tasks.splits import house_seeds
 
 
 def run_data_benchmark(settings: DataBench) -> list[Figure]:
     """Build the fixed workload once in a temporary folder and print its figures."""
     as_json = settings.as_json
-    config = BuildConfig(houses=settings.houses, per_house=settings.per_house)
+    config = BuildConfig(houses=settings.houses, per_house=settings.per_house, preset="small")
     figures: list[Figure] = []
 
     def note(metric: str, value: float, unit: str) -> None:
@@ -46,7 +46,7 @@ def run_data_benchmark(settings: DataBench) -> list[Figure]:
             by_house = prepare_episodes(root, config, seeds, scenes, progress=False)
             work = []
             for seed in seeds:
-                scene_id = procedural_scene_id(seed)
+                scene_id = config.scene_id(seed)
                 work.append(
                     (scenes.get(scene_id), choose_episodes(by_house[scene_id], config, seed))
                 )

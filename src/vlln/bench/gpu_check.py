@@ -2,7 +2,7 @@
 measured on Qwen2.5-VL-3B-Instruct's architecture with random weights (nothing downloaded).
 
 In order: the model is built (:mod:`vlln.train.released`; ``--tiny``: the tiny model of
-:mod:`vlln.train.tiny`, so the check runs on a CPU), a small training export is made
+:mod:`vlln.train.scratch`, so the check runs on a CPU), a small training export is made
 (``vlln data build`` + ``export-sft``), ``vlln train sft`` takes ``--sft-steps`` steps on it,
 the ``vlln`` agent plays the same episodes at ``--concurrent`` 1 and 4 with the evaluation
 runner (about ``--decisions`` model calls each; a random model's replies are unreadable, so
@@ -114,7 +114,7 @@ def _build_model(settings: GpuCheckBench, device: str, out: Path, check: _Check)
     import torch
 
     from vlln.train.released import build_released_architecture
-    from vlln.train.tiny import build_tiny_model
+    from vlln.train.scratch import build_tiny_model
 
     started = time.perf_counter()
     if settings.tiny:
@@ -133,7 +133,7 @@ def _training_export(work: Path, seed: int) -> Path:
     from vlln.datagen.sft.export import export_sft
 
     dataset, export = work / "dataset", work / "export"
-    config = BuildConfig(houses=DATA_HOUSES, per_house=DATA_PER_HOUSE, seed=seed)
+    config = BuildConfig(houses=DATA_HOUSES, per_house=DATA_PER_HOUSE, seed=seed, preset="small")
     build_dataset(dataset, config, progress=False)
     summary = export_sft(dataset, export, progress=False)
     if summary.samples == 0:

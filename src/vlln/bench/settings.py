@@ -5,7 +5,7 @@ command is used."""
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Literal
 
 from pydantic import AliasChoices, Field
 
@@ -106,6 +106,34 @@ class DataBench(BenchOptions):
     """training houses"""
     per_house: Count = 6
     """trajectories per house"""
+
+
+class LearningBench(BenchOptions):
+    """``vlln bench learning``: a model from scratch fits its teacher, then plays its episodes
+    through vlln eval --agent vlln."""
+
+    houses: Count = 2
+    """small training houses the teacher walks"""
+    per_house: Count = 4
+    """teacher trajectories tried per house"""
+    size: Literal["tiny", "small", "base"] = "tiny"
+    """model size (vlln train new-model --size)"""
+    steps: Count = 400
+    """training steps"""
+    batch_size: Count = 8
+    """samples per step"""
+    learning_rate: Annotated[
+        float, Field(gt=0, validation_alias=AliasChoices("lr", "learning_rate"))
+    ] = 5e-3
+    """learning rate (vision tower too: the model starts from scratch)"""
+    history: Count = 8
+    """history frames in each prompt (the export's --history)"""
+    agreement_samples: Count = 200
+    """teacher decisions the agreement is measured on"""
+    seed: int = 0
+    """seed of data, weights and evaluation"""
+    out: Path | None = None
+    """keep the data, model and runs here, and resume them (none: a temporary folder)"""
 
 
 class FidelityBench(BenchOptions, PresetOptions):

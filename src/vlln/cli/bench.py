@@ -56,6 +56,12 @@ COMMANDS = (
         "trajectories per hour of the data pipeline",
     ),
     (
+        "learning",
+        "LearningBench",
+        ("learning:run_learning_benchmark",),
+        "a model from scratch fits its teacher's trajectories, then plays them in vlln eval",
+    ),
+    (
         "fidelity",
         "FidelityBench",
         ("fidelity:run_fidelity_benchmark",),

@@ -15,6 +15,7 @@ from vlln.cli.eval_configs import (
 from vlln.cli.generated import add_config_command
 from vlln.cli.options import Commands
 from vlln.errors import ConfigError
+from vlln.eval.config import EvalConfig
 
 
 def _demo(config: DemoCommand) -> int:
@@ -29,6 +30,7 @@ def _eval(command: EvalCommand) -> int:
     from vlln.eval.runner import run_evaluation
 
     config = command.run_settings()
+    _warn_of_other_houses(config)
     if command.ray is not None:
         from vlln.cluster.evaluation import run_ray_evaluation
         from vlln.cluster.model_server import ServerStats
@@ -101,6 +103,25 @@ def _eval(command: EvalCommand) -> int:
         )
         return 1
     return 0
+
+
+def _warn_of_other_houses(config: EvalConfig) -> None:
+    """A fine-tuned model scored on another preset's houses than it was trained on is
+    measured out of its training distribution: say so before the run."""
+    from vlln.agents.local.options import VllnOptions
+
+    options = config.agent_options
+    if not isinstance(options, VllnOptions) or config.split is None:
+        return
+    from vlln.agents.local.card import read_card
+
+    trained = read_card(options.model_dir).houses
+    if trained is not None and trained != config.preset:
+        print(
+            f"warning: {options.model} was trained on {trained} houses and this run scores it "
+            f"on {config.preset} houses (--preset {trained} scores it on its own kind)",
+            file=sys.stderr,
+        )
 
 
 def _score(config: ScoreCommand) -> int:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from vlln.cli.generated import add_config_command
 from vlln.cli.options import Commands
-from vlln.train.config import TinyModelConfig, TrainConfig
+from vlln.train.config import NewModelConfig, TrainConfig
 
 
 def _train_sft(config: TrainConfig) -> int:
@@ -23,18 +23,16 @@ def _train_sft(config: TrainConfig) -> int:
     return 0
 
 
-def _train_tiny_model(config: TinyModelConfig) -> int:
+def _train_new_model(config: NewModelConfig) -> int:
     from vlln.files import replace_folder
-    from vlln.train.tiny import build_tiny_model, is_tiny_model_file
+    from vlln.train.scratch import build_model, is_model_file
 
     out = config.out
-    replace_folder(
-        out, lambda folder: build_tiny_model(folder, seed=config.seed), is_tiny_model_file
-    )
+    replace_folder(out, lambda folder: build_model(folder, config.size, config.seed), is_model_file)
     print(
-        f"wrote a tiny randomly initialised Qwen2.5-VL-style model to {out} (it has learnt "
-        f"nothing): try the pipeline on a CPU with vlln train sft --model {out} and "
-        f"vlln eval --agent vlln --model {out}"
+        f"wrote a randomly initialised {config.size} Qwen2.5-VL-style model to {out} (it has "
+        f"learnt nothing): train it with vlln train sft --model {out}, or try the pipeline "
+        f"with vlln eval --agent vlln --model {out}"
     )
     return 0
 
@@ -49,8 +47,8 @@ def add_train_commands(commands: Commands) -> None:
 
     add_config_command(
         train,
-        "tiny-model",
-        TinyModelConfig,
-        _train_tiny_model,
-        help="write a tiny random Qwen2.5-VL-style model (CPU trials and tests; no download)",
+        "new-model",
+        NewModelConfig,
+        _train_new_model,
+        help="write a random Qwen2.5-VL-style model of a named size (from scratch; no download)",
     )

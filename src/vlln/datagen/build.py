@@ -11,8 +11,11 @@ stages 1-2, which houses are left to build, and progress.
     <out>/episodes/<split>_*.json.gz      stage 2: IIGN, IGN, ObjectNav episodes and stats
     <out>/trajectories/<house>/           stages 3-5: collected, filtered, written trajectories
 
-(names: :mod:`vlln.datagen.layout`). ``floors`` picks houses of 1, 2 or 3 storeys joined by
-stairs (the scene ids of houses with several storeys end in ``_2f``/``_3f``). ``task`` picks
+(names: :mod:`vlln.datagen.layout`). ``preset`` picks the houses, the benchmark's (``mp3d``,
+what ``vlln eval`` scores on) unless told, and is always recorded (a ``build.json`` without it
+was built on ``small`` houses, before the setting existed). ``floors`` picks small houses of
+1, 2 or 3 storeys joined by stairs (the scene ids of houses with several storeys end in
+``_2f``/``_3f``). ``task`` picks
 the episodes walked (IIGN with dialog; IGN and ObjectNav without, see
 :mod:`vlln.datagen.collector.collect`) and ``policy`` how (frontier exploration, or the
 shortest path). A setting at its first value (one storey, IIGN, frontier) is not recorded, so
@@ -32,14 +35,13 @@ import json
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Annotated, Any, Literal, Protocol
+from typing import Annotated, Any, Literal, Protocol, Self
 
 import numpy as np
-from pydantic import Field, field_validator
+from pydantic import Field, field_validator, model_validator
 from tqdm import tqdm
 
 from vlln import __version__
-from vlln.config import Config
 from vlln.datagen.collector.collect import CollectorConfig, collect_trajectory
 from vlln.datagen.collector.visibility import DOWN_TILT
 from vlln.datagen.filtering import FilterConfig, rejection_reason
@@ -58,6 +60,7 @@ from vlln.datagen.reader import HouseDataset, house_folders
 from vlln.datagen.trajectory import Trajectory
 from vlln.datagen.writer import HouseWriter
 from vlln.errors import ConfigError, DataFormatError
+from vlln.eval.play import derive_seed
 from vlln.eval.sharding import Shard
 from vlln.files import write_text_atomic
 from vlln.oracle.rule_oracle import RuleOracle
@@ -65,12 +68,14 @@ from vlln.sim.agent import AgentState
 from vlln.sim.renderer import Frame
 from vlln.sim.simulator import Simulator
 from vlln.tasks.episode import Episode, read_episodes
-from vlln.tasks.generation import EpisodeGenConfig
+from vlln.tasks.generation import EpisodeGenConfig, episode_config
 from vlln.tasks.scenes import SceneCache, procedural_scene_id
 from vlln.tasks.spec import TaskType
 from vlln.tasks.split_files import build_split, episode_path
 from vlln.tasks.splits import house_seeds
 from vlln.world.catalogue import default_catalogue
+from vlln.world.generator.presets import SMALL
+from vlln.world.options import PresetOptions
 from vlln.world.scene_summary import export_scene_summary
 
 FLOOR_CHOICES = (1, 2, 3)  # storeys a procedural house can have
@@ -78,7 +83,7 @@ FLOOR_CHOICES = (1, 2, 3)  # storeys a procedural house can have
 _UNRECORDED = ("floors", "task", "policy")
 
 
-class BuildOptions(Config):
+class BuildOptions(PresetOptions):
     """The settings of a build that ``vlln data build`` takes as flags."""
 
     houses: Annotated[int, Field(ge=1)]
@@ -90,7 +95,7 @@ class BuildOptions(Config):
     per_house: Annotated[int, Field(ge=0)] = 20
     """trajectories tried per house (0: every episode of the task)"""
     floors: int = 1
-    """storeys of every house, joined by stairs, 1 to 3"""
+    """storeys of every small house, joined by stairs, 1 to 3 (mp3d houses draw theirs)"""
     task: Literal["iign", "ign", "objectnav"] = "iign"
     """episodes to walk: iign (with dialog), ign or objectnav (no dialog, as in the paper)"""
     policy: Literal["frontier", "shortest"] = "frontier"
@@ -103,17 +108,36 @@ class BuildOptions(Config):
             raise ValueError(f"must be one of {', '.join(map(str, FLOOR_CHOICES))}, got {value}")
         return value
 
+    @model_validator(mode="after")
+    def _floors_of_small_houses(self) -> Self:
+        if self.floors != 1 and self.preset != SMALL.name:
+            raise ValueError(
+                f"--floors sets the storeys of small houses; {self.preset} houses draw theirs "
+                "from the seed: add --preset small, or drop --floors"
+            )
+        return self
+
 
 class BuildConfig(BuildOptions):
     """What a build makes; recorded in ``build.json`` and in every house's info."""
 
     episodes: EpisodeGenConfig = Field(default_factory=EpisodeGenConfig)
+    """episode settings (none given: those of the preset's splits, as eval builds them)"""
     collector: CollectorConfig = Field(default_factory=CollectorConfig)
     filter: FilterConfig = Field(default_factory=FilterConfig)
 
+    @model_validator(mode="before")
+    @classmethod
+    def _preset_episodes(cls, values: Any) -> Any:
+        """Episodes drawn as the preset's evaluation splits draw them, unless given."""
+        if isinstance(values, dict) and values.get("episodes") is None:
+            preset = values.get("preset", PresetOptions.model_fields["preset"].default)
+            return {**values, "episodes": episode_config(str(preset))}
+        return values
+
     def scene_id(self, seed: int) -> str:
-        """The scene id of the split's house ``seed`` with this build's storeys."""
-        return procedural_scene_id(seed, self.floors)
+        """The scene id of the split's house ``seed`` with this build's preset and storeys."""
+        return procedural_scene_id(seed, self.floors, self.preset)
 
     def to_json(self) -> dict[str, Any]:
         """The settings; those at their first value (one storey, IIGN, frontier) are left
@@ -252,6 +276,7 @@ def prepare_episodes(
             scenes=cache,
             progress=progress,
             floors=config.floors,
+            preset=config.preset,
         )
     return _episodes_by_scene(read_episodes(path))
 
@@ -275,7 +300,6 @@ def build_house(
     writer = HouseWriter(root / TRAJECTORIES_DIR, episodes[0].scene_id, sim.config.camera)
     if writer.finished:
         return
-    oracle = RuleOracle(seed=config.seed)
     todo = [e for e in episodes if e.episode_id not in writer.attempts]
     bar = tqdm(
         todo,
@@ -285,6 +309,9 @@ def build_house(
         leave=False,
     )
     for episode in bar:
+        # Seeded as vlln eval seeds an episode's oracle: the answers are the ones a model
+        # asking the same questions in the same places hears.
+        oracle = RuleOracle(seed=derive_seed(config.seed, "oracle", *_ids(episode)))
         trajectory = collect_trajectory(
             sim, episode, oracle, config.seed, config.collector, config.policy == "shortest"
         )
@@ -343,6 +370,10 @@ def _camera_frames(sim: Simulator, trajectory: Trajectory) -> Iterator[tuple[Fra
         yield level, sim.render(AgentState(state.position, state.yaw, DOWN_TILT))
 
 
+def _ids(episode: Episode) -> tuple[str, str]:
+    return episode.scene_id, episode.episode_id
+
+
 def _episodes_by_scene(episodes: list[Episode]) -> dict[str, list[Episode]]:
     grouped: dict[str, list[Episode]] = {}
     for episode in episodes:
@@ -350,21 +381,38 @@ def _episodes_by_scene(episodes: list[Episode]) -> dict[str, list[Episode]]:
     return grouped
 
 
-def recorded_strategy(root: Path) -> tuple[str, str] | None:
-    """(task, policy) of the dataset at ``root``, from its ``build.json`` (a setting left out
-    is at its default); None for a folder without one."""
+@dataclass(frozen=True)
+class Strategy:
+    """Which houses a dataset was built on, the task it walked and how."""
+
+    preset: str
+    task: str
+    policy: str
+
+
+def recorded_strategy(root: Path) -> Strategy | None:
+    """The strategy of the dataset at ``root``, from its ``build.json`` (a setting left out is
+    at its default, the preset at ``small``); None for a folder without one."""
     path = root / SETTINGS_FILE
     if not path.exists():
         return None
     try:
-        recorded = json.loads(path.read_text(encoding="utf-8"))
+        recorded = _with_legacy_preset(json.loads(path.read_text(encoding="utf-8")))
         task, policy = (
             str(recorded.get(name, BuildOptions.model_fields[name].default))
             for name in ("task", "policy")
         )
     except (ValueError, AttributeError) as error:
         raise DataFormatError(f"{path} is not a JSON object of settings ({error})") from None
-    return task, policy
+    return Strategy(str(recorded["preset"]), task, policy)
+
+
+def _with_legacy_preset(recorded: Any) -> Any:
+    """Settings of a ``build.json``; one written before the preset was recorded was built on
+    small houses."""
+    if isinstance(recorded, dict) and "preset" not in recorded:
+        return {**recorded, "preset": SMALL.name}
+    return recorded
 
 
 def check_settings(root: Path, config: BuildConfig) -> None:
@@ -373,7 +421,7 @@ def check_settings(root: Path, config: BuildConfig) -> None:
     wanted = config.settings()
     if path.exists():
         try:
-            recorded = json.loads(path.read_text(encoding="utf-8"))
+            recorded = _with_legacy_preset(json.loads(path.read_text(encoding="utf-8")))
         except ValueError as error:
             raise ConfigError(
                 f"{path} is not valid JSON ({error}); delete it to rebuild"

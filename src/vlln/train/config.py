@@ -5,7 +5,7 @@ warm-up, no weight decay, gradient clipping at 1.0, 5 epochs, 2 samples per devi
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Literal
 
 from pydantic import AliasChoices, Field
 
@@ -68,10 +68,12 @@ class TrainConfig(Config):
     """a checkpoint folder (none: the newest in --out)"""
 
 
-class TinyModelConfig(Config):
-    """``vlln train tiny-model``: a tiny random Qwen2.5-VL-style model for CPU trials."""
+class NewModelConfig(Config):
+    """``vlln train new-model``: a randomly initialised Qwen2.5-VL-style model, built offline."""
 
     out: Path
     """model folder (replaced on a rerun)"""
+    size: Literal["tiny", "small", "base"] = "tiny"
+    """tiny (tests), small (the CPU recipe) or base (a GPU); docs/learning.md"""
     seed: int = 0
     """seed of its weights"""

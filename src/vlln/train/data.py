@@ -3,6 +3,7 @@ model's chat template, loss only on the assistant's tokens."""
 
 from __future__ import annotations
 
+import json
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -22,6 +23,28 @@ class SftSample:
     sample_id: str
     images: tuple[Path, ...]
     turns: tuple[Turn, ...]
+
+
+@dataclass(frozen=True)
+class ExportFacts:
+    """What an export's ``export.json`` says a model trained on it will have seen."""
+
+    history_frames: int
+    houses: str  # the preset of the houses its trajectories were walked in
+
+
+def export_facts(data_dir: Path) -> ExportFacts:
+    """The history length and houses of a finished export (exports made before the preset
+    was recorded were of small houses)."""
+    path = data_dir / SUMMARY_FILE
+    try:
+        document = json.loads(path.read_text(encoding="utf-8"))
+        history = int(document["settings"]["history_frames"])
+        return ExportFacts(history, str(document.get("preset", "small")))
+    except (OSError, ValueError, KeyError, TypeError) as error:
+        raise DataFormatError(
+            f"{path} is not an export summary ({error}); re-run the export"
+        ) from None
 
 
 def read_export(data_dir: Path) -> list[SftSample]:

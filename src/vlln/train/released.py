@@ -4,7 +4,7 @@ Speed and memory on a GPU depend on the architecture, not on what the weights le
 ``vlln bench gpu-check`` measures training and decisions on Qwen2.5-VL-3B-Instruct's exact
 shapes without downloading it: the configuration ships with the package
 (``data/qwen2_5_vl_3b_instruct.json``, the public ``config.json`` and
-``preprocessor_config.json`` values), and the tokenizer is :mod:`vlln.train.tiny`'s local one
+``preprocessor_config.json`` values), and the tokenizer is :mod:`vlln.train.scratch`'s local one
 (the embedding keeps the released vocabulary's size, so the output layer costs what it costs).
 """
 
@@ -17,7 +17,7 @@ from typing import Any
 
 from vlln.agents.local.dependencies import require_model_extra
 from vlln.errors import ConfigError
-from vlln.train.tiny import local_tokenizer, write_random_model
+from vlln.train.scratch import local_tokenizer, write_random_model
 
 ARCHITECTURES = {"qwen2.5-vl-3b-instruct": "qwen2_5_vl_3b_instruct.json"}
 """Released checkpoints whose architecture can be built, by name."""

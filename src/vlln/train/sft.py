@@ -4,10 +4,11 @@ with Hugging Face's Trainer.
 The out folder holds ``checkpoint-N/`` folders while training (a rerun with the same out
 folder resumes from the newest one, its weights included; a rerun of a finished run changes
 nothing), then the final model with its tokenizer, image
-processor and chat template, loadable by ``vlln eval --agent vlln --model OUT``, and
-``training.json`` with the settings and the loss curve. LoRA adapters are merged into the
-final model. Under ``accelerate launch`` or ``torchrun`` every process trains on its share of
-each batch (see docs/training.md).
+processor and chat template, loadable by ``vlln eval --agent vlln --model OUT``, its model card
+(:mod:`vlln.agents.local.card`: the export's history length and houses, which the agent and
+``vlln eval`` read) and ``training.json`` with the settings and the loss curve. LoRA adapters
+are merged into the final model. Under ``accelerate launch`` or ``torchrun`` every process
+trains on its share of each batch (see docs/training.md).
 """
 
 from __future__ import annotations
@@ -18,6 +19,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from vlln.agents.local.card import read_card, write_card
 from vlln.agents.local.dependencies import MODEL_PACKAGES, require_model_extra
 from vlln.errors import ConfigError
 from vlln.files import write_text_atomic
@@ -48,10 +50,11 @@ def train_sft(config: TrainConfig) -> TrainOutcome:
     from transformers.trainer_utils import get_last_checkpoint
 
     from vlln.agents.local.encoding import ChatEncoder
-    from vlln.train.data import SftCollator, read_export
+    from vlln.train.data import SftCollator, export_facts, read_export
     from vlln.train.optim import parameter_groups
 
     samples = read_export(config.data_dir)
+    facts = export_facts(config.data_dir)
     config.out_dir.mkdir(parents=True, exist_ok=True)
     resume = _resume_point(config, get_last_checkpoint)
     encoder = ChatEncoder.load(config.model, max_pixels=config.max_pixels)
@@ -115,6 +118,13 @@ def train_sft(config: TrainConfig) -> TrainOutcome:
     _save_final(trainer, encoder, config)
     if trainer.is_world_process_zero():
         _write_summary(config, outcome)
+        card = read_card(config.model).replace(
+            history_frames=facts.history_frames,
+            image_max_pixels=encoder.image_processor.size.get("longest_edge"),
+            houses=facts.houses,
+            trained_steps=outcome.steps,
+        )
+        write_card(config.out_dir, card)
     return outcome
 
 

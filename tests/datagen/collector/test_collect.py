@@ -35,7 +35,9 @@ def house(small_dataset: Path) -> tuple[Simulator, list[Episode]]:
     scene_id = episodes[0].scene_id
     cache = SceneCache(capacity=1)
     mine = [e for e in episodes if e.scene_id == scene_id]
-    return cache.get(scene_id), choose_episodes(mine, BuildConfig(houses=1, per_house=3), 0)
+    return cache.get(scene_id), choose_episodes(
+        mine, BuildConfig(houses=1, per_house=3, preset="small"), 0
+    )
 
 
 @pytest.fixture(scope="module")

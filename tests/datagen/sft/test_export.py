@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 import pytest
 from PIL import Image
-from tests.datagen.sft.conftest import CATEGORY, HandDataset
+from tests.datagen.sft.conftest import CATEGORY, HOUSE_SEED, HandDataset
 from tests.datagen.sft.samples import episode_samples, read_samples, sample_key
 from tests.oracle.llm.chat_server import chat_server, completion
 
@@ -23,6 +23,7 @@ from vlln.datagen.layout import DOWN_TILT_DEG
 from vlln.datagen.reader import HouseDataset
 from vlln.datagen.sft import SftConfig, export_sft
 from vlln.datagen.sft.records import sharegpt
+from vlln.eval.play import derive_seed
 from vlln.prompt import (
     QUESTION_LIMIT_ANSWER,
     Conversation,
@@ -41,6 +42,7 @@ from vlln.sim.agent import Action, AgentState
 from vlln.sim.camera import CameraSpec
 from vlln.sim.simulator import Simulator
 from vlln.tasks.env import EpisodeInfo
+from vlln.tasks.scenes import procedural_scene_id
 from vlln.tasks.spec import PixelGoal, TaskType
 
 SEED = 0
@@ -86,16 +88,18 @@ def agent_conversation(
     answers_left: int,
     move: PixelOutput | TurnOutput | StopOutput,
 ) -> Conversation:
-    """What an agent sends and answers in this state, through the shared prompt functions."""
+    """What an agent sends and answers in this state, through the shared prompt functions,
+    with the seed ``vlln eval --seed SEED`` gives the agent of this episode."""
+    seed = derive_seed(SEED, "agent", procedural_scene_id(HOUSE_SEED), episode_id)
     conversation = build_conversation(
         instruction,
         frame,
         limit_answers(heard, answers_left),
-        connective=connective_for(SEED, episode_id, frame),
+        connective=connective_for(seed, episode_id, frame),
     )
     if isinstance(move, PixelOutput):
         conversation = with_reply(conversation, TiltDownOutput())
-        down = connective_for(SEED, episode_id, frame, look_down=True)
+        down = connective_for(seed, episode_id, frame, look_down=True)
         conversation = with_look_down(conversation, frame, connective=down)
     return with_reply(conversation, move)
 
@@ -224,6 +228,7 @@ def test_export_json_counts_what_was_written(default_export: Path) -> None:
         "seed": 0,
         "sample_step": 4,
         "repeats": 10,
+        "min_answers": 0,
         "max_answers": 6,
         "history_frames": 8,
         "max_turn_run": 4,

@@ -8,6 +8,7 @@ from pathlib import Path
 from pydantic import Field
 
 from vlln.agents.local.backend import MAX_NEW_TOKENS, load_backend
+from vlln.agents.local.card import read_card
 from vlln.agents.model.agent import ModelAgent
 from vlln.agents.options import AgentOptions
 
@@ -29,6 +30,8 @@ class VllnOptions(AgentOptions):
 
 
 def vlln_agent(seed: int, options: VllnOptions) -> ModelAgent:
-    """A model agent on the process's one copy of the local model named by ``--model``."""
+    """A model agent on the process's one copy of the local model named by ``--model``,
+    prompting with the history length the model was trained with (its card)."""
     model = load_backend(options.model_dir, options.device, options.max_tokens)
-    return ModelAgent(model, seed, name="vlln")
+    card = read_card(options.model_dir)
+    return ModelAgent(model, seed, name="vlln", history_count=card.history_frames)

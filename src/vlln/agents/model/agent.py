@@ -25,6 +25,7 @@ from collections import deque
 
 from vlln.agents.model.backend import ModelReply, VisionLanguageModel
 from vlln.prompt import (
+    DEFAULT_HISTORY_COUNT,
     Conversation,
     DialogExchange,
     ForwardOutput,
@@ -56,10 +57,17 @@ class ModelAgent:
 
     privileged = False
 
-    def __init__(self, model: VisionLanguageModel, seed: int, name: str = "model") -> None:
+    def __init__(
+        self,
+        model: VisionLanguageModel,
+        seed: int,
+        name: str = "model",
+        history_count: int = DEFAULT_HISTORY_COUNT,
+    ) -> None:
         self.model = model
         self.seed = int(seed)
         self.name = name
+        self.history_count = history_count
         self._episode: EpisodeInfo | None = None
 
     def reset(self, episode: EpisodeInfo) -> None:
@@ -131,6 +139,7 @@ class ModelAgent:
             self._dialogs,
             connective=connective_for(self.seed, episode.episode_id, self._frame),
             dialog_enabled=episode.dialog_budget > 0,
+            history_count=self.history_count,
         )
 
     def _decide(self, conversation: Conversation, observation: Observation) -> AgentOutput:

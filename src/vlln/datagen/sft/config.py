@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
-from typing import Annotated
+from typing import Annotated, Self
 
-from pydantic import AliasChoices, Field
+from pydantic import AliasChoices, Field, model_validator
 
 from vlln.config import Config
 from vlln.prompt import DEFAULT_HISTORY_COUNT, MAX_TURN_RUN
@@ -15,7 +15,8 @@ class SftConfig(Config):
 
     One sample every ``sample_step`` frames; every STOP frame and every frame where questions
     were asked is repeated ``repeats`` times; each sample draws how many answers the model
-    still gets (0 to ``max_answers``), later ones reading the question-limit answer.
+    still gets (``min_answers`` to ``max_answers``), later ones reading the question-limit
+    answer.
     """
 
     seed: Annotated[int, Field(ge=0)] = 0
@@ -24,8 +25,19 @@ class SftConfig(Config):
     """one sample every N frames"""
     repeats: Annotated[int, Field(ge=1)] = 10
     """copies of each STOP frame and of each frame where questions were asked"""
+    min_answers: Annotated[int, Field(ge=0)] = 0
+    """fewest answers a sample's model may still get (each sample draws this to max-answers)"""
     max_answers: Annotated[int, Field(ge=0)] = 6
-    """most answers a sample's model may still get (each sample draws 0 to N)"""
+    """most answers a sample's model may still get (each sample draws min-answers to N)"""
+
+    @model_validator(mode="after")
+    def _answers_range(self) -> Self:
+        if self.min_answers > self.max_answers:
+            raise ValueError(
+                f"--min-answers {self.min_answers} is above --max-answers {self.max_answers}"
+            )
+        return self
+
     history_frames: Annotated[
         int, Field(ge=1, validation_alias=AliasChoices("history", "history_frames"))
     ] = DEFAULT_HISTORY_COUNT

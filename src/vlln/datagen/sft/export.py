@@ -5,24 +5,28 @@
     <out>/sft.jsonl        one sample per line, in house, episode and sample order
                            (the line's schema: :mod:`vlln.datagen.sft.records`)
     <out>/images/<house>/episode_<i>/{level,down}_<frame>.jpg   level 384x384, down 640x480
-    <out>/export.json      format, settings, houses and counts; written last, so its presence
-                           marks a complete export
+    <out>/export.json      format, settings, houses (and their preset) and counts; written
+                           last, so its presence marks a complete export
 
 Several datasets (say one per task, as the paper co-trains on IIGN, IGN and ObjectNav) are
 mixed into one export: each is given a tag (its task, from its ``build.json``; numbered where
 two share a task), its images go under ``images/<tag>/`` and its sample ids start with
 ``<tag>/``, and ``export.json`` adds ``datasets`` (each one's tag, folder, task, strategy,
-houses and counts) and ``counts_by_task``. Samples are written dataset after dataset; the
+preset, houses and counts) and ``counts_by_task``. ``preset`` names the houses the
+trajectories were walked in (``mixed`` when the datasets' differ), so a model trained on the
+export can say which houses it knows. Samples are written dataset after dataset; the
 trainer draws them in random order. One dataset exports as it always did, without tags.
 
 Which frames become samples is the reference's sampling (:mod:`vlln.datagen.sft.sampling`);
 the text of every sample is made by :mod:`vlln.prompt`, the functions the model agents call,
 so a sample is exactly what an agent would send in the same state. Random choices (the answers
 left before the question limit, the connectives) come from the seed only: the same dataset and
-settings give the same bytes. Images are written plainly, ``sft.jsonl`` through a temporary
-file and a rename, and ``export.json`` (removed first when an earlier export is overwritten)
-atomically at the end: a killed export leaves a folder without ``export.json`` that a rerun
-overwrites.
+settings give the same bytes. The connectives are drawn from the seed a model agent gets in
+``vlln eval`` with the same ``--seed`` for the same episode (:func:`agent_seed`), so a sample
+is what the agent sends, not merely drawn alike. Images are written plainly, ``sft.jsonl``
+through a temporary file and a rename, and ``export.json`` (removed first when an earlier
+export is overwritten) atomically at the end: a killed export leaves a folder without
+``export.json`` that a rerun overwrites.
 """
 
 from __future__ import annotations
@@ -43,7 +47,7 @@ import numpy as np
 from tqdm import tqdm
 
 from vlln import __version__
-from vlln.datagen.build import recorded_strategy
+from vlln.datagen.build import Strategy, recorded_strategy
 from vlln.datagen.reader import HouseDataset
 from vlln.datagen.sft.config import SftConfig
 from vlln.datagen.sft.images import IMAGES_DIR, ImageStore
@@ -51,6 +55,7 @@ from vlln.datagen.sft.records import SFT_FILE, SUMMARY_FILE, SftRecord
 from vlln.datagen.sft.sampling import SamplePlan, plan_samples
 from vlln.datagen.sft.source import SourceTrajectory, open_houses, read_trajectories
 from vlln.errors import ConfigError, DataFormatError
+from vlln.eval.play import derive_seed
 from vlln.files import write_text_atomic
 from vlln.prompt import (
     Conversation,
@@ -94,9 +99,12 @@ class _Source:
 
     root: Path
     houses: list[HouseDataset]
-    task: str  # from build.json ("unknown": a folder without one); "" when alone
-    policy: str
-    tag: str = ""
+    strategy: Strategy  # from build.json ("unknown" for a folder without one)
+    tag: str = ""  # "" when alone
+
+    @property
+    def task(self) -> str:
+        return self.strategy.task
 
     @property
     def prefix(self) -> str:
@@ -150,6 +158,7 @@ def export_sft(
         "vlln_version": __version__,
         "files": {"conversations": SFT_FILE, "images": f"{IMAGES_DIR}/"},
         "settings": config.to_json(),
+        "preset": _preset_of(sources),
         "houses": [s.prefix + house.root.name for s in sources for house in s.houses],
         "counts": summary.counts(),
     }
@@ -169,9 +178,9 @@ def _sources(dataset_root: str | Path | Sequence[str | Path]) -> list[_Source]:
     twice = sorted({str(r) for r in resolved if resolved.count(r) > 1})
     if twice:
         raise ConfigError(f"{twice[0]} is given more than once; name each dataset once")
-    if len(roots) == 1:
-        return [_Source(Path(roots[0]), open_houses(roots[0]), "", "")]
-    sources = [_Source(Path(root), open_houses(root), *_strategy(Path(root))) for root in roots]
+    sources = [_Source(Path(root), open_houses(root), _strategy(Path(root))) for root in roots]
+    if len(sources) == 1:
+        return sources
     tasks = Counter(source.task for source in sources)
     seen: Counter[str] = Counter()
     tagged = []
@@ -182,9 +191,15 @@ def _sources(dataset_root: str | Path | Sequence[str | Path]) -> list[_Source]:
     return tagged
 
 
-def _strategy(root: Path) -> tuple[str, str]:
-    """(task, policy) of a dataset ("unknown" for a folder without ``build.json``)."""
-    return recorded_strategy(root) or ("unknown", "unknown")
+def _strategy(root: Path) -> Strategy:
+    """How a dataset was built ("unknown" for a folder without ``build.json``)."""
+    return recorded_strategy(root) or Strategy("unknown", "unknown", "unknown")
+
+
+def _preset_of(sources: list[_Source]) -> str:
+    """The preset of every source's houses, or ``mixed``."""
+    presets = {source.strategy.preset for source in sources}
+    return presets.pop() if len(presets) == 1 else "mixed"
 
 
 def _mix_entry(source: _Source, trajectories: int, samples: int) -> dict[str, Any]:
@@ -192,7 +207,8 @@ def _mix_entry(source: _Source, trajectories: int, samples: int) -> dict[str, An
         "tag": source.tag,
         "path": str(source.root),
         "task": source.task,
-        "policy": source.policy,
+        "policy": source.strategy.policy,
+        "preset": source.strategy.preset,
         "houses": [house.root.name for house in source.houses],
         "trajectories": trajectories,
         "samples": samples,
@@ -221,18 +237,26 @@ def sample_conversation(
         if exchange.frame < frame or (plan.with_dialog and exchange.frame == frame)
     ]
     key = trajectory.episode_key
+    seed = agent_seed(config.seed, trajectory)
     conversation = build_conversation(
         trajectory.instruction,
         frame,
         limit_answers(heard, answers_left),
-        connective=connective_for(config.seed, key, frame),
+        connective=connective_for(seed, key, frame),
         history_count=config.history_frames,
     )
     if isinstance(plan.move, PixelOutput):
         conversation = with_reply(conversation, TiltDownOutput())
-        down = connective_for(config.seed, key, frame, look_down=True)
+        down = connective_for(seed, key, frame, look_down=True)
         conversation = with_look_down(conversation, frame, connective=down)
     return with_reply(conversation, plan.move)
+
+
+def agent_seed(seed: int, trajectory: SourceTrajectory) -> int:
+    """The seed a model agent gets in ``vlln eval --seed seed`` for the trajectory's episode:
+    its prompts pick their connectives from it, so a sample's text is byte for byte what the
+    agent sends in the same state, not merely drawn alike."""
+    return derive_seed(seed, "agent", trajectory.scene_id, trajectory.episode_key)
 
 
 def _answers_left_draws(trajectory: SourceTrajectory, config: SftConfig) -> np.random.Generator:
@@ -257,7 +281,7 @@ def _export_trajectory(
         if kind == "step":
             kind = "pixel" if isinstance(plan.move, PixelOutput) else "turn"
         for copy in range(plan.copies):
-            answers_left = int(rng.integers(0, config.max_answers + 1))
+            answers_left = int(rng.integers(config.min_answers, config.max_answers + 1))
             conversation = sample_conversation(trajectory, plan, answers_left, config)
             paths = [
                 store.add(house, trajectory.episode_index, ref, prefix)

@@ -28,6 +28,7 @@ class SourceTrajectory:
     house: str  # folder name, e.g. house_00003
     episode_index: int
     episode_key: str  # the episode id when recorded, else house/episode_index
+    scene_id: str  # as the episode file names it ("" when not recorded)
     instruction: str
     actions: list[int]  # actions[t]: what was done at frame t (the last one: STOP, 0)
     # per frame: (frames ahead, (col, row) on the 640x480 look-down image); -1 and (-1, -1): none
@@ -79,6 +80,7 @@ def _trajectory(house: HouseDataset, row: dict[str, Any]) -> SourceTrajectory:
         house=house.root.name,
         episode_index=index,
         episode_key=str(row.get("episode_id", f"{house.root.name}/{index}")),
+        scene_id=str(row.get("scene_id", "")),
         instruction=instruction_of(row),
         actions=[*stored[1:], 0],  # the reference's reading: action[i] led to frame i
         goals=list(zip(relative, pixels, strict=True)),

@@ -1,18 +1,26 @@
-"""A tiny randomly initialised Qwen2.5-VL-style model and processor, built offline.
+"""Qwen2.5-VL-style models made from scratch, randomly initialised, offline, at a named size.
 
-Tests, ``vlln bench agent`` and ``vlln train tiny-model`` (a user's CPU trial of the pipeline)
-need a real model of the family the trainer and the ``vlln`` agent target, and no weights can
-be downloaded: this builds one from a small config, with a
-byte-level BPE tokenizer (so any text encodes) that knows Qwen's special tokens and the
-prompt's own tags, a Qwen2-VL image processor that shrinks every image to a few patches, and
-a chat template laid out as Qwen's.
+No weights can be downloaded here, so a model that learns is trained from scratch: this builds
+one of the family the trainer and the ``vlln`` agent load, with a byte-level BPE tokenizer (so
+any text encodes) that knows Qwen's special tokens and the prompt's own tags, a Qwen2-VL image
+processor whose ``max_pixels`` sets the image resolution, and a chat template laid out as
+Qwen's. Three sizes (:data:`MODEL_SIZES`):
+
+* ``tiny``: a few units, a few patches per image; tests and ``vlln bench agent``;
+* ``small``: the CPU recipe (docs/learning.md); 4.0 M parameters, 112x112 images;
+* ``base``: a GPU; 81 M parameters, 224x224 images.
+
+Each folder gets a model card (:mod:`vlln.agents.local.card`) naming its size and resolution.
+A real checkpoint (say a local copy of Qwen2.5-VL-3B) loads through the same code path.
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, Literal
 
+from vlln.agents.local.card import ModelCard, write_card
 from vlln.agents.local.dependencies import require_model_extra
 from vlln.agents.local.encoding import ChatEncoder
 from vlln.prompt.text import (
@@ -68,47 +76,88 @@ _CORPUS = (
 )
 
 
-def is_tiny_model_file(path: Path) -> bool:
-    """Whether ``path`` is a file :func:`build_tiny_model` writes (weights, configurations,
-    tokenizer, chat template), so that a rerun may replace its folder."""
+def is_model_file(path: Path) -> bool:
+    """Whether ``path`` is a file :func:`build_model` writes (weights, configurations,
+    tokenizer, chat template, card), so that a rerun may replace its folder."""
     return path.is_file() and path.suffix in (".json", ".safetensors", ".jinja")
 
 
-# The tiny model's architecture: a few layers of a few units, every image a few patches.
-TINY_TEXT = {
-    "hidden_size": 64,
-    "intermediate_size": 128,
-    "num_hidden_layers": 2,
-    "num_attention_heads": 4,
-    "num_key_value_heads": 2,
-    "max_position_embeddings": 4096,
-    "rope_parameters": {"rope_type": "default", "mrope_section": [2, 3, 3]},
-}
-TINY_VISION = {
-    "depth": 2,
-    "hidden_size": 32,
-    "intermediate_size": 64,
-    "num_heads": 2,
-    "out_hidden_size": 64,
-    "patch_size": 14,
-    "spatial_merge_size": 2,
-    "temporal_patch_size": 2,
-    "window_size": 56,
-    "fullatt_block_indexes": [1],
+SizeName = Literal["tiny", "small", "base"]
+
+
+@dataclass(frozen=True)
+class ModelSize:
+    """A model's shape: language model layers and width, vision tower, image resolution."""
+
+    hidden: int
+    layers: int
+    heads: int
+    vision_hidden: int
+    vision_depth: int
+    vision_heads: int
+    max_pixels: int  # pixels of each image after the processor's resize
+    window: int = 112  # pixels on a side of the vision tower's attention windows
+
+    def text_config(self, vocab_size: int) -> dict[str, Any]:
+        head_dim = self.hidden // self.heads
+        eighth = head_dim // 8  # Qwen's split of the rotary half: 1/4 time, 3/8 height, 3/8 width
+        height = (head_dim // 2 - eighth) // 2
+        return {
+            "hidden_size": self.hidden,
+            "intermediate_size": 2 * self.hidden,
+            "num_hidden_layers": self.layers,
+            "num_attention_heads": self.heads,
+            "num_key_value_heads": max(1, self.heads // 2),
+            "max_position_embeddings": 4096,
+            "vocab_size": vocab_size,
+            "rope_parameters": {
+                "rope_type": "default",
+                "mrope_section": [eighth, height, head_dim // 2 - eighth - height],
+            },
+        }
+
+    def vision_config(self) -> dict[str, Any]:
+        return {
+            "depth": self.vision_depth,
+            "hidden_size": self.vision_hidden,
+            "intermediate_size": 2 * self.vision_hidden,
+            "num_heads": self.vision_heads,
+            "out_hidden_size": self.hidden,
+            "patch_size": 14,
+            "spatial_merge_size": 2,
+            "temporal_patch_size": 2,
+            "window_size": self.window,
+            "fullatt_block_indexes": [self.vision_depth - 1],
+        }
+
+
+MODEL_SIZES: dict[str, ModelSize] = {
+    "tiny": ModelSize(64, 2, 4, 32, 2, 2, max_pixels=56 * 56, window=56),
+    "small": ModelSize(256, 4, 4, 128, 4, 4, max_pixels=112 * 112),
+    "base": ModelSize(768, 12, 12, 384, 8, 6, max_pixels=224 * 224),
 }
 
 
-def build_tiny_model(out_dir: str | Path, seed: int = 0, max_pixels: int = 56 * 56) -> Path:
-    """Write a tiny Qwen2.5-VL model, its processor and chat template to ``out_dir``."""
+def build_model(out_dir: str | Path, size: str = "tiny", seed: int = 0) -> Path:
+    """Write a randomly initialised model of ``size``, its processor, chat template and card
+    to ``out_dir``."""
     require_model_extra()
     from transformers import Qwen2VLImageProcessorPil
 
+    shape = MODEL_SIZES[size]
     tokenizer = local_tokenizer()
     image_processor = Qwen2VLImageProcessorPil(
-        min_pixels=28 * 28, max_pixels=max_pixels, patch_size=14, merge_size=2
+        min_pixels=28 * 28, max_pixels=shape.max_pixels, patch_size=14, merge_size=2
     )
-    text = TINY_TEXT | {"vocab_size": len(tokenizer)}
-    return write_random_model(out_dir, tokenizer, image_processor, text, TINY_VISION, seed)
+    text = shape.text_config(len(tokenizer))
+    out = write_random_model(out_dir, tokenizer, image_processor, text, shape.vision_config(), seed)
+    write_card(out, ModelCard(size=size, image_max_pixels=shape.max_pixels))
+    return out
+
+
+def build_tiny_model(out_dir: str | Path, seed: int = 0) -> Path:
+    """The ``tiny`` model of :func:`build_model` (tests and benchmarks)."""
+    return build_model(out_dir, "tiny", seed)
 
 
 def local_tokenizer() -> Any:

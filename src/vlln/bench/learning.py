@@ -1,0 +1,300 @@
+"""`vlln bench learning`: the training contract, end to end. A model made from scratch is
+trained on a handful of teacher trajectories until it fits them, then plays the same episodes
+through the real ``vlln eval --agent vlln`` path.
+
+Steps, all on small houses of the training split (fast to build and to play):
+
+1. ``vlln data build`` of ``houses`` x ``per_house`` IIGN trajectories (the teacher: the
+   collector's frontier exploration with dialog);
+2. ``vlln data export-sft`` of every decision (``sample_step`` 1, so each frame the model is
+   asked at in closed loop has its teacher's answer);
+3. ``vlln train new-model`` of ``size``, then ``vlln train sft`` for ``steps`` steps;
+4. the teacher's own score on the kept episodes (its trajectories replayed through the same
+   evaluation runner, :class:`vlln.datagen.replay.TrajectoryReplay`), then ``vlln eval
+   --agent vlln`` of the trained model on the same episode file.
+
+Figures: ``teacher_success_rate`` and ``overfit_success_rate`` (SR at budget 5, %),
+``overfit_ratio`` (the second over the first), ``action_agreement`` (the share of the
+teacher's decisions, on the exported prompts, where the model's decoded output is the
+teacher's: the same move, turn run, STOP or question, and a pixel goal within
+:data:`PIXEL_TOLERANCE` pixels), ``pixel_error_median`` and ``train_seconds``. A model that
+fits its teacher on the prompts and then fails in closed loop points at a drift between what
+training and evaluation show the model.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import math
+import statistics
+import sys
+import tempfile
+import time
+from collections.abc import Iterator
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from vlln.bench.figures import Figure, emit
+from vlln.bench.settings import LearningBench
+from vlln.datagen.sft.source import SourceTrajectory
+from vlln.errors import ConfigError
+from vlln.prompt import Conversation, ImageRef, PixelOutput, Turn, read_output
+
+if TYPE_CHECKING:
+    from PIL.Image import Image
+
+PIXEL_TOLERANCE = 48.0  # pixels of the 640x480 look-down image: about 0.3 m of floor ahead
+_BUDGET = 5
+
+
+@dataclass(frozen=True)
+class Decision:
+    """One teacher decision of the export: the prompt's turns, its images and the answer."""
+
+    turns: tuple[Turn, ...]
+    images: tuple[Path, ...]
+    answer: str
+
+
+def run_learning_benchmark(settings: LearningBench) -> list[Figure]:
+    """Build, train and evaluate in ``settings.out`` (or a temporary folder); print figures."""
+    figures: list[Figure] = []
+
+    def note(metric: str, value: float, unit: str) -> None:
+        figure = Figure(metric, value, unit)
+        figures.append(figure)
+        emit(figure, settings.as_json)
+
+    with _work_folder(settings.out) as work:
+        outcome = learn(settings, work)
+    note("teacher_success_rate", outcome.teacher_sr, "%")
+    note("overfit_success_rate", outcome.model_sr, "%")
+    note("overfit_ratio", outcome.ratio, "ratio")
+    note("action_agreement", outcome.agreement, "%")
+    note("pixel_error_median", outcome.pixel_error, "px")
+    note("episodes", outcome.episodes, "count")
+    note("train_samples", outcome.samples, "count")
+    note("train_steps", outcome.steps, "steps")
+    note("final_loss", outcome.final_loss, "loss")
+    note("train_seconds", outcome.train_seconds, "s")
+    note("total_seconds", outcome.total_seconds, "s")
+    return figures
+
+
+@dataclass(frozen=True)
+class LearningOutcome:
+    """What one build-train-evaluate cycle measured."""
+
+    teacher_sr: float
+    model_sr: float
+    agreement: float
+    pixel_error: float
+    episodes: int
+    samples: int
+    steps: int
+    final_loss: float
+    train_seconds: float
+    total_seconds: float
+
+    @property
+    def ratio(self) -> float:
+        return self.model_sr / self.teacher_sr if self.teacher_sr else 0.0
+
+
+def learn(settings: LearningBench, work: Path) -> LearningOutcome:
+    """The whole cycle in ``work`` (module doc); every step resumes what is already there."""
+    started = time.perf_counter()
+    episode_file, trajectories = _teacher_data(settings, work)
+    export = work / "sft"
+    if not (export / "export.json").is_file():
+        from vlln.datagen.sft.config import SftConfig
+        from vlln.datagen.sft.export import export_sft
+
+        sampling = SftConfig(sample_step=1, history_frames=settings.history, seed=settings.seed)
+        export_sft(work / "data", export, sampling, progress=False)
+    model, samples, steps, loss, train_seconds = _train(settings, work, export)
+    teacher_sr = _teacher_success(settings, work, episode_file, trajectories)
+    model_sr = _model_success(settings, work, episode_file, model)
+    agreement, pixel_error = action_agreement(model, export, settings.agreement_samples)
+    return LearningOutcome(
+        teacher_sr,
+        model_sr,
+        agreement,
+        pixel_error,
+        len(trajectories),
+        samples,
+        steps,
+        loss,
+        train_seconds,
+        time.perf_counter() - started,
+    )
+
+
+@contextlib.contextmanager
+def _work_folder(out: Path | None) -> Iterator[Path]:
+    if out is not None:
+        out.mkdir(parents=True, exist_ok=True)
+        yield out
+        return
+    with tempfile.TemporaryDirectory(prefix="vlln-bench-learning-") as folder:
+        yield Path(folder)
+
+
+def _teacher_data(settings: LearningBench, work: Path) -> tuple[Path, list[SourceTrajectory]]:
+    """The teacher's trajectories, and an episode file of the episodes they walk."""
+    from vlln.datagen.build import BuildConfig, build_dataset
+    from vlln.datagen.sft.source import open_houses, read_trajectories
+    from vlln.tasks.episode import read_episodes, write_episodes
+
+    config = BuildConfig(
+        houses=settings.houses, per_house=settings.per_house, seed=settings.seed, preset="small"
+    )
+    data = build_dataset(work / "data", config, progress=False)
+    trajectories = [t for house in open_houses(data) for t in read_trajectories(house)]
+    if not trajectories:
+        raise ConfigError("the build kept no trajectory; raise --per-house or --houses")
+    kept = {trajectory.episode_key for trajectory in trajectories}
+    episodes = read_episodes(data / "episodes" / f"{config.split}_iign.json.gz")
+    episode_file = work / "episodes.json.gz"
+    write_episodes(episode_file, [e for e in episodes if e.episode_id in kept])
+    return episode_file, trajectories
+
+
+def _train(
+    settings: LearningBench, work: Path, export: Path
+) -> tuple[Path, int, int, float, float]:
+    """A new model of ``settings.size`` trained on ``export``: its folder, samples, steps,
+    last logged loss and training seconds."""
+    from vlln.train.config import TrainConfig
+    from vlln.train.scratch import build_model
+    from vlln.train.sft import train_sft
+
+    start = work / "model-new"
+    if not (start / "config.json").is_file():
+        build_model(start, settings.size, settings.seed)
+    config = TrainConfig.build(
+        {
+            "data_dir": export,
+            "model": str(start),
+            "out_dir": work / "model",
+            "max_steps": settings.steps,
+            "batch_size": settings.batch_size,
+            "learning_rate": settings.learning_rate,
+            "vision_learning_rate": settings.learning_rate,
+            "workers": 0,
+            "save_steps": settings.steps,
+            "save_limit": 1,
+            "logging_steps": max(1, settings.steps // 20),
+            "seed": settings.seed,
+        }
+    )
+    with contextlib.redirect_stdout(sys.stderr):  # the Trainer's log lines are not figures
+        outcome = train_sft(config)
+    loss = outcome.losses[-1][1] if outcome.losses else math.nan
+    return config.out_dir, outcome.samples, outcome.steps, loss, outcome.seconds
+
+
+def _teacher_success(
+    settings: LearningBench, work: Path, episode_file: Path, trajectories: list[SourceTrajectory]
+) -> float:
+    """SR of the teacher's replayed trajectories, scored by the evaluation runner."""
+    from vlln.datagen.replay import TrajectoryReplay
+    from vlln.eval.config import EvalConfig
+    from vlln.eval.runner import run_evaluation
+
+    config = EvalConfig.build(
+        {
+            "agent": "teacher",
+            "task": "iign",
+            "episode_file": str(episode_file),
+            "budgets": [_BUDGET],
+        }
+    )
+    replay = TrajectoryReplay(trajectories)
+    out = work / "eval-teacher"
+    run_evaluation(config, out, progress=False, agent_factory=lambda *_: replay)
+    return _success_rate(out)
+
+
+def _model_success(settings: LearningBench, work: Path, episode_file: Path, model: Path) -> float:
+    """SR of the trained model through ``vlln eval --agent vlln``, as a user runs it."""
+    from vlln.cli import main
+
+    out = work / "eval-model"
+    command = ["eval", "--agent", "vlln", "--model", str(model), "--task", "iign"]
+    command += ["--episode-file", str(episode_file), "--budgets", str(_BUDGET)]
+    command += ["--seed", str(settings.seed), "--out", str(out), "--quiet"]
+    with contextlib.redirect_stdout(sys.stderr):
+        if main(command) != 0:
+            raise ConfigError(f"vlln eval of the trained model failed; see {out}")
+    return _success_rate(out)
+
+
+def _success_rate(run: Path) -> float:
+    from vlln.eval.results import load_run_records
+    from vlln.tasks.metrics import success
+
+    records = load_run_records([run])
+    if not records:
+        raise ConfigError(f"{run} holds no episode records")
+    return 100.0 * sum(success(record) for record in records) / len(records)
+
+
+def action_agreement(model: Path, export: Path, limit: int) -> tuple[float, float]:
+    """(% of teacher decisions the model's decoded output matches, median pixel error) over
+    ``limit`` decisions spread evenly over the export, each asked through the ``vlln``
+    agent's backend with exactly the exported prompt."""
+    from vlln.agents.local.backend import ChatRequest, load_backend
+
+    decisions = teacher_decisions(export)
+    chosen = decisions[:: max(1, math.ceil(len(decisions) / limit))]
+    backend = load_backend(str(model.resolve()))
+    agreed = 0
+    errors: list[float] = []
+    for decision in chosen:
+        conversation = _conversation(decision)
+        images = tuple(_rgb(path) for path in decision.images)
+        reply = backend.generate_batch([ChatRequest(conversation, images)])[0]
+        look_down = bool(conversation.images) and conversation.images[-1].camera == "down"
+        wanted = read_output(decision.answer, look_down=look_down)
+        got = read_output(reply.text or "", look_down=look_down)
+        if isinstance(wanted, PixelOutput) and isinstance(got, PixelOutput):
+            error = math.hypot(got.col - wanted.col, got.row - wanted.row)
+            errors.append(error)
+            agreed += error <= PIXEL_TOLERANCE
+        else:
+            agreed += got == wanted
+    median = statistics.median(errors) if errors else math.nan
+    return 100.0 * agreed / max(1, len(chosen)), median
+
+
+def teacher_decisions(export: Path) -> list[Decision]:
+    """Every assistant turn of the export with the turns and images before it."""
+    from vlln.train.data import read_export
+
+    decisions: list[Decision] = []
+    for sample in read_export(export):
+        for index, turn in enumerate(sample.turns):
+            if turn.role != "gpt":
+                continue
+            before = sample.turns[:index]
+            shown = sum(t.text.count("<image>") for t in before)
+            decisions.append(Decision(before, sample.images[:shown], turn.text))
+    return decisions
+
+
+def _conversation(decision: Decision) -> Conversation:
+    """The prompt of ``decision``; the export names each image ``<camera>_<frame>.jpg``."""
+    refs = []
+    for path in decision.images:
+        camera, _, frame = path.stem.partition("_")
+        refs.append(ImageRef("down" if camera == "down" else "level", int(frame)))
+    return Conversation(decision.turns, tuple(refs))
+
+
+def _rgb(path: Path) -> Image:
+    from PIL import Image
+
+    with Image.open(path) as image:
+        return image.convert("RGB")
