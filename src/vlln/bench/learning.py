@@ -27,22 +27,21 @@ from __future__ import annotations
 import contextlib
 import math
 import statistics
+import subprocess
 import sys
 import tempfile
 import time
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING
+
+from PIL import Image
 
 from vlln.bench.figures import Figure, emit
 from vlln.bench.settings import LearningBench
 from vlln.datagen.sft.source import SourceTrajectory
 from vlln.errors import ConfigError
 from vlln.prompt import Conversation, ImageRef, PixelOutput, Turn, read_output
-
-if TYPE_CHECKING:
-    from PIL.Image import Image
 
 PIXEL_TOLERANCE = 48.0  # pixels of the 640x480 look-down image: about 0.3 m of floor ahead
 _BUDGET = 5
@@ -182,7 +181,7 @@ def _train(
             "batch_size": settings.batch_size,
             "learning_rate": settings.learning_rate,
             "vision_learning_rate": settings.learning_rate,
-            "workers": 0,
+            "workers": 1,  # images decoded beside the training step (2 cores)
             "save_steps": settings.steps,
             "save_limit": 1,
             "logging_steps": max(1, settings.steps // 20),
@@ -218,16 +217,14 @@ def _teacher_success(
 
 
 def _model_success(settings: LearningBench, work: Path, episode_file: Path, model: Path) -> float:
-    """SR of the trained model through ``vlln eval --agent vlln``, as a user runs it."""
-    from vlln.cli import main
-
+    """SR of the trained model through ``vlln eval --agent vlln``, run as a user runs it."""
     out = work / "eval-model"
-    command = ["eval", "--agent", "vlln", "--model", str(model), "--task", "iign"]
-    command += ["--episode-file", str(episode_file), "--budgets", str(_BUDGET)]
+    command = [sys.executable, "-m", "vlln.cli", "eval", "--agent", "vlln", "--model", str(model)]
+    command += ["--task", "iign", "--episode-file", str(episode_file), "--budgets", str(_BUDGET)]
     command += ["--seed", str(settings.seed), "--out", str(out), "--quiet"]
-    with contextlib.redirect_stdout(sys.stderr):
-        if main(command) != 0:
-            raise ConfigError(f"vlln eval of the trained model failed; see {out}")
+    finished = subprocess.run(command, stdout=sys.stderr, check=False)
+    if finished.returncode != 0:
+        raise ConfigError(f"vlln eval of the trained model failed; see {out}")
     return _success_rate(out)
 
 
@@ -270,11 +267,18 @@ def action_agreement(model: Path, export: Path, limit: int) -> tuple[float, floa
 
 
 def teacher_decisions(export: Path) -> list[Decision]:
-    """Every assistant turn of the export with the turns and images before it."""
+    """Every assistant turn of the export with the turns and images before it: one copy of
+    each repeated sample, and no plain step sample at a frame where the teacher asked first
+    (the reference's sampling writes one there, but the teacher's decision was to ask)."""
     from vlln.train.data import read_export
 
+    samples = read_export(export)
+    asked = {_frame_of(sample.sample_id) for sample in samples if "/dialog/" in sample.sample_id}
     decisions: list[Decision] = []
-    for sample in read_export(export):
+    for sample in samples:
+        *_, kind, copy = sample.sample_id.split("/")
+        if copy != "0" or (kind == "step" and _frame_of(sample.sample_id) in asked):
+            continue
         for index, turn in enumerate(sample.turns):
             if turn.role != "gpt":
                 continue
@@ -282,6 +286,11 @@ def teacher_decisions(export: Path) -> list[Decision]:
             shown = sum(t.text.count("<image>") for t in before)
             decisions.append(Decision(before, sample.images[:shown], turn.text))
     return decisions
+
+
+def _frame_of(sample_id: str) -> str:
+    """``house/episode_i/frame_j`` of a sample id (a mixed export's tag kept)."""
+    return sample_id.rsplit("/", 2)[0]
 
 
 def _conversation(decision: Decision) -> Conversation:
@@ -293,8 +302,6 @@ def _conversation(decision: Decision) -> Conversation:
     return Conversation(decision.turns, tuple(refs))
 
 
-def _rgb(path: Path) -> Image:
-    from PIL import Image
-
+def _rgb(path: Path) -> Image.Image:
     with Image.open(path) as image:
         return image.convert("RGB")

@@ -112,13 +112,13 @@ class LearningBench(BenchOptions):
     """``vlln bench learning``: a model from scratch fits its teacher, then plays its episodes
     through vlln eval --agent vlln."""
 
-    houses: Count = 2
+    houses: Count = 1
     """small training houses the teacher walks"""
-    per_house: Count = 4
+    per_house: Count = 3
     """teacher trajectories tried per house"""
     size: Literal["tiny", "small", "base"] = "tiny"
     """model size (vlln train new-model --size)"""
-    steps: Count = 400
+    steps: Count = 1500
     """training steps"""
     batch_size: Count = 8
     """samples per step"""
