@@ -25,7 +25,7 @@ from vlln.gym.spaces import TALK
 from vlln.sim.agent import Action
 from vlln.tasks.split_files import load_or_build_split
 
-SMALL = {"houses": 1, "width": 64, "height": 48}
+SMALL = {"houses": 1, "preset": "small", "width": 64, "height": 48}
 
 
 @pytest.fixture(scope="module")
@@ -51,7 +51,7 @@ def test_module_prefixed_id_needs_no_import(cache_dir: str) -> None:
     code = (
         "import gymnasium;"
         f"env = gymnasium.make('vlln.gym:vlln/IIGN-v0', cache_dir={cache_dir!r}, houses=1,"
-        " width=32, height=24);"
+        " preset='small', width=32, height=24);"
         "obs, info = env.reset(seed=1); print(obs['instruction']); env.close()"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
@@ -183,7 +183,7 @@ def _run_guarded(args: list[str], cwd: Path, env: dict[str, str] | None = None) 
 _STEP_THEN_VECTOR = """
 import sys
 import gymnasium, numpy as np, vlln.gym
-kwargs = dict(cache_dir=sys.argv[1], max_steps=50, houses=1, width=64, height=48)
+kwargs = dict(cache_dir=sys.argv[1], max_steps=50, houses=1, preset="small", width=64, height=48)
 env = gymnasium.make("vlln/IIGN-v0", **kwargs)
 env.reset(seed=0)
 env.step({"action": 2, "question": ""})  # this process has rendered now
@@ -227,3 +227,12 @@ def test_arguments_that_do_not_pickle_are_refused_in_one_line() -> None:
     # What a process that cannot render sends to the environment's own process.
     with pytest.raises(ConfigError, match="cannot be sent to the environment's own process"):
         RemoteEnv({"oracle": threading.Lock()})
+
+
+def test_the_benchmarks_houses_unless_told() -> None:
+    """By default the episodes are those vlln eval scores on (mp3d houses); a preset that does
+    not exist is one line that names the presets."""
+    assert gymnasium.make("vlln/IIGN-v0").unwrapped.preset == "mp3d"
+    assert gymnasium.make("vlln/IIGN-v0", preset="small").unwrapped.preset == "small"
+    with pytest.raises(ConfigError, match="unknown house preset 'big'"):
+        gymnasium.make("vlln/IIGN-v0", preset="big")

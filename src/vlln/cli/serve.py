@@ -49,7 +49,7 @@ def _serve_web(command: ServeWebCommand) -> int:
         episodes = read_episodes(command.episode_file)
     else:
         cache = command.cache_dir or default_cache_dir()
-        episodes = load_or_build_split(split, command.task, houses, cache)
+        episodes = load_or_build_split(split, command.task, houses, cache, preset=command.preset)
     episodes = order_by_scene(episodes)
     if command.episodes is not None:
         episodes = spread_over_scenes(episodes, command.episodes)

@@ -20,13 +20,15 @@ Datasheet
   counted steps or at the LOOK/TALK caps (see :mod:`vlln.tasks.env`).
 * **Info**: ``episode_id``, ``house``; on the last step ``record``, the episode record as
   JSON (the same line ``vlln eval`` writes; score it with :mod:`vlln.tasks.metrics`).
-* **Arguments** of ``gymnasium.make``: ``split`` (train/val/test, default test) and ``houses``,
+* **Arguments** of ``gymnasium.make``: ``split`` (train/val/test, default test), ``houses``
+  and ``preset`` (the benchmark's ``mp3d`` houses, as ``vlln eval`` scores on, or ``small``),
   or ``episode_file``; ``oracle`` ("rule", default, or an
   :class:`vlln.tasks.oracle_protocol.Oracle`); ``oracle_seed``; ``dialog_budget`` (IIGN,
   default 5); ``max_steps`` (500); ``privileged``; ``width``/``height`` of the camera
   (640×480); ``cache_dir`` of built splits.
 * **Reset options**: ``episode_index`` (default: drawn with the reset's seed), and ``split``,
-  ``houses``, ``episode_file`` or ``oracle`` to switch the episode source or the oracle.
+  ``houses``, ``preset``, ``episode_file`` or ``oracle`` to switch the episode source or the
+  oracle.
 * **Render**: ``render_mode="rgb_array"`` returns the first-person RGB frame.
 * **Processes**: an environment made in a process forked after OpenGL was used there (an
   ``AsyncVectorEnv`` worker forked after an environment had stepped) runs in a fresh
@@ -57,8 +59,10 @@ from vlln.tasks.scenes import SceneCache
 from vlln.tasks.spec import TaskConfig, TaskType
 from vlln.tasks.split_files import load_or_build_split
 from vlln.tasks.splits import SPLIT_SIZES
+from vlln.world.generator.presets import DEFAULT_PRESET
+from vlln.world.generator.presets import preset as preset_of
 
-_SOURCE_OPTIONS = ("split", "houses", "episode_file", "oracle")
+_SOURCE_OPTIONS = ("split", "houses", "preset", "episode_file", "oracle")
 
 
 class VllnEnv(gymnasium.Env[dict[str, Any], dict[str, Any]]):
@@ -73,6 +77,7 @@ class VllnEnv(gymnasium.Env[dict[str, Any], dict[str, Any]]):
         houses: int | None = None,
         episode_file: str | None = None,
         oracle: str | Oracle = "rule",
+        preset: str = DEFAULT_PRESET,
         oracle_seed: int = 0,
         dialog_budget: int | None = None,
         max_steps: int = 500,
@@ -91,6 +96,7 @@ class VllnEnv(gymnasium.Env[dict[str, Any], dict[str, Any]]):
                     "houses": houses,
                     "episode_file": episode_file,
                     "oracle": oracle,
+                    "preset": preset,
                     "oracle_seed": oracle_seed,
                     "dialog_budget": dialog_budget,
                     "max_steps": max_steps,
@@ -110,7 +116,12 @@ class VllnEnv(gymnasium.Env[dict[str, Any], dict[str, Any]]):
         self.config = TaskConfig(task=kind, max_steps=max_steps, dialog_budget=dialog_budget)
         self.privileged = privileged
         self._cache_dir = Path(cache_dir) if cache_dir else default_cache_dir()
-        self._source = {"split": split, "houses": houses, "episode_file": episode_file}
+        self._source = {
+            "split": split,
+            "houses": houses,
+            "preset": preset_of(preset).name,
+            "episode_file": episode_file,
+        }
         self._oracle_seed = oracle_seed
         self._oracle_choice: str | Oracle = oracle
         sim_config = SimulatorConfig(camera=CameraSpec(width=width, height=height))
@@ -126,6 +137,11 @@ class VllnEnv(gymnasium.Env[dict[str, Any], dict[str, Any]]):
         self._rgb: np.ndarray | None = None
 
     # ----------------------------------------------------------------- episode source
+    @property
+    def preset(self) -> str:
+        """The preset of the built-in houses the episodes come from."""
+        return str(self._source["preset"])
+
     def _episodes(self) -> list[Episode]:
         source = self._source
         if source["episode_file"]:
@@ -135,7 +151,12 @@ class VllnEnv(gymnasium.Env[dict[str, Any], dict[str, Any]]):
             raise ConfigError(f"unknown split {split!r}; choose one of: {', '.join(SPLIT_SIZES)}")
         houses = source["houses"] or SPLIT_SIZES[split]
         return load_or_build_split(
-            split, self.config.task, int(houses), self._cache_dir, progress=False
+            split,
+            self.config.task,
+            int(houses),
+            self._cache_dir,
+            progress=False,
+            preset=preset_of(str(source["preset"])).name,
         )
 
     def _oracle(self) -> Oracle | None:

@@ -9,10 +9,12 @@ from typing import Annotated, Self
 from pydantic import Field, model_validator
 
 from vlln.web.config import DEFAULT_HOST, DEFAULT_PORT, DEFAULT_TOKEN_ENV, WebLimits
+from vlln.world.options import PresetOptions
 
 
-class ServeWebCommand(WebLimits):
-    """``vlln serve web``: a study's settings, its episodes and its address."""
+class ServeWebCommand(WebLimits, PresetOptions):
+    """``vlln serve web``: a study's settings, its episodes (on the benchmark's houses unless
+    --preset says otherwise) and its address."""
 
     split: str | None = None
     """built-in split (none: test, unless --episode-file)"""
