@@ -2,8 +2,10 @@
 
 The workload is the pipeline's trajectory stage on the first ``houses`` small training houses,
 ``per_house`` episodes each, in one process (so the rate is per core). Scene summaries, episode
-files and the houses' simulators are made before the clock starts; the timed part is
-collection, filtering, rendering both cameras again and encoding every kept frame.
+files, the houses' simulators and the oracle's question classifier (read once per process, so
+a real build pays it once for all its houses) are made before the clock starts; the timed part
+is collection (which keeps the level views it renders), filtering, rendering the look-down
+view of every kept frame and encoding both.
 ``mb_per_trajectory`` is the disk the kept trajectories' folders take (as ``du`` counts it),
 per kept trajectory.
 """
@@ -23,6 +25,7 @@ from vlln.datagen.build import (
     prepare_episodes,
     summarize,
 )
+from vlln.oracle.classifier.model import packaged_classifier
 from vlln.tasks.scenes import SceneCache
 from vlln.tasks.splits import house_seeds
 
@@ -50,6 +53,7 @@ def run_data_benchmark(settings: DataBench) -> list[Figure]:
                 work.append(
                     (scenes.get(scene_id), choose_episodes(by_house[scene_id], config, seed))
                 )
+            packaged_classifier()
             started = time.perf_counter()
             for sim, episodes in work:
                 build_house(root, sim, episodes, config, progress=False)

@@ -32,7 +32,7 @@ so a resumed, sharded, distributed or uninterrupted build writes the same datase
 from __future__ import annotations
 
 import json
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Annotated, Any, Literal, Protocol, Self
@@ -57,7 +57,7 @@ from vlln.datagen.layout import (
     is_finished,
 )
 from vlln.datagen.reader import HouseDataset, house_folders
-from vlln.datagen.trajectory import Trajectory
+from vlln.datagen.views import LevelViews, down_views
 from vlln.datagen.writer import HouseWriter
 from vlln.errors import ConfigError, DataFormatError
 from vlln.eval.play import derive_seed
@@ -65,7 +65,6 @@ from vlln.eval.sharding import Shard
 from vlln.files import write_text_atomic
 from vlln.oracle.rule_oracle import RuleOracle
 from vlln.sim.agent import AgentState
-from vlln.sim.renderer import Frame
 from vlln.sim.simulator import Simulator
 from vlln.tasks.episode import Episode, read_episodes
 from vlln.tasks.generation import EpisodeGenConfig, episode_config
@@ -312,16 +311,21 @@ def build_house(
         # Seeded as vlln eval seeds an episode's oracle: the answers are the ones a model
         # asking the same questions in the same places hears.
         oracle = RuleOracle(seed=derive_seed(config.seed, "oracle", *_ids(episode)))
+        level = LevelViews()
         trajectory = collect_trajectory(
-            sim, episode, oracle, config.seed, config.collector, config.policy == "shortest"
+            sim,
+            episode,
+            oracle,
+            config.seed,
+            config.collector,
+            config.policy == "shortest",
+            on_frame=level.keep,
         )
         last = trajectory.steps[-1].state
-        finals = tuple(
-            sim.render(AgentState(last.position, last.yaw, tilt)) for tilt in (0.0, DOWN_TILT)
-        )
+        finals = (level.last, sim.render(AgentState(last.position, last.yaw, DOWN_TILT)))
         reason = rejection_reason(trajectory, finals, config.filter)
         if reason is None:
-            writer.write_kept(trajectory, _camera_frames(sim, trajectory))
+            writer.write_kept(trajectory, level.stored, down_views(sim, trajectory))
         else:
             writer.write_rejected(episode.episode_id, reason)
     writer.finish({"generator": config.settings()})
@@ -360,14 +364,6 @@ def summarize(root: str | Path) -> BuildSummary:
         frames += int(info["total_frames"])
         disk += sum(p.stat().st_blocks * 512 for p in folder.rglob("*") if p.is_file())
     return BuildSummary(attempted, kept, frames, disk)
-
-
-def _camera_frames(sim: Simulator, trajectory: Trajectory) -> Iterator[tuple[Frame, Frame]]:
-    """(level, 30°-down) frames of every step, rendered again from the recorded states."""
-    for step in trajectory.steps:
-        state = step.state
-        level = sim.render(AgentState(state.position, state.yaw, 0.0))
-        yield level, sim.render(AgentState(state.position, state.yaw, DOWN_TILT))
 
 
 def _ids(episode: Episode) -> tuple[str, str]:

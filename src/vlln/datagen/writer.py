@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import json
 import os
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -66,16 +66,21 @@ class HouseWriter:
     def next_index(self) -> int:
         return sum(1 for a in self.attempts.values() if a.episode_index is not None)
 
-    def write_kept(self, trajectory: Trajectory, frames: Iterable[tuple[Frame, Frame]]) -> int:
+    def write_kept(
+        self, trajectory: Trajectory, level: Sequence[bytes], down: Iterable[Frame]
+    ) -> int:
         """Images and parquet of a trajectory, then its journal line; returns its index.
-        ``frames`` are the (level, look-down) views of every step."""
+        ``level`` holds every step's level view as stored (:func:`stored_frame`), ``down``
+        its look-down views, whose depth places the pixel goals."""
         index = self.next_index
-        level, down = (camera_setting(self.camera, camera) for camera in CAMERAS)
+        level_setting, down_setting = (camera_setting(self.camera, camera) for camera in CAMERAS)
         finder = GoalFinder(self.camera, trajectory)
         goals = []
-        for frame_index, (level_frame, down_frame) in enumerate(frames):
-            self._write(frame_image_path(level, index, frame_index), stored_frame(level_frame.rgb))
-            self._write(frame_image_path(down, index, frame_index), stored_frame(down_frame.rgb))
+        for frame_index, (level_jpeg, down_frame) in enumerate(zip(level, down, strict=True)):
+            self._write(frame_image_path(level_setting, index, frame_index), level_jpeg)
+            self._write(
+                frame_image_path(down_setting, index, frame_index), stored_frame(down_frame.rgb)
+            )
             goals.append(finder.at(frame_index, down_frame.depth))
         self._write(data_path(index), frame_table(self.camera, trajectory, index, goals))
         row = episode_row(trajectory, index)

@@ -21,8 +21,10 @@ from vlln.datagen.filtering import (
     rejection_reason,
 )
 from vlln.datagen.trajectory import Step, Trajectory
+from vlln.datagen.views import LevelViews
 from vlln.oracle.rule_oracle import RuleOracle
-from vlln.sim.agent import Action
+from vlln.prompt.images import stored_frame
+from vlln.sim.agent import Action, AgentState
 from vlln.sim.renderer import Frame
 from vlln.sim.simulator import Simulator
 from vlln.tasks.episode import Episode, read_episodes
@@ -72,6 +74,23 @@ def test_same_seed_same_trajectory(
     sim, episodes = house  # the walks were collected in order 0, 1, 2
     again = collect_trajectory(sim, episodes[1], RuleOracle(0))
     assert again.steps == walks[1].steps and again.dialog == walks[1].dialog
+
+
+@pytest.mark.slow
+def test_kept_level_views_are_the_rendered_ones(
+    house: tuple[Simulator, list[Episode]], walks: list[Trajectory]
+) -> None:
+    """The build stores the level views the collector rendered instead of rendering them
+    again: they must be those renders, byte for byte, one per step."""
+    sim, episodes = house
+    views = LevelViews()
+    again = collect_trajectory(sim, episodes[1], RuleOracle(0), on_frame=views.keep)
+    assert again.steps == walks[1].steps and len(views.stored) == len(again.steps)
+    for index in (0, len(again.steps) // 2, len(again.steps) - 1):
+        state = again.steps[index].state
+        render = sim.render(AgentState(state.position, state.yaw, 0.0))
+        assert views.stored[index] == stored_frame(render.rgb)
+    assert np.array_equal(views.last.instance_ids, render.instance_ids)
 
 
 @pytest.mark.slow

@@ -20,13 +20,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from vlln.datagen.layout import DOWN_TILT_DEG, house_dir_name
+from vlln.datagen.layout import house_dir_name
 from vlln.datagen.sft import export_sft
 from vlln.datagen.trajectory import Exchange, Step, Trajectory
+from vlln.datagen.views import down_views
 from vlln.datagen.writer import HouseWriter
+from vlln.prompt.images import stored_frame
 from vlln.sim.agent import Action, AgentState
 from vlln.sim.follower import GreedyFollower
-from vlln.sim.renderer import Frame
 from vlln.sim.simulator import Simulator
 from vlln.tasks.episode import Episode, Instruction
 from vlln.tasks.scenes import SceneCache, procedural_scene_id
@@ -86,7 +87,9 @@ def hand_dataset(sim: Simulator, tmp_path_factory: pytest.TempPathFactory) -> Ha
     dialogs: dict[int, list[tuple[int, str, str]]] = {}
     for name, start, actions, dialog in plans:
         trajectory = walk(sim, name, start, actions, dialog)
-        index = writer.write_kept(trajectory, camera_frames(sim, trajectory))
+        index = writer.write_kept(
+            trajectory, level_views(sim, trajectory), down_views(sim, trajectory)
+        )
         states[index] = [step.state for step in trajectory.steps]
         actions_of[index] = list(actions)
         names[index] = name
@@ -167,14 +170,12 @@ def walk(
     return trajectory
 
 
-def camera_frames(sim: Simulator, trajectory: Trajectory) -> Iterator[tuple[Frame, Frame]]:
-    down = math.radians(DOWN_TILT_DEG)
-    for step in trajectory.steps:
-        position, yaw = step.state.position, step.state.yaw
-        yield (
-            sim.render(AgentState(position, yaw, 0.0)),
-            sim.render(AgentState(position, yaw, down)),
-        )
+def level_views(sim: Simulator, trajectory: Trajectory) -> list[bytes]:
+    """Every step's level view as the data set stores it."""
+    return [
+        stored_frame(sim.render(AgentState(step.state.position, step.state.yaw, 0.0)).rgb)
+        for step in trajectory.steps
+    ]
 
 
 @pytest.fixture(scope="session")

@@ -11,6 +11,7 @@ import pytest
 
 from vlln.datagen.trajectory import Exchange, Step, Trajectory
 from vlln.datagen.writer import HouseWriter
+from vlln.prompt.images import stored_frame
 from vlln.sim.agent import Action, AgentState
 from vlln.sim.camera import CameraSpec
 from vlln.sim.renderer import Frame
@@ -63,7 +64,8 @@ def write_house(
     writer = HouseWriter(root / "trajectories", episodes[0].scene_id, CAMERA)
     for episode, (steps, dialog) in zip(episodes, KEPT[:kept], strict=False):
         frame = Frame.allocate(CAMERA)
-        writer.write_kept(walk(episode, steps, dialog), [(frame, frame)] * steps)
+        level = [stored_frame(frame.rgb)] * steps
+        writer.write_kept(walk(episode, steps, dialog), level, [frame] * steps)
     for episode, reason in zip(episodes[kept:], rejected, strict=False):
         writer.write_rejected(episode.episode_id, reason)
     if finish:

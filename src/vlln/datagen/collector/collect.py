@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 import zlib
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import NamedTuple
 
@@ -24,6 +25,7 @@ from vlln.datagen.collector.policy import CollectorPolicy, PolicyConfig
 from vlln.datagen.trajectory import Step, Trajectory
 from vlln.errors import ConfigError
 from vlln.sim.agent import Action, AgentState
+from vlln.sim.renderer import Frame
 from vlln.sim.simulator import Simulator
 from vlln.sim.storeys import Point3
 from vlln.tasks.episode import Episode
@@ -71,8 +73,12 @@ def collect_trajectory(
     seed: int = 0,
     config: CollectorConfig | None = None,
     shortest: bool = False,
+    on_frame: Callable[[Frame], None] | None = None,
 ) -> Trajectory:
-    """Walk ``episode`` in ``sim`` (its house) and return every step and dialog exchange."""
+    """Walk ``episode`` in ``sim`` (its house) and return every step and dialog exchange.
+    ``on_frame`` is shown each step's frame (a level view: the collector never tilts the
+    camera), in step order, so a caller can keep what it needs of it instead of rendering it
+    again."""
     config = config or CollectorConfig()
     house = sim.house
     state = AgentState(episode.start_position, quaternion_to_yaw(episode.start_rotation), 0.0)
@@ -131,6 +137,8 @@ def collect_trajectory(
             triggers.at_frame(
                 index, state, frame, distance, policy.chooser.choices, policy.seen_at is not None
             )
+        if on_frame is not None:
+            on_frame(frame)
         if action == Action.STOP:
             trajectory.steps.append(Step(state, action, False, distance))
             break
