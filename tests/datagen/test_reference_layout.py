@@ -25,10 +25,10 @@ from PIL import Image
 from tests.datagen.conftest import SMALL
 from vlln.datagen.collector.collect import collect_trajectory
 from vlln.datagen.trajectory import Trajectory
-from vlln.eval.play import derive_seed
+from vlln.eval.play import episode_seed
 from vlln.oracle.rule_oracle import RuleOracle
 from vlln.sim.agent import Action, AgentState
-from vlln.tasks.episode import Episode, read_episodes
+from vlln.tasks.episode import read_episodes
 from vlln.tasks.scenes import SceneCache
 
 HEIGHT, PITCH_LEVEL, PITCH_DOWN = 125, 0, 30
@@ -102,10 +102,6 @@ def project(pose: np.ndarray, point: np.ndarray) -> tuple[float, float]:
     return col, row
 
 
-def source_ids(episode: Episode) -> tuple[str, str]:
-    return episode.scene_id, episode.episode_id
-
-
 @pytest.fixture(scope="module")
 def walked(small_dataset: Path) -> Iterator[list[tuple[ReferenceEpisode, Trajectory, Any]]]:
     """Every kept episode as the reference reads it, the collector's walk of it, and its
@@ -117,7 +113,7 @@ def walked(small_dataset: Path) -> Iterator[list[tuple[ReferenceEpisode, Traject
         for episode in read_reference_scene(scene):
             source = by_id[episode.row["episode_id"]]
             sim = cache.get(source.scene_id)
-            oracle = RuleOracle(seed=derive_seed(SMALL.seed, "oracle", *source_ids(source)))
+            oracle = RuleOracle(seed=episode_seed(SMALL.seed, "oracle", source))
             trajectory = collect_trajectory(sim, source, oracle, SMALL.seed, SMALL.collector)
             found.append((episode, trajectory, sim))
     assert found, "the small build kept no trajectory"

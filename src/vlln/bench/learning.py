@@ -35,8 +35,6 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
-from PIL import Image
-
 from vlln.bench.figures import Figure, emit
 from vlln.bench.settings import LearningBench
 from vlln.datagen.sft.source import SourceTrajectory
@@ -110,7 +108,12 @@ def learn(settings: LearningBench, work: Path) -> LearningOutcome:
         from vlln.datagen.sft.config import SftConfig
         from vlln.datagen.sft.export import export_sft
 
-        sampling = SftConfig(sample_step=1, history_frames=settings.history, seed=settings.seed)
+        sampling = SftConfig(
+            sample_step=1,
+            min_answers=SftConfig.model_fields["max_answers"].default,  # every answer heard
+            history_frames=settings.history,
+            seed=settings.seed,
+        )
         export_sft(work / "data", export, sampling, progress=False)
     model, samples, steps, loss, train_seconds = _train(settings, work, export)
     teacher_sr = _teacher_success(settings, work, episode_file, trajectories)
@@ -243,6 +246,7 @@ def action_agreement(model: Path, export: Path, limit: int) -> tuple[float, floa
     ``limit`` decisions spread evenly over the export, each asked through the ``vlln``
     agent's backend with exactly the exported prompt."""
     from vlln.agents.local.backend import ChatRequest, load_backend
+    from vlln.train.data import load_rgb
 
     decisions = teacher_decisions(export)
     chosen = decisions[:: max(1, math.ceil(len(decisions) / limit))]
@@ -251,7 +255,7 @@ def action_agreement(model: Path, export: Path, limit: int) -> tuple[float, floa
     errors: list[float] = []
     for decision in chosen:
         conversation = _conversation(decision)
-        images = tuple(_rgb(path) for path in decision.images)
+        images = tuple(load_rgb(path) for path in decision.images)
         reply = backend.generate_batch([ChatRequest(conversation, images)])[0]
         look_down = bool(conversation.images) and conversation.images[-1].camera == "down"
         wanted = read_output(decision.answer, look_down=look_down)
@@ -300,8 +304,3 @@ def _conversation(decision: Decision) -> Conversation:
         camera, _, frame = path.stem.partition("_")
         refs.append(ImageRef("down" if camera == "down" else "level", int(frame)))
     return Conversation(decision.turns, tuple(refs))
-
-
-def _rgb(path: Path) -> Image.Image:
-    with Image.open(path) as image:
-        return image.convert("RGB")

@@ -60,7 +60,7 @@ from vlln.datagen.reader import HouseDataset, house_folders
 from vlln.datagen.views import LevelViews, down_views
 from vlln.datagen.writer import HouseWriter
 from vlln.errors import ConfigError, DataFormatError
-from vlln.eval.play import derive_seed
+from vlln.eval.play import episode_seed
 from vlln.eval.sharding import Shard
 from vlln.files import write_text_atomic
 from vlln.oracle.rule_oracle import RuleOracle
@@ -310,7 +310,7 @@ def build_house(
     for episode in bar:
         # Seeded as vlln eval seeds an episode's oracle: the answers are the ones a model
         # asking the same questions in the same places hears.
-        oracle = RuleOracle(seed=derive_seed(config.seed, "oracle", *_ids(episode)))
+        oracle = RuleOracle(seed=episode_seed(config.seed, "oracle", episode))
         level = LevelViews()
         trajectory = collect_trajectory(
             sim,
@@ -364,10 +364,6 @@ def summarize(root: str | Path) -> BuildSummary:
         frames += int(info["total_frames"])
         disk += sum(p.stat().st_blocks * 512 for p in folder.rglob("*") if p.is_file())
     return BuildSummary(attempted, kept, frames, disk)
-
-
-def _ids(episode: Episode) -> tuple[str, str]:
-    return episode.scene_id, episode.episode_id
 
 
 def _episodes_by_scene(episodes: list[Episode]) -> dict[str, list[Episode]]:

@@ -67,6 +67,11 @@ def derive_seed(seed: int, role: str, scene_id: str, episode_id: str) -> int:
     return int.from_bytes(hashlib.sha256(text.encode("utf-8")).digest()[:8], "big") >> 1
 
 
+def episode_seed(seed: int, role: str, episode: Episode) -> int:
+    """:func:`derive_seed` for ``role`` in ``episode`` (what the data build seeds alike)."""
+    return derive_seed(seed, role, episode.scene_id, episode.episode_id)
+
+
 def play_episode(
     env: NavigationEnv, agent: Agent, agent_name: str, episode_index: int = 0
 ) -> EpisodeRecord:
@@ -164,12 +169,12 @@ def _play_group(
     """The records of one episode's budgets: by one sweep where possible, else one by one."""
     episode = group[0].episode
     budgets = [item.budget for item in group]
-    seed = derive_seed(config.seed, "agent", *_ids(episode))
+    seed = episode_seed(config.seed, "agent", episode)
     agent = agent_factory(config.agent, seed, config.detector)
     task_config = TaskConfig(task=task, max_steps=config.max_steps, dialog_budget=max(budgets))
     oracle = None
     if task_config.dialog_enabled:
-        oracle = oracle_factory(derive_seed(config.seed, "oracle", *_ids(episode)))
+        oracle = oracle_factory(episode_seed(config.seed, "oracle", episode))
     oracle_copies = oracle is None or getattr(oracle, "snapshottable", False)
     if not (sweep and oracle_copies and can_sweep(agent, budgets)):
         return [
@@ -178,10 +183,6 @@ def _play_group(
     env = NavigationEnv([episode], task_config, scenes, oracle, privileged=agent.privileged)
     records = play_sweep(env, agent, config.agent, budgets)
     return [replace(records[budget], detector=config.detector) for budget in budgets]
-
-
-def _ids(episode: Episode) -> tuple[str, str]:
-    return episode.scene_id, episode.episode_id
 
 
 def _play_item(
@@ -195,7 +196,7 @@ def _play_item(
     episode = item.episode
 
     def seed_for(role: str) -> int:
-        return derive_seed(config.seed, role, *_ids(episode))
+        return episode_seed(config.seed, role, episode)
 
     agent = agent_factory(config.agent, seed_for("agent"), config.detector)
     task_config = TaskConfig(task=task, max_steps=config.max_steps, dialog_budget=item.budget)

@@ -92,12 +92,13 @@ class SftCollator:
         texts = [
             self.encoder.render(sample.turns, add_generation_prompt=False) for sample in samples
         ]
-        images = [[_load_rgb(path) for path in sample.images] for sample in samples]
+        images = [[load_rgb(path) for path in sample.images] for sample in samples]
         batch = self.encoder.encode(texts, images, padding_side="right")
         batch["labels"] = self.encoder.assistant_labels(batch["input_ids"], batch["attention_mask"])
         return batch
 
 
-def _load_rgb(path: Path) -> Image.Image:
+def load_rgb(path: Path) -> Image.Image:
+    """An exported image as the model is given it (RGB)."""
     with Image.open(path) as image:
         return image.convert("RGB")
