@@ -11,7 +11,7 @@ from PIL import Image
 from vlln.agents.local.encoding import IGNORE_INDEX, ChatEncoder, to_messages
 from vlln.errors import ConfigError
 from vlln.prompt import Turn
-from vlln.train.data import SftCollator, read_export
+from vlln.train.data import SftCollator, load_rgb, read_export
 
 TURNS = (
     Turn("human", "Find the chair. <image> In front of you is <image>."),
@@ -97,3 +97,24 @@ def test_export_samples_train_on_exactly_their_assistant_turns(
     for row, sample in zip(batch["labels"], chosen, strict=True):
         learnt = "".join(turn.text + "<|im_end|>" for turn in sample.turns if turn.role == "gpt")
         assert tokenizer.decode(row[row != IGNORE_INDEX]) == learnt
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("cache_bytes", [0, 512 * 2**20])
+def test_the_collator_keeps_frames_without_changing_a_batch(
+    sft_export: Path, tiny_model: Path, cache_bytes: int
+) -> None:
+    samples = read_export(sft_export)
+    encoder = ChatEncoder.load(tiny_model)
+    chosen = [s for s in samples if len(s.images) > 1][:3]
+    texts = [encoder.render(s.turns, add_generation_prompt=False) for s in chosen]
+    direct = encoder.encode(texts, [[load_rgb(p) for p in s.images] for s in chosen])
+    collate = SftCollator(encoder, cache_bytes=cache_bytes)
+    first = collate(chosen)
+    collate(chosen[::-1])  # the same frames again, in another order
+    for batch in (first, collate(chosen)):
+        assert set(batch) == {*direct, "labels"}
+        for key, tensor in direct.items():
+            assert torch.equal(batch[key], tensor), key
+    held = len(collate._cache)
+    assert held == (0 if cache_bytes == 0 else len({p for s in chosen for p in s.images}))

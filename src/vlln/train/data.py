@@ -4,13 +4,14 @@ model's chat template, loss only on the assistant's tokens."""
 from __future__ import annotations
 
 import json
+from collections import OrderedDict
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 from PIL import Image
 
-from vlln.agents.local.encoding import ChatEncoder
+from vlln.agents.local.encoding import ChatEncoder, ProcessedImage
 from vlln.datagen.sft.records import SFT_FILE, SUMMARY_FILE, SftRecord
 from vlln.errors import DataFormatError
 from vlln.prompt import IMAGE_TAG, Turn
@@ -83,19 +84,46 @@ def _sample(record: SftRecord, data_dir: Path) -> SftSample:
 
 
 class SftCollator:
-    """Turns samples into a padded batch with labels (picklable for data-loader workers)."""
+    """Turns samples into a padded batch with labels (picklable for data-loader workers).
 
-    def __init__(self, encoder: ChatEncoder) -> None:
+    A frame is shown by many samples (each prompt carries its history), so each image is
+    decoded and processed once and kept, least recently used first out, up to
+    ``cache_bytes`` of patches per process."""
+
+    def __init__(self, encoder: ChatEncoder, cache_bytes: int = 512 * 2**20) -> None:
         self.encoder = encoder
+        self.cache_bytes = cache_bytes
+        self._cache: OrderedDict[Path, ProcessedImage] = OrderedDict()
+        self._cached_bytes = 0
 
     def __call__(self, samples: list[SftSample]) -> dict[str, Any]:
         texts = [
             self.encoder.render(sample.turns, add_generation_prompt=False) for sample in samples
         ]
-        images = [[load_rgb(path) for path in sample.images] for sample in samples]
-        batch = self.encoder.encode(texts, images, padding_side="right")
+        images = self._processed([sample.images for sample in samples])
+        batch = self.encoder.encode_processed(texts, images, padding_side="right")
         batch["labels"] = self.encoder.assistant_labels(batch["input_ids"], batch["attention_mask"])
         return batch
+
+    def _processed(self, groups: list[tuple[Path, ...]]) -> list[list[ProcessedImage]]:
+        missing = list(dict.fromkeys(path for group in groups for path in group))
+        missing = [path for path in missing if path not in self._cache]
+        fresh = dict(zip(missing, self.encoder.process_images([load_rgb(p) for p in missing])))
+        out = [[fresh.get(path) or self._cache[path] for path in group] for group in groups]
+        for path, image in fresh.items():
+            self._remember(path, image)
+        for group in groups:
+            for path in group:
+                if path in self._cache:
+                    self._cache.move_to_end(path)
+        return out
+
+    def _remember(self, path: Path, image: ProcessedImage) -> None:
+        self._cache[path] = image
+        self._cached_bytes += image.nbytes
+        while self._cached_bytes > self.cache_bytes and self._cache:
+            _, dropped = self._cache.popitem(last=False)
+            self._cached_bytes -= dropped.nbytes
 
 
 def load_rgb(path: Path) -> Image.Image:

@@ -211,6 +211,7 @@ def _training_arguments(config: TrainConfig, on_gpu: bool) -> Any:
         save_steps=config.save_steps,
         save_total_limit=config.save_limit,
         dataloader_num_workers=config.workers,
+        dataloader_persistent_workers=config.workers > 0,  # each keeps the frames it processed
         dataloader_pin_memory=on_gpu,
         remove_unused_columns=False,
         report_to="none",

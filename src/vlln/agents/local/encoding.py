@@ -15,6 +15,7 @@ from __future__ import annotations
 import json
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
+from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -56,6 +57,18 @@ def to_messages(turns: Turns) -> list[dict[str, Any]]:
     return messages
 
 
+@dataclass(frozen=True)
+class ProcessedImage:
+    """One image as the model's image processor gives it: its patch rows and (t, h, w) grid."""
+
+    pixels: torch.Tensor
+    grid: torch.Tensor
+
+    @property
+    def nbytes(self) -> int:
+        return int(self.pixels.element_size() * self.pixels.nelement())
+
+
 class ChatEncoder:
     """The tokenizer, image processor and chat template of one model directory."""
 
@@ -94,6 +107,16 @@ class ChatEncoder:
         )
         return text
 
+    def process_images(self, images: Sequence[Image]) -> list[ProcessedImage]:
+        """Each image as the model's image processor turns it into patches (it treats every
+        image on its own, so processing them apart or together gives the same tensors)."""
+        if not images:
+            return []
+        features = self.image_processor(images=list(images), return_tensors="pt")
+        grids = features["image_grid_thw"]
+        rows = features["pixel_values"].split([int(grid.prod()) for grid in grids])
+        return [ProcessedImage(pixels, grid) for pixels, grid in zip(rows, grids, strict=True)]
+
     def encode(
         self,
         texts: Sequence[str],
@@ -101,14 +124,24 @@ class ChatEncoder:
         padding_side: str = "right",
     ) -> dict[str, torch.Tensor]:
         """A padded batch: ``texts[i]`` holds one ``<|image_pad|>`` per image of ``images[i]``."""
-        flat = [image for group in images for image in group]
-        features: dict[str, Any] = {}
-        grids: list[int] = []
-        if flat:
-            features = dict(self.image_processor(images=flat, return_tensors="pt"))
-            grids = [int(grid.prod()) // self.merge_area for grid in features["image_grid_thw"]]
+        flat = self.process_images([image for group in images for image in group])
+        groups: list[list[ProcessedImage]] = []
+        for group in images:
+            groups.append(flat[: len(group)])
+            flat = flat[len(group) :]
+        return self.encode_processed(texts, groups, padding_side)
+
+    def encode_processed(
+        self,
+        texts: Sequence[str],
+        images: Sequence[Sequence[ProcessedImage]],
+        padding_side: str = "right",
+    ) -> dict[str, torch.Tensor]:
+        """:meth:`encode` of images already through :meth:`process_images` (a training run
+        processes each frame once, not once per sample that shows it)."""
+        import torch
+
         expanded: list[str] = []
-        cursor = 0
         for text, group in zip(texts, images, strict=True):
             pieces = text.split(IMAGE_PAD)
             if len(pieces) - 1 != len(group):
@@ -117,9 +150,8 @@ class ChatEncoder:
                     f"{len(group)} images; every <image> tag needs exactly one image"
                 )
             out = pieces[0]
-            for piece in pieces[1:]:
-                out += IMAGE_PAD * grids[cursor] + piece
-                cursor += 1
+            for piece, image in zip(pieces[1:], group, strict=True):
+                out += IMAGE_PAD * (int(image.grid.prod()) // self.merge_area) + piece
             expanded.append(out)
         tokens = self.tokenizer(
             expanded,
@@ -130,9 +162,10 @@ class ChatEncoder:
         )
         batch = {"input_ids": tokens["input_ids"], "attention_mask": tokens["attention_mask"]}
         batch["mm_token_type_ids"] = (batch["input_ids"] == self.image_token_id).int()
+        flat = [image for group in images for image in group]
         if flat:
-            batch["pixel_values"] = features["pixel_values"]
-            batch["image_grid_thw"] = features["image_grid_thw"]
+            batch["pixel_values"] = torch.cat([image.pixels for image in flat])
+            batch["image_grid_thw"] = torch.stack([image.grid for image in flat])
         return batch
 
     def assistant_labels(
