@@ -39,8 +39,8 @@ from vlln.eval.runner import default_cache_dir, load_episodes, run_evaluation
 from vlln.tasks.metrics import record_spl, success
 from vlln.tasks.record import EpisodeRecord
 from vlln.tasks.scenes import SceneCache
+from vlln.tasks.splits import TEST_PROTOCOL_SPLIT
 from vlln.tasks.taxonomy import CLASS_ABBREVIATIONS, FAILURE_CLASSES, classify
-from vlln.tasks.test_protocol import TEST_PROTOCOL_SPLIT
 
 CONFIDENCE = 0.95
 BASELINE = "fbe"  # the paper's frontier baseline, which every other agent is compared with

@@ -8,9 +8,10 @@ from pathlib import Path
 from typing import Annotated, Literal
 
 from pydantic import AliasChoices, Field
+from pydantic_settings import CliPositionalArg
 
 from vlln.config import Config
-from vlln.tasks.test_protocol import TEST_PROTOCOL_EPISODES
+from vlln.tasks.splits import TEST_PROTOCOL_EPISODES
 from vlln.world.options import PresetOptions
 
 Count = Annotated[int, Field(ge=1)]
@@ -190,3 +191,19 @@ class GpuCheckBench(BenchOptions):
     """seed of the weights, the data and the episodes"""
     work: Path | None = None
     """folder kept for the model, data and runs (none: a temporary one)"""
+
+
+class Mp3dHouseBench(BenchOptions):
+    """``vlln bench mp3d-house FILE...``: the statistics of real Matterport3D ``.house`` files
+    that the mp3d preset's anchors are taken from (docs/world-statistics.md)."""
+
+    files: Annotated[CliPositionalArg[list[Path]], Field(min_length=1)]
+    """.house files (Matterport3D house_segmentations)"""
+
+
+class Mp3dConnectivityBench(BenchOptions):
+    """``vlln bench mp3d-connectivity FILE...``: walk lengths and storeys of Matterport3D
+    buildings from their R2R connectivity graphs (docs/world-statistics.md)."""
+
+    files: Annotated[CliPositionalArg[list[Path]], Field(min_length=1)]
+    """<scan>_connectivity.json files"""

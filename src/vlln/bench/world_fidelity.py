@@ -17,8 +17,7 @@ from dataclasses import dataclass
 from vlln.bench.anchors import compare
 from vlln.tasks.generation import episode_config, generate_house_episodes, house_rng
 from vlln.tasks.scenes import SceneCache, procedural_scene_id
-from vlln.tasks.splits import SPLIT_SIZES, house_seeds
-from vlln.tasks.test_protocol import TEST_PROTOCOL_EPISODES
+from vlln.tasks.splits import SPLIT_SIZES, TEST_PROTOCOL_EPISODES, house_seeds
 
 
 @dataclass(frozen=True)

@@ -39,8 +39,13 @@ from vlln.oracle.settings import (
 )
 from vlln.tasks.oracle_protocol import QuestionType
 from vlln.tasks.spec import MAX_DIALOG_BUDGET, TaskType
-from vlln.tasks.splits import SPLIT_SIZES, SPLITS
-from vlln.tasks.test_protocol import TEST_PROTOCOL_EPISODES, TEST_PROTOCOL_SPLIT, source_split
+from vlln.tasks.splits import (
+    SPLIT_SIZES,
+    SPLITS,
+    TEST_PROTOCOL_EPISODES,
+    TEST_PROTOCOL_SPLIT,
+    source_split,
+)
 from vlln.world.generator.presets import DEFAULT_PRESET, SMALL, preset
 
 DEFAULT_DIALOG_BUDGET = TaskType.IIGN.default_budget

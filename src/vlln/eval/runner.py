@@ -56,7 +56,7 @@ from vlln.tasks.metrics import success
 from vlln.tasks.record import EpisodeRecord, agent_label
 from vlln.tasks.scenes import SceneCache
 from vlln.tasks.split_files import load_or_build_split
-from vlln.tasks.test_protocol import source_split
+from vlln.tasks.splits import source_split
 
 Commit = Callable[[list[Played]], None]
 
