@@ -12,6 +12,7 @@ another). Imports by name at run time (``importlib``, entry-point strings) are n
 from __future__ import annotations
 
 import ast
+import graphlib
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -136,6 +137,38 @@ def test_no_import_points_up_the_layers() -> None:
     assert len(imports) > 1000  # the walk reached the modules (and their lazy imports)
     assert any(item.module == "vlln.cli.oracle" for item in imports)  # one inside a function
     assert problems(imports, LAYERS) == []
+
+
+def module_graph(imports: list[Import], known: set[str]) -> dict[str, set[str]]:
+    """Each module and the modules it imports (``from vlln.a import b`` of a name in module
+    ``vlln.a`` counts as importing ``vlln.a``)."""
+    graph: dict[str, set[str]] = {}
+    for item in imports:
+        target = item.target
+        while target not in known and "." in target:
+            target = target.rsplit(".", 1)[0]
+        if target in known and target != item.module:
+            graph.setdefault(item.module, set()).add(target)
+    return graph
+
+
+def test_no_two_modules_import_each_other() -> None:
+    known = {module_name(path) for path in SRC.joinpath("vlln").rglob("*.py")}
+    graph = module_graph(package_imports(), known)
+    try:
+        tuple(graphlib.TopologicalSorter(graph).static_order())
+    except graphlib.CycleError as error:
+        pytest.fail(f"import cycle: {' -> '.join(error.args[1])}")
+
+
+def test_the_cycle_check_sees_a_lazy_import_back() -> None:
+    known = {"vlln.bench.sim", "vlln.bench.parallel"}
+    imports = imports_in("from vlln.bench.parallel import run", "vlln.bench.sim", False, known)
+    imports += imports_in(
+        "def f():\n    from vlln.bench.sim import _walk", "vlln.bench.parallel", False, known
+    )
+    with pytest.raises(graphlib.CycleError):
+        tuple(graphlib.TopologicalSorter(module_graph(imports, known)).static_order())
 
 
 def test_every_package_has_a_layer() -> None:

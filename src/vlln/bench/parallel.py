@@ -1,7 +1,7 @@
 """`vlln bench sim --envs N`: simulator steps per second with N environments in N processes.
 
 Each process builds its own house and simulator and replays its own random walk (action,
-collision, render and a geodesic query per step, as :func:`vlln.bench.sim._step_fps` does);
+collision, render and a geodesic query per step, as :func:`vlln.bench.walks.step_fps` does);
 all start together after a barrier, and the rate is every process's steps over the time from
 the first start to the last finish. On a CPU renderer (Mesa llvmpipe) the rasteriser's threads
 are shared out: one environment alone gets every core (``LP_NUM_THREADS``, as a user running one
@@ -123,19 +123,19 @@ def _walk_in_process(
     seed: int, index: int, frames: int, threads: int, barrier: Barrier, results: Any
 ) -> None:
     os.environ["LP_NUM_THREADS"] = str(threads)  # read when the GL context is made
-    from vlln.bench.sim import _goal_sets, _step_fps, _walk
+    from vlln.bench.walks import goal_sets, random_walk, step_fps
     from vlln.sim.simulator import Simulator
     from vlln.world.generator import generate_house
 
     with Simulator(generate_house(seed)) as sim:
         rng = np.random.default_rng([seed, index])
-        warm_up = _walk(sim, rng, WARM_UP_STEPS)
-        walk = _walk(sim, rng, frames)
-        goals = _goal_sets(sim, rng, count=1)[0]
-        _step_fps(sim, warm_up, goals)
+        warm_up = random_walk(sim, rng, WARM_UP_STEPS)
+        walk = random_walk(sim, rng, frames)
+        goals = goal_sets(sim, rng, count=1)[0]
+        step_fps(sim, warm_up, goals)
         barrier.wait()
         start, cpu, main = time.perf_counter(), time.process_time(), time.thread_time()
-        _step_fps(sim, walk, goals)
+        step_fps(sim, walk, goals)
         end = time.perf_counter()
         cpu, main = time.process_time() - cpu, time.thread_time() - main
         results.put((start, end, len(walk.actions), cpu, main))

@@ -11,13 +11,11 @@ machine's load, so they compare runs taken in busy and quiet minutes.
 from __future__ import annotations
 
 import json
-import math
 import statistics
 import subprocess
 import sys
 import tempfile
 import time
-from dataclasses import dataclass
 from pathlib import Path
 
 import moderngl
@@ -26,7 +24,8 @@ import numpy as np
 from vlln.bench.figures import Figure, emit, median_seconds
 from vlln.bench.parallel import run_parallel_benchmark
 from vlln.bench.settings import SimBench
-from vlln.sim.agent import Action, AgentState
+from vlln.bench.walks import goal_sets, random_point, random_walk, step_fps
+from vlln.sim.agent import AgentState
 from vlln.sim.camera import CameraSpec
 from vlln.sim.draw_list import DrawList
 from vlln.sim.geodesic import GeodesicField
@@ -51,8 +50,6 @@ from vlln.world.scans import ImportReport, export_scene, import_scene, with_subd
 
 # Frames drawn before any clock starts: shader compilation, first allocations, caches.
 WARM_UP_FRAMES = 30
-# Forward-biased random walk: how an exploring agent moves.
-WALK = (Action.MOVE_FORWARD, Action.MOVE_FORWARD, Action.TURN_LEFT, Action.TURN_RIGHT)
 
 
 def run_sim_benchmark(settings: SimBench) -> list[Figure]:
@@ -95,8 +92,8 @@ def run_sim_benchmark(settings: SimBench) -> list[Figure]:
     with Simulator(house) as sim:
         if imported:
             record("simulator_build_s", time.perf_counter() - started, "s")
-        walk = _walk(sim, rng, frames)
-        goals = _goal_sets(sim, rng, count=3)
+        walk = random_walk(sim, rng, frames)
+        goals = goal_sets(sim, rng, count=3)
         drawn = _drawn_corners(sim, walk.poses)
         passes: dict[str, list[float]] = {
             "render_fps": [],
@@ -109,7 +106,7 @@ def run_sim_benchmark(settings: SimBench) -> list[Figure]:
             passes["render_fps"].append(fps)
             passes["render_cpu_ms"].append(cpu_ms)
             passes["raw_raster_fps"].append(_raw_raster_fps(sim, walk.poses, drawn))
-            passes["step_fps"].append(_step_fps(sim, walk, goals[2]))
+            passes["step_fps"].append(step_fps(sim, walk, goals[2]))
         for metric in ("render_fps", "raw_raster_fps"):
             record(metric, statistics.median(passes[metric]), "frames/s")
         record("render_cpu_ms", statistics.median(passes["render_cpu_ms"]), "ms/frame")
@@ -131,28 +128,6 @@ def _import(scene: Path | None, seed: int, subdivide: int) -> tuple[House, Impor
     house = with_subdivided_mesh(generate_house(seed), subdivide)
     with tempfile.TemporaryDirectory(prefix="vlln-scan-") as folder:
         return import_scene(export_scene(house, Path(folder), "mp3d"))
-
-
-@dataclass(frozen=True)
-class Walk:
-    """A random walk: where it starts, the actions taken and the pose after each."""
-
-    start: AgentState
-    actions: list[Action]
-    poses: list[AgentState]
-
-
-def _walk(sim: Simulator, rng: np.random.Generator, count: int) -> Walk:
-    """A forward-biased random walk through the house: the views an agent would really see.
-    Every figure that renders replays this walk, so they all draw the same frames."""
-    start = AgentState(_random_point(sim, rng), float(rng.uniform(-math.pi, math.pi)), 0.0)
-    sim.reset(start)
-    actions = [WALK[int(i)] for i in rng.integers(len(WALK), size=count)]
-    poses = []
-    for action in actions:
-        sim.move(action)
-        poses.append(sim.state)
-    return Walk(start, actions, poses)
 
 
 def _render_fps(sim: Simulator, poses: list[AgentState]) -> tuple[float, float]:
@@ -236,27 +211,6 @@ def _raw_raster_fps(sim: Simulator, poses: list[AgentState], drawn: list[bytes])
         ctx.release()
 
 
-def _random_point(sim: Simulator, rng: np.random.Generator) -> tuple[float, float, float]:
-    """A navigable ``(x, y, z)`` of the main walkable structure, on any storey."""
-    if sim.storeys is not None:
-        return sim.storeys.sample_navigable_point(rng, sim.storeys.largest_component())
-    x, z = sim.grid.sample_navigable_point(rng, sim.grid.largest_component())
-    return x, sim.grid.floor_y, z
-
-
-def _goal_sets(sim: Simulator, rng: np.random.Generator, count: int) -> list[list[GoalPoint]]:
-    """View points of randomly chosen objects: the goal sets a task builds fields for
-    (``(x, y, z)`` in a house with several storeys)."""
-    sets: list[list[GoalPoint]] = []
-    for index in rng.permutation(len(sim.house.instances)):
-        points = sim.view_points(sim.house.instances[int(index)].box)
-        if points:
-            sets.append(points)
-        if len(sets) == count:
-            break
-    return sets
-
-
 def _fresh_field(sim: Simulator, goals: list[GoalPoint]) -> GeodesicField | StoreyField:
     """A distance field built now (the simulator's own are cached)."""
     if sim.storeys is not None:
@@ -267,7 +221,7 @@ def _fresh_field(sim: Simulator, goals: list[GoalPoint]) -> GeodesicField | Stor
 def _query_us(
     sim: Simulator, field: GeodesicField | StoreyField, rng: np.random.Generator
 ) -> float:
-    points = [_random_point(sim, rng) for _ in range(2000)] * 50
+    points = [random_point(sim, rng) for _ in range(2000)] * 50
     distance = field.distance
     start = time.perf_counter()
     if sim.storeys is None:  # a one-storey query needs no height
@@ -277,18 +231,6 @@ def _query_us(
         for x, y, z in points:
             distance(x, z, y)
     return (time.perf_counter() - start) / len(points) * 1e6
-
-
-def _step_fps(sim: Simulator, walk: Walk, goals: list[GoalPoint]) -> float:
-    """Action + collision + render + a geodesic query, as a task does every step."""
-    field = sim.distance_field(goals)
-    sim.reset(walk.start)
-    start = time.perf_counter()
-    for action in walk.actions:
-        observation = sim.step(action)
-        x, y, z = observation.state.position
-        field.distance(x, z, y)
-    return len(walk.actions) / (time.perf_counter() - start)
 
 
 _RSS_PROBE = """
