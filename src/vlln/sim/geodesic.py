@@ -18,6 +18,7 @@ from collections.abc import Sequence
 
 import numpy as np
 from numpy.typing import NDArray
+from scipy import sparse
 from scipy.sparse import csgraph
 
 from vlln.errors import NavigationError
@@ -56,14 +57,7 @@ class GeodesicField:
         self.grid = grid
         self.goals: list[Point2] = list(dict.fromkeys(snapped))
         sources = sorted({_node(grid, x, z) for x, z in self.goals})
-        dist, predecessors, _ = csgraph.dijkstra(
-            grid.cell_graph(),
-            directed=True,
-            indices=sources,
-            min_only=True,
-            return_predecessors=True,
-        )
-        dist *= ROUND_UP
+        dist, predecessors = goal_distances(grid.cell_graph(), sources)
         self.values: NDArray[np.float64] = dist.reshape(rows, cols)
         self.values.flags.writeable = False
         self._flat: list[float] = dist.tolist()
@@ -125,6 +119,18 @@ class GeodesicField:
 
     def _centre(self, node: int) -> Point2:
         return self.grid.cell_to_world(node // self._cols, node % self._cols)
+
+
+def goal_distances(
+    graph: sparse.csr_matrix, sources: list[int]
+) -> tuple[NDArray[np.float64], NDArray[np.int32]]:
+    """One multi-source Dijkstra over a cell graph: each node's distance to the nearest source
+    (rounded up, :data:`ROUND_UP`) and its next node on the way there (-9999 at a source or
+    where no source can be reached)."""
+    dist, predecessors, _ = csgraph.dijkstra(
+        graph, directed=True, indices=sources, min_only=True, return_predecessors=True
+    )
+    return dist * ROUND_UP, predecessors
 
 
 def _node(grid: NavGrid, x: float, z: float) -> int:

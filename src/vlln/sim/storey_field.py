@@ -12,10 +12,9 @@ from collections.abc import Sequence
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.sparse import csgraph
 
 from vlln.errors import NavigationError
-from vlln.sim.geodesic import PREFIX_MARGIN, ROUND_UP, pull_string
+from vlln.sim.geodesic import PREFIX_MARGIN, ROUND_UP, goal_distances, pull_string
 from vlln.sim.storeys import Point3, Storeys
 
 # A way that rises or falls this much (m) goes up or down stairs.
@@ -39,14 +38,7 @@ class StoreyField:
         snapped = [storeys.snap_point(float(x), float(y), float(z)) for x, y, z in goals]
         self.goals: list[Point3] = list(dict.fromkeys(snapped))
         sources = sorted({storeys.node(*goal) for goal in self.goals})
-        dist, predecessors, _ = csgraph.dijkstra(
-            storeys.cell_graph(),
-            directed=True,
-            indices=sources,
-            min_only=True,
-            return_predecessors=True,
-        )
-        dist *= ROUND_UP
+        dist, predecessors = goal_distances(storeys.cell_graph(), sources)
         self._flat: list[float] = dist.tolist()
         self._predecessors: NDArray[np.int32] = predecessors
         self.values: tuple[NDArray[np.float64], ...] = tuple(
