@@ -6,7 +6,8 @@ from pathlib import Path
 import pytest
 
 from vlln.bench.mp3d_connectivity import building_graph, storeys
-from vlln.bench.mp3d_house import house_stats, main
+from vlln.bench.mp3d_house import house_stats
+from vlln.cli import main
 from vlln.errors import DataFormatError
 
 # Two storeys: a 4 x 3 m kitchen and a 2 x 2 m junk region on level 0, a 5 x 4 m bedroom on
@@ -76,9 +77,24 @@ def test_the_command_line_reports_a_wrong_header_in_one_line(
 ) -> None:
     path = tmp_path / "cut.house"
     path.write_text("ASCII 1.\nH  -  -\n")
-    assert main([str(path)]) == 2
+    assert main(["bench", "mp3d-house", str(path)]) == 2
     err = capsys.readouterr().err.strip()
     assert "\n" not in err and "first line must be 'ASCII 1.1'" in err
+
+
+def test_the_command_prints_a_row_per_file_and_their_mean(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    files = [tmp_path / "A.house", tmp_path / "B.house"]
+    files[0].write_text(HOUSE)
+    files[1].write_text(
+        HOUSE.replace("5 4 3  0 0 1", "5 5 3  0 0 1").replace("0 4 3  0 0 1", "0 5 3  0 0 1")
+    )
+    assert main(["bench", "mp3d-house", *map(str, files)]) == 0
+    rows = [json.loads(line) for line in capsys.readouterr().out.splitlines()]
+    assert [row["name"] for row in rows] == ["A", "B", "mean"]
+    assert rows[1]["floor_area_m2"] == pytest.approx(4 * 3 + 5 * 5)
+    assert rows[2]["floor_area_m2"] == pytest.approx((32 + 37) / 2)
 
 
 def _pose(x: float, y: float, z: float) -> list[float]:

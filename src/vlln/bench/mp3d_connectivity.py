@@ -5,14 +5,13 @@ one connectivity graph per building (``connectivity/<scan>_connectivity.json``: 
 camera height above the floor, navigable transitions; MIT licence). From them we get, for every
 building VL-LN uses, the number of storeys and the distribution of walking distances between
 navigable places, which anchor our preset where the papers give no per-building figures.
-Run it as ``python -m vlln.bench.mp3d_connectivity FILE...``.
+Run it as ``vlln bench mp3d-connectivity FILE...``.
 """
 
 from __future__ import annotations
 
 import json
 import statistics
-import sys
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
@@ -20,6 +19,7 @@ import numpy as np
 from scipy.sparse import csr_matrix
 from scipy.sparse.csgraph import shortest_path
 
+from vlln.bench.settings import Mp3dConnectivityBench
 from vlln.errors import DataFormatError
 
 # Panoramas of one floor lie within a few centimetres of the same floor height; stair panoramas
@@ -97,27 +97,12 @@ def building_graph(path: Path) -> BuildingGraph:
     )
 
 
-def main(argv: list[str]) -> int:
+def run_mp3d_connectivity(settings: Mp3dConnectivityBench) -> None:
     """Print one JSON line per building, then the mean of each figure and the storey counts."""
-    if not argv:
-        print(
-            "usage: python -m vlln.bench.mp3d_connectivity FILE.json [FILE.json ...]",
-            file=sys.stderr,
-        )
-        return 2
-    try:
-        rows = [building_graph(Path(arg)) for arg in argv]
-    except DataFormatError as err:
-        print(f"error: {err}", file=sys.stderr)
-        return 2
+    rows = [building_graph(path) for path in settings.files]
     for row in rows:
         print(json.dumps(asdict(row)))
     numeric = [k for k, v in asdict(rows[0]).items() if isinstance(v, (int, float))]
     summary = {k: round(statistics.mean(getattr(r, k) for r in rows), 3) for k in numeric}
     counts = {n: sum(r.storeys == n for r in rows) for n in sorted({r.storeys for r in rows})}
     print(json.dumps({"name": "mean", "buildings": len(rows), **summary, "storey_counts": counts}))
-    return 0
-
-
-if __name__ == "__main__":
-    raise SystemExit(main(sys.argv[1:]))

@@ -3,18 +3,18 @@
 The procedural preset is calibrated against MP3D as VL-LN uses it; where the papers give only
 dataset totals, real ``.house`` files give the per-building spread. This module reads the
 documented text format (docs/world-statistics.md, "The .house parser") and reduces one file
-to the figures the anchors need. Run it as ``python -m vlln.bench.mp3d_house FILE...``.
+to the figures the anchors need. Run it as ``vlln bench mp3d-house FILE...``.
 """
 
 from __future__ import annotations
 
 import json
 import statistics
-import sys
 from collections import Counter
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
+from vlln.bench.settings import Mp3dHouseBench
 from vlln.errors import DataFormatError
 
 HEADER = "ASCII 1.1"
@@ -146,24 +146,12 @@ def house_stats(path: Path) -> HouseStats:
     )
 
 
-def main(argv: list[str]) -> int:
+def run_mp3d_house(settings: Mp3dHouseBench) -> None:
     """Print one JSON line per file, then the mean of each figure when there are several."""
-    if not argv:
-        print("usage: python -m vlln.bench.mp3d_house FILE.house [FILE.house ...]", file=sys.stderr)
-        return 2
-    try:
-        rows = [house_stats(Path(arg)) for arg in argv]
-    except DataFormatError as err:
-        print(f"error: {err}", file=sys.stderr)
-        return 2
+    rows = [house_stats(path) for path in settings.files]
     for row in rows:
         print(json.dumps(asdict(row)))
     if len(rows) > 1:
         numeric = [k for k, v in asdict(rows[0]).items() if isinstance(v, (int, float))]
         mean = {k: round(statistics.mean(getattr(r, k) for r in rows), 3) for k in numeric}
         print(json.dumps({"name": "mean", **mean}))
-    return 0
-
-
-if __name__ == "__main__":
-    raise SystemExit(main(sys.argv[1:]))

@@ -75,6 +75,18 @@ COMMANDS = (
         "catalogue size; objects, triangles and build time per house",
     ),
     (
+        "mp3d-house",
+        "Mp3dHouseBench",
+        ("mp3d_house:run_mp3d_house",),
+        "statistics of real Matterport3D .house files, the anchors of the mp3d houses",
+    ),
+    (
+        "mp3d-connectivity",
+        "Mp3dConnectivityBench",
+        ("mp3d_connectivity:run_mp3d_connectivity",),
+        "walk lengths and storeys of Matterport3D buildings from R2R connectivity graphs",
+    ),
+    (
         "gpu-check",
         "GpuCheckBench",
         ("gpu_check:run_gpu_check",),
