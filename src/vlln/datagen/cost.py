@@ -1,6 +1,6 @@
 """What a dataset build will cost, said before it starts (and asked about when it is large).
 
-The figures are those of docs/evaluation.md and docs/benchmarks.md, measured on the 2-core
+The figures are those of docs/evaluation.md and docs/benchmark.md, measured on the 2-core
 development machine with `vlln bench data` and the 20-house build: about 10.7 s of one core per
 trajectory tried (collection, filtering, rendering both cameras again, pixel goals, encoding),
 about 4.7 MB of disk per trajectory tried (83 % are kept, 5.6 MB each: a JPEG of both cameras

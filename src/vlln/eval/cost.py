@@ -1,6 +1,6 @@
 """What an evaluation will cost, said before it starts.
 
-The figures are those of docs/evaluation.md and docs/benchmarks.md, measured on the 2-core
+The figures are those of docs/evaluation.md and docs/benchmark.md, measured on the 2-core
 development machine, per agent and house preset: seconds per episode line on one core (`vlln
 bench eval`, `vlln bench fidelity`), about 3 kB of results a line, and the run's peak memory.
 Agents without a measured figure (model agents, whose time is the model server's, and agents of
