@@ -79,7 +79,7 @@ def test_eval_command_writes_the_run_and_prints_the_summary(
         (["--budgets", "3-1"], "backwards"),
         (["--budgets", "0-7"], "dialog budgets run from 0 to 5, the paper's range"),
         (["--budgets", "0,9"], "dialog budgets run from 0 to 5, the paper's range"),
-        (["--budgets", "0-99999999999999"], "got 0-99999999999999; use e.g. --budgets 0-5"),
+        (["--budgets", "0-99999999999999"], "the paper's range (its budget 5 already lets"),
         (
             ["--agent", "frontier", "--detector", "yolo"],
             "detector 'yolo'; choose one of: truth, noisy",

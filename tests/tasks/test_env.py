@@ -231,15 +231,18 @@ def test_ign_answers_questions_when_given_a_budget_objectnav_never(scenes: Scene
     assert TaskConfig(task=TaskType.IGN).dialog_budget == 0  # the default stays no dialog
     with pytest.raises(ConfigError, match="ign with a dialog budget needs an oracle"):
         NavigationEnv([episode], TaskConfig(task=TaskType.IGN, dialog_budget=2), scenes)
-    for task, answered in ((TaskType.IGN, True), (TaskType.OBJECTNAV, False)):
-        config = TaskConfig(task=task, dialog_budget=2)
+    with pytest.raises(ConfigError, match="objectnav has no dialog"):
+        TaskConfig(task=TaskType.OBJECTNAV, dialog_budget=2)
+    for task, budget in ((TaskType.IGN, 2), (TaskType.OBJECTNAV, 0)):
+        config = TaskConfig(task=task, dialog_budget=budget)
         env = NavigationEnv([episode], config, scenes, oracle=RuleOracle(seed=0))
         obs, _ = env.reset(options={"episode_index": 0})
-        assert obs["questions_left"] == (2 if answered else 0)
+        assert obs["questions_left"] == budget
         obs, *_ = env.step(Talk("What color is it?"))
+        answered = task == TaskType.IGN
         assert (obs["oracle_answer"] != REFUSAL_MESSAGE) == answered
         record = env.record("talker")
-        assert record.budget == (2 if answered else 0)
+        assert record.budget == budget
         assert [turn.answered for turn in record.dialog] == [answered]
 
 

@@ -56,7 +56,7 @@ from vlln.tasks.env import NavigationEnv
 from vlln.tasks.episode import Episode, read_episodes
 from vlln.tasks.oracle_protocol import Oracle
 from vlln.tasks.scenes import SceneCache
-from vlln.tasks.spec import TaskConfig, TaskType
+from vlln.tasks.spec import DEFAULT_MAX_STEPS, TaskConfig, TaskType
 from vlln.tasks.split_files import load_or_build_split
 from vlln.tasks.splits import SPLIT_SIZES
 from vlln.world.generator.presets import DEFAULT_PRESET
@@ -80,7 +80,7 @@ class VllnEnv(gymnasium.Env[dict[str, Any], dict[str, Any]]):
         preset: str = DEFAULT_PRESET,
         oracle_seed: int = 0,
         dialog_budget: int | None = None,
-        max_steps: int = 500,
+        max_steps: int = DEFAULT_MAX_STEPS,
         privileged: bool = False,
         width: int = 640,
         height: int = 480,
@@ -108,12 +108,14 @@ class VllnEnv(gymnasium.Env[dict[str, Any], dict[str, Any]]):
                 }
             )
         kind = TaskType.parse(task)
-        if dialog_budget is None:
-            dialog_budget = 5 if kind == TaskType.IIGN else 0
         if render_mode not in (None, "rgb_array"):
             raise ConfigError(f"render_mode {render_mode!r} is not supported; use 'rgb_array'")
         self.render_mode = render_mode
-        self.config = TaskConfig(task=kind, max_steps=max_steps, dialog_budget=dialog_budget)
+        self.config = TaskConfig(
+            task=kind,
+            max_steps=max_steps,
+            dialog_budget=kind.default_budget if dialog_budget is None else dialog_budget,
+        )
         self.privileged = privileged
         self._cache_dir = Path(cache_dir) if cache_dir else default_cache_dir()
         self._source = {
@@ -130,7 +132,7 @@ class VllnEnv(gymnasium.Env[dict[str, Any], dict[str, Any]]):
         self.observation_space = observation_space(
             sim_config.camera,
             sim_config.motion,
-            dialog_budget if self.config.dialog_enabled else 0,
+            self.config.dialog_budget if self.config.dialog_enabled else 0,
             privileged,
         )
         self.action_space = action_space()

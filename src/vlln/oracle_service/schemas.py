@@ -13,9 +13,10 @@ from typing import Annotated, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
+from vlln.tasks.spec import MAX_DIALOG_BUDGET, TaskType
+
 MAX_QUESTION_CHARS = 1000
 MAX_ID_CHARS = 200
-MAX_DIALOG_BUDGET = 100
 MAX_COORDINATE = 10_000.0  # metres; far beyond any house, small enough to stay exact
 SESSION_ID_PATTERN = r"^[A-Za-z0-9_-]{1,64}$"
 
@@ -48,7 +49,9 @@ class CreateSessionRequest(_Request):
     scene_id: str | None = Field(default=None, min_length=1, max_length=MAX_ID_CHARS)
     target_instance_id: int | None = Field(default=None, ge=1)
     episode_id: str | None = Field(default=None, min_length=1, max_length=MAX_ID_CHARS)
-    dialog_budget: int = Field(default=5, ge=0, le=MAX_DIALOG_BUDGET)
+    dialog_budget: int = Field(
+        default=TaskType.IIGN.default_budget, ge=0, le=MAX_DIALOG_BUDGET
+    )  # the paper's range, as in the environment
 
     @model_validator(mode="after")
     def _one_target(self) -> CreateSessionRequest:

@@ -9,13 +9,14 @@ from typing import Literal
 from vlln.errors import ConfigError
 from vlln.sim.agent import Action
 
-TASK_DEFAULT = -1
-"""A dialog budget that stands for the task's default (5 on IIGN, 0 elsewhere)."""
-
 MAX_DIALOG_BUDGET = 5
 """The largest dialog budget. The paper's budgets run 0..5 (its MSP averages budgets 1..5) and
 its dialog-turn ablation lists 5 as "∞ (5)": agents ask under two questions even then, and an
 episode may talk at most ``max_talk_actions`` (20) times, so a larger budget only repeats 5."""
+
+DEFAULT_MAX_STEPS = 500
+"""Counted steps (STOP, FORWARD, TURN) before an episode is cut: the reference's cap
+(docs/reference-facts.md §1). Every setting of a step limit defaults to this one."""
 
 REFUSAL_MESSAGE = "Sorry, you have reached the question limit. No further answers are available."
 
@@ -46,6 +47,20 @@ class TaskType(StrEnum):
     def default_budget(self) -> int:
         """Answered questions when none is given: the reference's 5 on IIGN, else none."""
         return 5 if self == TaskType.IIGN else 0
+
+    def check_budget(self, budget: int) -> None:
+        """The one budget rule: 0 to :data:`MAX_DIALOG_BUDGET` answered questions, and 0 on a
+        task without dialog."""
+        if not 0 <= budget <= MAX_DIALOG_BUDGET:
+            raise ConfigError(
+                f"dialog budgets run from 0 to {MAX_DIALOG_BUDGET}, the paper's range (its "
+                f"budget 5 already lets an agent ask all it wants), got {budget}"
+            )
+        if budget > 0 and not self.has_dialog:
+            raise ConfigError(
+                f"task {self.value} has no dialog, so its only budget is 0 (got {budget}); "
+                "use budget 0, or task iign or ign"
+            )
 
 
 @dataclass(frozen=True)
@@ -90,28 +105,23 @@ class TaskConfig:
     neither an Action nor a Talk are failed actions, recorded, and capped too. A model agent
     looks down once per pixel goal and a goal may be a step or two away, so the look cap
     equals the step cap: it stops endless looking, not ordinary pixel-goal navigation.
-    ``dialog_budget`` left at :data:`TASK_DEFAULT` becomes the task's
-    :attr:`TaskType.default_budget`."""
+    ``dialog_budget`` left at None becomes the task's :attr:`TaskType.default_budget`."""
 
     task: TaskType = TaskType.IIGN
-    max_steps: int = 500
-    max_look_actions: int = 500
+    max_steps: int = DEFAULT_MAX_STEPS
+    max_look_actions: int = DEFAULT_MAX_STEPS
     max_talk_actions: int = 20
     max_failed_actions: int = 20
-    dialog_budget: int = TASK_DEFAULT
+    dialog_budget: int = None  # type: ignore[assignment]  # None: the task's default
     success_radius: float = 0.25
 
     def __post_init__(self) -> None:
-        if self.dialog_budget == TASK_DEFAULT:
+        if self.dialog_budget is None:
             object.__setattr__(self, "dialog_budget", self.task.default_budget)
         for name in ("max_steps", "max_look_actions", "max_talk_actions", "max_failed_actions"):
             if getattr(self, name) < 1:
                 raise ConfigError(f"{name} must be at least 1, got {getattr(self, name)}")
-        if not 0 <= self.dialog_budget <= MAX_DIALOG_BUDGET:
-            raise ConfigError(
-                f"dialog_budget must be 0 to {MAX_DIALOG_BUDGET} (the paper's budgets), "
-                f"got {self.dialog_budget}"
-            )
+        self.task.check_budget(self.dialog_budget)
         if not self.success_radius > 0:
             raise ConfigError(f"success_radius must be positive, got {self.success_radius}")
 

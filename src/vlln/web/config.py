@@ -24,7 +24,7 @@ from vlln.config import Config
 from vlln.errors import ConfigError
 from vlln.oracle.llm.openai_client import OpenAISettings
 from vlln.tasks.episode import Episode
-from vlln.tasks.spec import MAX_DIALOG_BUDGET, TaskType
+from vlln.tasks.spec import DEFAULT_MAX_STEPS, TaskType
 
 PARTICIPANT_PATTERN = re.compile(r"^[A-Za-z0-9_.-]{1,32}$")
 HUMAN_PREFIX = "human"
@@ -56,7 +56,7 @@ class WebLimits(Config):
 
     task: TaskType = TaskType.IIGN
     """task of the served episodes"""
-    max_steps: Count = 500
+    max_steps: Count = DEFAULT_MAX_STEPS
     """counted-step cap of an episode"""
     seed: int = 0
     """seed of oracles and agents"""
@@ -123,13 +123,7 @@ class WebConfig(WebLimits):
 
     @model_validator(mode="after")
     def _budget_fits_task(self) -> Self:
-        if not 0 <= self.dialog_budget <= MAX_DIALOG_BUDGET or (
-            self.task != TaskType.IIGN and self.dialog_budget > 0
-        ):
-            raise ValueError(
-                f"dialog budget {self.dialog_budget} does not fit task {self.task.value}: "
-                f"IIGN takes a budget of 0 to {MAX_DIALOG_BUDGET} (the paper's), the other tasks 0"
-            )
+        self.task.check_budget(self.dialog_budget)
         return self
 
     @field_validator("agent_options")

@@ -30,7 +30,7 @@ from vlln.sim.simulator import Simulator
 from vlln.sim.storeys import Point3
 from vlln.tasks.episode import Episode
 from vlln.tasks.oracle_protocol import EpisodeContext, Oracle
-from vlln.tasks.spec import TaskType
+from vlln.tasks.spec import DEFAULT_MAX_STEPS, TaskType
 from vlln.world.frame import quaternion_to_yaw
 from vlln.world.model import ObjectInstance
 
@@ -50,7 +50,7 @@ class CollectorConfig:
     policy: PolicyConfig = field(default_factory=PolicyConfig)
     dialog: DialogConfig = field(default_factory=DialogConfig)
     goal_radius: float = 0.25  # the follower stops this close to a view point
-    max_steps: int = 500
+    max_steps: int = DEFAULT_MAX_STEPS
 
     def __post_init__(self) -> None:
         if self.max_steps < 1 or not self.goal_radius > 0.0:
