@@ -108,7 +108,8 @@ class SftCollator:
     def _processed(self, groups: list[tuple[Path, ...]]) -> list[list[ProcessedImage]]:
         missing = list(dict.fromkeys(path for group in groups for path in group))
         missing = [path for path in missing if path not in self._cache]
-        fresh = dict(zip(missing, self.encoder.process_images([load_rgb(p) for p in missing])))
+        processed = self.encoder.process_images([load_rgb(path) for path in missing])
+        fresh = dict(zip(missing, processed, strict=True))
         out = [[fresh.get(path) or self._cache[path] for path in group] for group in groups]
         for path, image in fresh.items():
             self._remember(path, image)
