@@ -9,7 +9,8 @@ With ``actions[t]`` the action done at frame ``t`` (the last is STOP) and ``n`` 
   gives nothing), with those questions as ``<talk>`` turns first, ``repeats`` times.
 
 A turn sample turns as many times as the same turn repeats from ``t``, at most
-``max_turn_run``. Trajectories shorter than 4 frames give no samples, as in the reference.
+``max_turn_run``, and never past a frame where questions were asked: an agent that made the
+whole run would not stand at that frame to ask them. Trajectories shorter than 4 frames give no samples, as in the reference.
 """
 
 from __future__ import annotations
@@ -83,11 +84,13 @@ def _move(trajectory: SourceTrajectory, frame: int, config: SftConfig) -> Move |
         return None
     if action not in _DIRECTIONS:
         raise DataFormatError(f"action {action} at frame {frame} is not a move, turn or STOP")
+    asked = {exchange.frame for exchange in trajectory.exchanges}
     count = 1
     while (
         count < config.max_turn_run
         and frame + count < len(actions)
         and actions[frame + count] == action
+        and frame + count not in asked
     ):
         count += 1
     return TurnOutput(_DIRECTIONS[action], count)
