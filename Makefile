@@ -7,7 +7,7 @@ BIN := $(VENV)/bin
 DEMO_STAMP := $(VENV)/.demo-installed
 STAMP := $(VENV)/.installed
 SETUP := pyproject.toml scripts/setup.sh scripts/setup-lib.sh
-SRC := src tests
+SRC := src oracle_training tests
 
 .PHONY: setup demo test test-fast lint bench clean
 

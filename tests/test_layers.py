@@ -21,6 +21,7 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 SRC = ROOT / "src"
+TRAINING = ROOT / "oracle_training"  # the classifier's training, beside the package, not in it
 ARCHITECTURE = ROOT / "docs" / "architecture.md"
 
 # Bottom to top; each entry is one layer, its packages independent of each other.
@@ -182,6 +183,29 @@ def test_the_architecture_document_lists_the_same_layers() -> None:
     documented = [tuple(re.findall(r"`([a-z_]+)/?`", packages)) for _, packages in rows]
     assert [int(number) for number, _ in rows] == list(range(1, len(LAYERS) + 1))
     assert documented == list(LAYERS)
+
+
+def test_the_training_folder_sits_on_the_oracle_and_only_its_commands_reach_it() -> None:
+    # oracle_training/ is not installed: it may import the oracle and what lies below it, and
+    # the package imports it only inside the functions of the commands that train and
+    # measure the classifier (which say where it is when an install lacks it).
+    oracle = next(i for i, layer in enumerate(LAYERS) if "oracle" in layer)
+    allowed = {package for layer in LAYERS[: oracle + 1] for package in layer}
+    for path in sorted(TRAINING.glob("*.py")):
+        imports = imports_in(path.read_text(encoding="utf-8"), "vlln.oracle.training", False, set())
+        assert {package_of(item.target) for item in imports} <= allowed, path.name
+    reaching = set()
+    for path in sorted(SRC.joinpath("vlln").rglob("*.py")):
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Import):
+                names = [alias.name for alias in node.names]
+            else:
+                names = [node.module or ""] if isinstance(node, ast.ImportFrom) else []
+            if any(name.split(".")[0] == "oracle_training" for name in names):
+                reaching.add(module_name(path))
+                assert node.col_offset > 0, f"{module_name(path)} line {node.lineno}"
+    assert reaching == {"vlln.cli.oracle", "vlln.oracle.question_set"}
 
 
 SYNTHETIC = """

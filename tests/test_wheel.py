@@ -34,15 +34,16 @@ def test_the_wheel_holds_the_package_data_and_runs(tmp_path: Path) -> None:
         for path in package.rglob("*")
         if path.is_file() and path.suffix not in (".py", ".pyc")
     }
-    assert any(name.endswith(".jsonl") for name in data) and any("static" in n for n in data)
+    assert "vlln/oracle/data/question_classifier.json" in data and any("static" in n for n in data)
+    assert not any(name.endswith(".jsonl") for name in data)  # the question sets stay outside
     with zipfile.ZipFile(wheel) as archive:
         names = set(archive.namelist())
         archive.extractall(tmp_path / "installed")
     assert data <= names, sorted(data - names)
     assert "vlln/cli/__init__.py" in names
 
-    # The command line of the unpacked wheel, away from the checkout, reads its packaged
-    # question sets.
+    # The command line of the unpacked wheel, away from the checkout, classifies with its
+    # packaged classifier; the held-out set is not packaged, so it is named.
     env = dict(os.environ, PYTHONPATH=str(tmp_path / "installed"))
     where = subprocess.run(
         [sys.executable, "-c", "import vlln; print(vlln.__file__)"],
@@ -53,8 +54,10 @@ def test_the_wheel_holds_the_package_data_and_runs(tmp_path: Path) -> None:
         check=True,
     )
     assert where.stdout.startswith(str(tmp_path / "installed"))
+    heldout = ROOT / "oracle_training" / "questions" / "questions_heldout_v23_v24.jsonl"
+    command = [sys.executable, "-m", "vlln.cli", "oracle", "classify-report"]
     report = subprocess.run(
-        [sys.executable, "-m", "vlln.cli", "oracle", "classify-report"],
+        [*command, "--questions", str(heldout)],
         capture_output=True,
         text=True,
         env=env,
@@ -62,3 +65,5 @@ def test_the_wheel_holds_the_package_data_and_runs(tmp_path: Path) -> None:
     )
     assert report.returncode == 0, report.stderr
     assert "| attribute |" in report.stdout
+    bare = subprocess.run(command, capture_output=True, text=True, env=env, cwd=tmp_path)
+    assert bare.returncode != 0 and "oracle_training/ folder" in bare.stderr

@@ -10,17 +10,13 @@ import pytest
 from vlln.errors import ConfigError, DataFormatError
 from vlln.oracle.classify import RouteKind
 from vlln.oracle.question_set import (
-    PACKAGED_SETS,
-    TRAINING_SETS,
     LabelledQuestion,
     accuracy_of,
     classifier_report,
     confusion_matrix,
     evaluate_classifier,
-    load_packaged_question_set,
     load_question_set,
     markdown_confusion_table,
-    packaged_question_set_path,
 )
 from vlln.tasks.oracle_protocol import QuestionType
 
@@ -83,27 +79,6 @@ def test_missing_and_empty_files_are_format_errors(tmp_path: Path) -> None:
         load_question_set(_write(tmp_path, ["", "  "]))
 
 
-def test_the_packaged_train_set_loads_and_unknown_names_are_refused() -> None:
-    assert load_packaged_question_set("train")
-    with pytest.raises(ConfigError, match="heldout"):
-        load_packaged_question_set("test")
-
-
-def test_each_training_set_has_its_own_file() -> None:
-    paths = {packaged_question_set_path(name) for name in TRAINING_SETS}
-    assert len(paths) == len(TRAINING_SETS)
-    assert all(packaged_question_set_path(name).suffix == ".jsonl" for name in PACKAGED_SETS)
-
-
-def test_the_packaged_heldout_set_loads() -> None:
-    assert load_packaged_question_set("heldout")
-
-
-def test_the_packaged_train_set_repeats_no_row() -> None:
-    rows = load_packaged_question_set("train")
-    assert len(set(rows)) == len(rows)
-
-
 def test_confusion_matrix_counts_a_hand_made_example() -> None:
     truth = [A, A, A, R, R, D, X]
     predicted = [A, A, X, R, D, D, X]
@@ -146,9 +121,3 @@ def test_classifier_report_measures_a_given_file(tmp_path: Path) -> None:
     assert "| attribute | 1 | 0 | 0 | 1 | 0.500 |" in report["table"]
     # Only the second question gives a topic, and its type is already wrong.
     assert report["topic_accuracy"] == {"attribute": {"questions": 1, "accuracy": 0.0}}
-
-
-def test_classifier_report_defaults_to_the_heldout_set() -> None:
-    report = classifier_report(None)
-    assert report["questions"] == len(load_packaged_question_set("heldout"))
-    assert 0.0 < report["accuracy"] <= 1.0

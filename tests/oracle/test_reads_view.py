@@ -9,7 +9,7 @@ from collections.abc import Iterator
 import numpy as np
 import pytest
 
-from vlln.oracle.question_set import load_packaged_question_set
+from oracle_training.question_sets import load_named_set
 from vlln.oracle.rule_oracle import RuleOracle, reads_view
 from vlln.sim.agent import AgentState
 from vlln.sim.renderer import Frame
@@ -48,7 +48,7 @@ def test_questions_answered_without_the_view_get_the_same_answer_blind(sim: Simu
     for oracle in (sighted, blind):
         oracle.start(EpisodeContext(sim, target, points))
     rng = np.random.default_rng(7)
-    texts = [q.question for name in ("heldout", "train") for q in load_packaged_question_set(name)]
+    texts = [q.question for name in ("heldout", "train") for q in load_named_set(name)]
     asked = [*LOOKING, *(texts[int(i)] for i in rng.choice(len(texts), 300, replace=False))]
     states = [  # half facing the target from its view points, half anywhere
         AgentState((x, grid.floor_y, z), yaw_of(target.box.center[0] - x, target.box.center[2] - z))

@@ -1,7 +1,8 @@
 """`vlln bench oracle`: how long the offline oracle takes to answer, overall and per type.
 
-Questions are drawn from the packaged held-out set (so the mix of types is a navigator's,
-not ours), asked from random agent poses in a generated house about randomly chosen targets.
+Questions are drawn from the held-out set of the repository's ``oracle_training/`` (so the
+mix of types is a navigator's, not ours), asked from random agent poses in a generated house
+about randomly chosen targets.
 Only :meth:`RuleOracle.answer` is timed: the view each question comes with is rendered
 before the clock starts, and :meth:`RuleOracle.start` (which builds the episode's distance
 field once) is reported on its own as ``oracle_start_ms``.
@@ -19,7 +20,7 @@ from vlln.bench.settings import OracleBench
 from vlln.errors import ConfigError
 from vlln.extras import SERVICE_BENCH_PACKAGES, require_extra
 from vlln.oracle.classify import analyse_question
-from vlln.oracle.question_set import load_packaged_question_set
+from vlln.oracle.question_set import heldout_texts
 from vlln.oracle.rule_oracle import RuleOracle
 from vlln.sim.agent import AgentState
 from vlln.sim.simulator import Simulator
@@ -46,7 +47,7 @@ def run_oracle_benchmark(settings: OracleBench) -> list[Figure]:
         figures.append(figure)
         emit(figure, as_json)
 
-    texts = [q.question for q in load_packaged_question_set("heldout")]
+    texts = heldout_texts("vlln bench oracle")
     record("classify_us", _classify_us(texts), "us")
     rng = np.random.default_rng(seed)
     oracle = RuleOracle(seed)

@@ -30,7 +30,7 @@ import httpx
 import numpy as np
 
 from vlln.errors import ConfigError
-from vlln.oracle.question_set import load_packaged_question_set
+from vlln.oracle.question_set import heldout_texts
 from vlln.sim.simulator import Simulator
 from vlln.sim.viewpoints import view_points
 from vlln.tasks.scenes import procedural_scene_id
@@ -62,7 +62,7 @@ def run_service_benchmark(
         headers = {"Authorization": f"Bearer {token}"}
         _wait_until_up(base, server)
         target, poses = _target_and_poses(seed)
-        questions = [q.question for q in load_packaged_question_set("heldout")]
+        questions = heldout_texts("vlln bench oracle")
         server_cpu = partial(_cpu_seconds, server.pid)
         load = asyncio.run(_load(base, headers, seed, target, poses, questions, rounds, server_cpu))
         record("service_clients", CLIENTS, "clients")

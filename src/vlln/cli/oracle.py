@@ -69,9 +69,15 @@ def _oracle_serve(command: ServeCommand) -> int:
 
 def _oracle_classify_report(command: ClassifyReportCommand) -> int:
     from vlln.oracle.classifier.model import packaged_classifier
-    from vlln.oracle.question_set import classifier_report
+    from vlln.oracle.question_set import classifier_report, import_training
 
-    report = classifier_report(command.questions)
+    questions = command.questions
+    if questions is None:
+        import_training("vlln oracle classify-report without --questions (the held-out set)")
+        from oracle_training.question_sets import question_set_path
+
+        questions = question_set_path("heldout")
+    report = classifier_report(questions)
     report["classifier"] = packaged_classifier().meta
     if command.as_json:
         print(json.dumps({k: v for k, v in report.items() if k != "table"}, indent=2))
@@ -85,8 +91,11 @@ def _oracle_classify_report(command: ClassifyReportCommand) -> int:
 
 def _oracle_classify_cv(command: ClassifyCvCommand) -> int:
     from vlln.errors import ConfigError
-    from vlln.oracle.classifier.training import training_sets
-    from vlln.oracle.classifier.validation import grouped_cv, leave_one_out
+    from vlln.oracle.question_set import import_training
+
+    import_training("vlln oracle classify-cv")
+    from oracle_training.training import training_sets
+    from oracle_training.validation import grouped_cv, leave_one_out
 
     sets = training_sets()
     if command.leave_out not in sets:
@@ -115,10 +124,13 @@ def _oracle_classify_cv(command: ClassifyCvCommand) -> int:
 
 def _oracle_train_classifier(command: TrainClassifierCommand) -> int:
     from vlln.oracle.classifier.model import load_classifier, packaged_artefact_path
-    from vlln.oracle.classifier.training import train_packaged, write_artefact
+    from vlln.oracle.question_set import import_training
+
+    import_training("vlln oracle train-classifier")
+    from oracle_training.training import train_all_sets, write_artefact
 
     path = command.out or packaged_artefact_path()
-    write_artefact(train_packaged(command.seed), path)
+    write_artefact(train_all_sets(command.seed), path)
     meta = load_classifier(path).meta
     print(f"wrote {path} (training data {meta['training_digest'][:12]}, seed {command.seed})")
     return 0
@@ -151,5 +163,6 @@ def add_oracle_commands(commands: Commands) -> None:
         "train-classifier",
         _train_classifier_command,
         _oracle_train_classifier,
-        help="fit the offline question classifier on the packaged training questions",
+        help="fit the offline question classifier on the training questions of the "
+        "repository's oracle_training/ (a checkout's vlln only)",
     )

@@ -10,7 +10,6 @@ from typing import Annotated
 from pydantic import AliasChoices, Field
 
 from vlln.config import Config
-from vlln.oracle.classifier.validation import FOLDS
 from vlln.oracle_service.config import DEFAULT_HOST, DEFAULT_PORT, ServiceLimits
 
 
@@ -36,7 +35,7 @@ class ClassifyReportCommand(Config):
     """``vlln oracle classify-report``: accuracy and confusion matrix of the offline classifier."""
 
     questions: Path | None = None
-    """a JSON Lines question set (none: the held-out set)"""
+    """a JSON Lines question set (none: the held-out set of the repository's oracle_training/)"""
     as_json: Annotated[bool, Field(validation_alias=AliasChoices("json", "as_json"))] = False
     """print the figures as JSON"""
 
@@ -54,7 +53,7 @@ class ClassifyCvCommand(Config):
     """``vlln oracle classify-cv``: accuracy on questions the classifier was not trained on,
     without a held-out file: cross-validation over question families, and one set left out."""
 
-    folds: Annotated[int, Field(ge=2)] = FOLDS
+    folds: Annotated[int, Field(ge=2)] = 5
     """cross-validation folds"""
     seed: int = 0
     """seed of the typo copies"""

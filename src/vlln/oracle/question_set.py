@@ -1,14 +1,6 @@
 """Labelled navigator questions, and how well the offline classifier types them.
 
-The classifier is learned (:mod:`vlln.oracle.classifier`), so its accuracy means something
-only on questions it was not trained on. It is trained on ``train`` (navigator questions),
-``extra`` (questions written for training: every topic, typos, chat spellings, word orders),
-``v6`` ... ``v12``, ``v17``, ``v18`` (former held-out sets, each measured and then trained
-on), ``written_*``, ``v13`` ... ``v16`` and ``v19`` ... ``v22`` (written for training by other
-writers) and ``generated`` (written from templates by :mod:`vlln.oracle.classifier.generator`,
-reproducible from a seed);
-``heldout`` is written separately and frozen, only ever measured. All are JSON Lines, one
-question a line::
+A question set is JSON Lines, one question a line::
 
     {"question": "Which way is the sofa?", "type": "route", "route_kind": "orientation"}
     {"question": "What colour is it?", "type": "attribute", "topic": "color"}
@@ -16,14 +8,19 @@ question a line::
 ``route_kind`` is required for route questions and forbidden otherwise; ``topic`` (an
 :class:`AttributeTopic` or :class:`OtherTopic`) is optional for attribute and other questions
 and forbidden otherwise. Training needs every topic; the held-out set has none.
+
+The classifier's training code and question sets (the held-out one among them) are not part
+of the installed package: they live in the repository's ``oracle_training/`` folder, beside
+``src/`` (:func:`import_training` makes it importable).
 """
 
 from __future__ import annotations
 
+import importlib.util
 import json
+import sys
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from importlib.resources import files
 from pathlib import Path
 from typing import Any
 
@@ -32,46 +29,8 @@ from vlln.oracle.classify import analyse_question, classify_question
 from vlln.oracle.topics import AttributeTopic, OtherTopic, RouteKind, Topic, label_of
 from vlln.tasks.oracle_protocol import QuestionType
 
-# A held-out set stops being held out once the classifier is trained on it or tuned on its
-# errors; each replacement is a new file, written without looking at the classifier.
-_PACKAGED_FILES = {
-    "train": "questions_train.jsonl",
-    "extra": "questions_extra.jsonl",
-    "v6": "questions_heldout_v6.jsonl",
-    "generated": "questions_generated.jsonl",
-    "written_a": "questions_written_a.jsonl",
-    "written_b": "questions_written_b.jsonl",
-    "written_c": "questions_written_c.jsonl",
-    "written_d": "questions_written_d.jsonl",
-    "written_e": "questions_written_e.jsonl",
-    "written_f": "questions_written_f.jsonl",
-    "v7": "questions_v7.jsonl",
-    "v8": "questions_v8.jsonl",
-    "v9": "questions_v9.jsonl",
-    "v10": "questions_v10.jsonl",
-    "v11": "questions_v11.jsonl",
-    "v12": "questions_v12.jsonl",
-    "v13": "questions_v13.jsonl",
-    "v14": "questions_v14.jsonl",
-    "v15": "questions_v15.jsonl",
-    "v16": "questions_v16.jsonl",
-    "v17": "questions_v17.jsonl",
-    "v18": "questions_v18.jsonl",
-    "v19": "questions_v19.jsonl",
-    "v20": "questions_v20.jsonl",
-    "v21": "questions_v21.jsonl",
-    "v22": "questions_v22.jsonl",
-    "heldout": "questions_heldout_v23_v24.jsonl",
-}
-# written_*: questions written from the task definition alone, in human navigators' (a),
-# vision-language agents' (b), short and non-native (c) and mid-dialog (d) styles, and (e)
-# from the labelling guide (docs/oracle-classifier.md), weighted to short utterances, chatter
-# and yes/no questions that read like another type, and (f) as mid-episode dialog by four
-# kinds of navigator, narration included; v13 ... v16 from the guide, each by eight personas
-# (people and model agents) the writer was given (v13-v15) or chose (v16); v19 ... v22 as
-# contrasting pairs, two utterances that read almost alike but differ in type.
-PACKAGED_SETS = tuple(_PACKAGED_FILES)
-TRAINING_SETS = tuple(name for name in PACKAGED_SETS if name != "heldout")
+# The repository's training folder, as seen from src/vlln/oracle/ of a checkout.
+TRAINING_FOLDER = Path(__file__).resolve().parents[3] / "oracle_training"
 _FIELDS = frozenset({"question", "type", "route_kind", "topic"})
 _TOPICS: dict[QuestionType, type[AttributeTopic] | type[OtherTopic]] = {
     QuestionType.ATTRIBUTE: AttributeTopic,
@@ -97,17 +56,27 @@ class LabelledQuestion:
         return label_of(self.question_type, topic)
 
 
-def packaged_question_set_path(name: str) -> Path:
-    """Where the packaged set ``name`` (one of :data:`PACKAGED_SETS`) lives."""
-    if name not in PACKAGED_SETS:
-        raise ConfigError(f"unknown question set {name!r}; choose one of {PACKAGED_SETS}")
-    resource = files("vlln.oracle").joinpath("data", _PACKAGED_FILES[name])
-    return Path(str(resource))
+def import_training(command: str) -> None:
+    """Make the repository's ``oracle_training`` package importable (it is when the checkout is
+    on the path); raises :class:`ConfigError` naming ``command`` where this vlln is an install
+    without it."""
+    if importlib.util.find_spec("oracle_training") is not None:
+        return
+    if not (TRAINING_FOLDER / "__init__.py").is_file():
+        raise ConfigError(
+            f"{command} needs the classifier's training code and question sets, which are in "
+            "the vlln repository's oracle_training/ folder, not in an installed vlln; run it "
+            "from a checkout (pip install -e .)"
+        )
+    sys.path.append(str(TRAINING_FOLDER.parent))
 
 
-def load_packaged_question_set(name: str) -> list[LabelledQuestion]:
-    """The packaged set ``name`` (one of :data:`PACKAGED_SETS`)."""
-    return load_question_set(packaged_question_set_path(name))
+def heldout_texts(command: str) -> list[str]:
+    """The questions of the repository's held-out set (for ``command``'s timings)."""
+    import_training(command)
+    from oracle_training.question_sets import load_named_set
+
+    return [q.question for q in load_named_set("heldout")]
 
 
 def load_question_set(path: str | Path) -> list[LabelledQuestion]:
@@ -221,11 +190,10 @@ def predicted_label(text: str) -> str:
     return label_of(analysis.question_type, topic)
 
 
-def classifier_report(path: str | Path | None = None) -> dict[str, Any]:
+def classifier_report(path: str | Path) -> dict[str, Any]:
     """Accuracy on type, confusion matrix and, where the set gives topics, per-type topic
-    accuracy of the offline classifier on a labelled file (the held-out set when ``path`` is
-    None)."""
-    questions = load_packaged_question_set("heldout") if path is None else load_question_set(path)
+    accuracy of the offline classifier on a labelled file."""
+    questions = load_question_set(path)
     matrix = evaluate_classifier(questions)
     topics: dict[str, dict[str, float]] = {}
     for question_type in QuestionType:

@@ -1,21 +1,24 @@
 """Loading the question classifier's artefact and labelling questions with it.
 
-The artefact is gzipped JSON: for each of the two TF-IDF feature sets (character 2-5-grams
-within word boundaries, and word 1-3-grams with house words read by role) its vocabulary and
-idf weights, then the linear model's weights per label. Plain numbers rather than a pickle,
-so that a newer scikit-learn still reads it. At load, scikit-learn builds each feature set's
-analyser (the n-gram splitting, with the fitted settings), and the weighting and the linear
-model are a few array operations: the same numbers as the fitted vectoriser, without its
-per-call overhead of about a millisecond.
+The artefact is JSON, one key a line: the format, versions, seed and training-data digest,
+the labels, and the model packed as base85 of xz-compressed arrays (:func:`packed`): the
+n-grams of the two TF-IDF feature sets (character 2-5-grams within word boundaries, then word
+1-3-grams with house words read by role), how many training texts each occurs in (its idf),
+and the linear model's weights, whole multiples of a step per label, with its biases. Plain
+numbers rather than a pickle, so that a newer scikit-learn still reads it. At load,
+scikit-learn builds each feature set's analyser (the n-gram splitting, with the fitted
+settings), and the weighting and the linear model are a few array operations: the same
+numbers as a vectoriser with the stored n-grams and idf, without its per-call overhead of
+about a millisecond.
 """
 
 from __future__ import annotations
 
-import gzip
+import base64
 import json
+import lzma
 import math
 import re
-import zlib
 from collections import Counter
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -34,8 +37,8 @@ from vlln.oracle.topics import LABELS
 if TYPE_CHECKING:
     from sklearn.feature_extraction.text import TfidfVectorizer
 
-FORMAT = 3  # bump when the artefact's layout or features change; older files are then refused
-ARTEFACT_NAME = "question_classifier.json.gz"
+FORMAT = 4  # bump when the artefact's layout or features change; older files are then refused
+ARTEFACT_NAME = "question_classifier.json"
 RETRAIN = "rebuild it with `vlln oracle train-classifier`"
 _WORDS = r"(?u)\b\w+\b"
 # The feature sets (scikit-learn TfidfVectorizer settings), in the order they are joined.
@@ -147,11 +150,28 @@ def load_classifier(path: Path) -> QuestionClassifier:
     return classifier_from_bytes(data, path)
 
 
+def packed(value: str | NDArray[Any]) -> str:
+    """Text or an array's bytes, xz-compressed (deterministically), in base85 (a JSON string)."""
+    data = value.encode("utf-8") if isinstance(value, str) else value.tobytes()
+    return base64.b85encode(lzma.compress(data, preset=9 | lzma.PRESET_EXTREME)).decode("ascii")
+
+
+def unpacked(text: str) -> bytes:
+    """The bytes :func:`packed` packed."""
+    return lzma.decompress(base64.b85decode(text))
+
+
+def artefact_text(artefact: dict[str, Any]) -> str:
+    """The artefact as JSON, sorted keys, one a line (its few figures readable at a glance)."""
+    lines = [f"{json.dumps(key)}: {json.dumps(artefact[key])}" for key in sorted(artefact)]
+    return "{\n" + ",\n".join(lines) + "\n}\n"
+
+
 def classifier_from_bytes(data: bytes, path: Path | str = "in memory") -> QuestionClassifier:
     """An artefact's classifier from its bytes (``path`` names it in errors)."""
     try:
-        raw = json.loads(gzip.decompress(data))
-    except (OSError, EOFError, zlib.error, ValueError) as error:
+        raw = json.loads(data)
+    except ValueError as error:
         raise DataFormatError(
             f"the question classifier {path} is damaged ({error}); {RETRAIN}"
         ) from error
@@ -163,7 +183,7 @@ def classifier_from_bytes(data: bytes, path: Path | str = "in memory") -> Questi
         )
     try:
         return _from_json(raw)
-    except (KeyError, TypeError, ValueError) as error:
+    except (KeyError, TypeError, ValueError, lzma.LZMAError) as error:
         raise DataFormatError(
             f"the question classifier {path} is damaged ({type(error).__name__}: {error}); "
             f"{RETRAIN}"
@@ -174,21 +194,25 @@ def _from_json(raw: dict[str, Any]) -> QuestionClassifier:
     labels = tuple(raw["labels"])
     if set(labels) != set(LABELS):
         raise ValueError(f"its labels {labels} are not this vlln's {LABELS}")
+    vocabulary = unpacked(raw["vocabulary"]).decode("utf-8").split("\n")
+    in_documents = np.frombuffer(unpacked(raw["document_frequency"]), "<u4")
+    # scikit-learn's smooth idf of an n-gram found in df of the n training texts.
+    idf = np.log((1.0 + raw["documents"]) / (1.0 + in_documents)) + 1.0
+    levels = np.frombuffer(unpacked(raw["weights"]), np.int8)
+    weights = levels.reshape(-1, len(labels)) * np.asarray(raw["weight_steps"], np.float64)
+    bias = np.asarray(raw["bias"], np.float64)
+    sizes = [int(raw["features"][name]) for name in FEATURE_SETS]
+    if not len(vocabulary) == len(idf) == weights.shape[0] == sum(sizes):
+        raise ValueError(f"{sizes} features, {len(vocabulary)} n-grams, {len(idf)} idf weights")
+    if bias.shape != (len(labels),):
+        raise ValueError(f"{bias.shape[0]} biases for {len(labels)} labels")
     parts = []
     offset = 0
-    for name in FEATURE_SETS:
-        stored = raw["features"][name]
-        vocabulary = list(stored["vocabulary"])
-        idf = np.asarray(stored["idf"], np.float64)
-        if len(idf) != len(vocabulary):
-            raise ValueError(f"{name}: {len(vocabulary)} n-grams but {len(idf)} idf weights")
-        index = {gram: i for i, gram in enumerate(vocabulary)}
-        parts.append(_FeatureSet(vectoriser(name).build_analyzer(), index, idf, offset))
-        offset += len(vocabulary)
-    weights = np.asarray(raw["weights"], np.float64).reshape(len(labels), -1).T
-    bias = np.asarray(raw["bias"], np.float64)
-    if weights.shape[0] != offset or bias.shape != (len(labels),):
-        raise ValueError(f"weights {weights.shape} do not fit {offset} features")
+    for name, size in zip(FEATURE_SETS, sizes, strict=True):
+        index = {gram: i for i, gram in enumerate(vocabulary[offset : offset + size])}
+        analyse = vectoriser(name).build_analyzer()
+        parts.append(_FeatureSet(analyse, index, idf[offset : offset + size], offset))
+        offset += size
     meta = {k: raw[k] for k in ("format", "vlln_version", "sklearn_version", "seed")}
     meta["training_digest"] = raw["training_digest"]
     return QuestionClassifier(labels, tuple(parts), np.ascontiguousarray(weights), bias, meta)

@@ -3,19 +3,22 @@
 Each label has templates with slots for an object, a second object, a room, a colour and a
 material; a question is a template filled from the vocabularies below, then dressed in one of
 the ways navigators write: plainly, in chat spellings, with a sentence of context first, in a
-language-model prompt's frame ("Question: ..."), with a greeting or a thank-you. Run
-``scripts/oracle_questions.py`` to rewrite ``questions_generated.jsonl``; the same seed gives
-the same file.
+language-model prompt's frame ("Question: ..."), with a greeting or a thank-you. Rewrite
+``questions/questions_generated.jsonl`` with ``python -m oracle_training.generator [--seed 0]``
+from the repository root (then retrain with ``vlln oracle train-classifier`` and commit both);
+the same seed gives the same file.
 """
 
 from __future__ import annotations
 
+import argparse
 import json
 import re
 
 import numpy as np
 
-from vlln.oracle.classifier.templates import CONTEXTS, SMALL_TALK, TEMPLATES
+from oracle_training.question_sets import question_set_path
+from oracle_training.templates import CONTEXTS, SMALL_TALK, TEMPLATES
 from vlln.oracle.topics import parse_label
 from vlln.tasks.oracle_protocol import QuestionType
 
@@ -120,3 +123,15 @@ def generated_questions(seed: int = 0) -> list[dict[str, str]]:
 def generated_jsonl(seed: int = 0) -> str:
     """The text of ``questions_generated.jsonl`` for ``seed``."""
     return "".join(json.dumps(row, ensure_ascii=False) + "\n" for row in generated_questions(seed))
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description="Rewrite the generated training questions.")
+    parser.add_argument("--seed", type=int, default=0, help="seed of the draws (default 0)")
+    path = question_set_path("generated")
+    path.write_text(generated_jsonl(parser.parse_args().seed), encoding="utf-8")
+    print(f"wrote {path}")
+
+
+if __name__ == "__main__":
+    main()

@@ -7,13 +7,14 @@ import json
 import pytest
 from sklearn.model_selection import GroupKFold
 
+from oracle_training import validation
+from oracle_training.generator import generated_jsonl, generated_questions
+from oracle_training.question_sets import question_set_path
+from oracle_training.training import training_sets
+from oracle_training.validation import family, grouped_cv, leave_one_out
 from vlln.cli import main
-from vlln.oracle.classifier import validation
-from vlln.oracle.classifier.generator import generated_jsonl, generated_questions
 from vlln.oracle.classifier.model import prepared
-from vlln.oracle.classifier.training import training_sets
-from vlln.oracle.classifier.validation import family, grouped_cv, leave_one_out
-from vlln.oracle.question_set import LabelledQuestion, packaged_question_set_path
+from vlln.oracle.question_set import LabelledQuestion
 from vlln.oracle.topics import LABELS
 
 SETS = training_sets()
@@ -74,7 +75,7 @@ def test_a_model_trained_without_v6_types_most_of_v6_right() -> None:
 def test_the_cv_command_prints_both_figures(
     monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    monkeypatch.setattr("vlln.oracle.classifier.training.training_sets", lambda: SMALL)
+    monkeypatch.setattr("oracle_training.training.training_sets", lambda: SMALL)
     assert main(["oracle", "classify-cv", "--folds", "2", "--leave-out", "train", "--json"]) == 0
     report = json.loads(capsys.readouterr().out)
     assert report["grouped_cv"]["folds"] == 2
@@ -84,7 +85,7 @@ def test_the_cv_command_prints_both_figures(
 
 
 def test_the_generated_file_is_the_generator_output_of_seed_0() -> None:
-    path = packaged_question_set_path("generated")
+    path = question_set_path("generated")
     assert path.read_text(encoding="utf-8") == generated_jsonl(0)
     assert generated_jsonl(1) != generated_jsonl(0)
 

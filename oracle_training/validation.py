@@ -20,20 +20,18 @@ from typing import Any
 
 from sklearn.model_selection import GroupKFold
 
+from oracle_training.training import train_artefact
 from vlln.oracle.classifier.entities import (
     MATERIAL_SYNONYMS,
     ROOM_SYNONYMS,
     corrected_words,
 )
 from vlln.oracle.classifier.model import classifier_from_bytes, prepared
-from vlln.oracle.classifier.training import train_artefact
 from vlln.oracle.question_set import LabelledQuestion
 from vlln.oracle.topics import parse_label
 from vlln.world.catalogue.aliases import aliases_of
 from vlln.world.catalogue.registry import default_catalogue
 from vlln.world.materials import COLORS
-
-FOLDS = 5
 
 
 @cache
