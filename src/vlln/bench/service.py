@@ -52,8 +52,8 @@ def run_service_benchmark(
     port = _free_port()
     command = [
         sys.executable, "-m", "vlln.cli", "oracle", "serve", "--port", str(port),
-        "--max-sessions", str(max(64, memory_scenes)), "--builds-per-minute", "100000",
-        "--client-builds-per-minute", "100000",
+        "--max-sessions", str(max(64, memory_scenes, CLIENTS * rounds)),
+        "--builds-per-minute", "100000", "--client-builds-per-minute", "100000",
     ]  # fmt: skip
     env = os.environ | {"VLLN_ORACLE_TOKEN": token}
     server = subprocess.Popen(command, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
@@ -146,13 +146,15 @@ async def _load(
             base, headers=headers, connector=aiohttp.TCPConnector(limit=1), timeout=TIMEOUT
         ) as http:
             body = {"scene_id": procedural_scene_id(seed), "target_instance_id": target}
-            async with http.post("/v1/sessions", json={**body, "dialog_budget": 100}) as created:
-                session = (await created.json())["session_id"]
+            sessions = []  # one per round: its three questions fit the paper's budget
+            for _ in range(rounds):
+                async with http.post("/v1/sessions", json=body) as created:
+                    sessions.append((await created.json())["session_id"])
             await ready.wait()  # every session exists (the house built once) ...
             if number == 0:
                 clock.append(time.perf_counter())  # ... before the clock starts
                 cpu.append(server_cpu())
-            for _ in range(rounds):
+            for session in sessions:
                 for step in range(4):
                     began = time.perf_counter()
                     if step < 3:

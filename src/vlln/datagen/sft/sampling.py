@@ -10,7 +10,8 @@ With ``actions[t]`` the action done at frame ``t`` (the last is STOP) and ``n`` 
 
 A turn sample turns as many times as the same turn repeats from ``t``, at most
 ``max_turn_run``, and never past a frame where questions were asked: an agent that made the
-whole run would not stand at that frame to ask them. Trajectories shorter than 4 frames give no samples, as in the reference.
+whole run would not stand at that frame to ask them. Trajectories shorter than 4 frames give
+no samples, as in the reference.
 """
 
 from __future__ import annotations
