@@ -207,3 +207,10 @@ class Mp3dConnectivityBench(BenchOptions):
 
     files: Annotated[CliPositionalArg[list[Path]], Field(min_length=1)]
     """<scan>_connectivity.json files"""
+
+
+class RecipeFigures(Config):
+    """``vlln bench recipe-figures``: the held-out figures of scripts/cpu-recipe.sh."""
+
+    out: Path = Path("out/recipe")
+    """the recipe's folder (its OUT)"""

@@ -62,6 +62,13 @@ COMMANDS = (
         "a model from scratch fits its teacher's trajectories, then plays them in vlln eval",
     ),
     (
+        "recipe-figures",
+        "RecipeFigures",
+        ("recipe:print_recipe_figures",),
+        "held-out SR and SPL with 95%% intervals, dialog gains and the learning curve of "
+        "scripts/cpu-recipe.sh",
+    ),
+    (
         "fidelity",
         "FidelityBench",
         ("fidelity:run_fidelity_benchmark",),

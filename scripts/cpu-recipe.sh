@@ -1,0 +1,96 @@
+#!/usr/bin/env bash
+# The CPU recipe (docs/learning.md): teacher data on small training houses, a model made from
+# scratch and trained on it, then the model, random, FBE (noisy detector) and the teacher
+# played on held-out test houses that nothing was trained or tuned on.
+#
+#   make setup-train && scripts/cpu-recipe.sh            # everything into out/recipe
+#   OUT=out/r2 STEPS=2000 EPISODES=50 scripts/cpu-recipe.sh
+#
+# Every stage resumes what an earlier call left (data, export, checkpoints, evaluation runs),
+# so a killed recipe goes on where it stopped. Figures: $OUT/report/report.md (held-out SR,
+# SPL and intervals of every run side by side) and $OUT/curve.tsv (held-out SR per checkpoint).
+# The scale is set by the variables below; the defaults fit 3 hours on a 2-core machine.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+VLLN="${VLLN:-$root/.venv/bin/vlln}"
+OUT="${OUT:-out/recipe}"
+HOUSES="${HOUSES:-40}"          # small training houses
+PER_HOUSE="${PER_HOUSE:-6}"     # teacher trajectories tried per house and task
+SIZE="${SIZE:-tiny}"            # vlln train new-model --size
+STEPS="${STEPS:-4000}"          # training steps; a checkpoint every quarter
+BATCH="${BATCH:-8}"
+LR="${LR:-2e-3}"
+EPISODES="${EPISODES:-100}"     # held-out episodes per task and run
+CURVE_EPISODES="${CURVE_EPISODES:-50}"  # held-out episodes per earlier checkpoint
+SEED="${SEED:-0}"
+# The data build runs JOBS processes side by side (one per core).
+JOBS="${JOBS:-2}"
+
+mkdir -p "$OUT"
+log() { printf '%s %s\n' "$(date +%H:%M:%S)" "$*" >&2; }
+
+# 1. Teacher data: frontier exploration with dialog (IIGN) and without (ObjectNav), on the
+#    training split of the small houses, built in JOBS shards side by side.
+for task in iign objectnav; do
+    log "data build $task"
+    for ((shard = 0; shard < JOBS; shard++)); do
+        "$VLLN" data build --preset small --split train --houses "$HOUSES" \
+            --per-house "$PER_HOUSE" --task "$task" --seed "$SEED" --shard "$shard/$JOBS" \
+            --out "$OUT/data-$task" --quiet --yes &
+    done
+    wait
+done
+
+# 2. One mixed export of both tasks (the reference's conversation format, 8 history frames).
+if [[ ! -f "$OUT/sft/export.json" ]]; then
+    log "export"
+    "$VLLN" data export-sft "$OUT/data-iign" "$OUT/data-objectnav" --seed "$SEED" \
+        --out "$OUT/sft" --quiet
+fi
+
+# 3. A model from scratch, trained with a checkpoint every quarter (the learning curve).
+if [[ ! -f "$OUT/model-new/config.json" ]]; then
+    "$VLLN" train new-model --size "$SIZE" --seed "$SEED" --out "$OUT/model-new"
+fi
+log "train $STEPS steps"
+OMP_NUM_THREADS="${OMP_NUM_THREADS:-$JOBS}" "$VLLN" train sft --data "$OUT/sft" \
+    --model "$OUT/model-new" --out "$OUT/model" --max-steps "$STEPS" --batch-size "$BATCH" \
+    --lr "$LR" --vision-lr "$LR" --save-steps $((STEPS / 4)) --save-limit 4 --workers 1 \
+    --logging-steps $((STEPS / 40 > 0 ? STEPS / 40 : 1)) --seed "$SEED"
+
+# 4. Held-out evaluation: the test split of the small houses, never trained on. Each run
+#    resumes; the model plays CONCURRENT episodes side by side, its decisions batched.
+evaluate() {  # evaluate NAME TASK EPISODES AGENT-FLAGS...
+    local name="$1" task="$2" episodes="$3"
+    shift 3
+    log "eval $name"
+    "$VLLN" eval --preset small --split test --task "$task" --episodes "$episodes" \
+        --seed "$SEED" --out "$OUT/eval/$name" --quiet "$@"
+}
+model=(--agent vlln --concurrent "${CONCURRENT:-8}")
+for task in iign objectnav; do
+    budgets=(--budgets 0,5)
+    [[ "$task" == objectnav ]] && budgets=(--budgets 0)
+    evaluate "$task-model" "$task" "$EPISODES" "${model[@]}" --model "$OUT/model" "${budgets[@]}"
+    evaluate "$task-random" "$task" "$EPISODES" --agent random "${budgets[@]}"
+    evaluate "$task-fbe" "$task" "$EPISODES" --agent fbe --detector noisy "${budgets[@]}"
+    evaluate "$task-teacher" "$task" "$EPISODES" --agent frontier --detector truth "${budgets[@]}"
+done
+
+# 5. The learning curve: held-out IIGN SR at budget 5 of each checkpoint, then the reports.
+sr_at_5() {  # SR (%) at budget 5 of a run directory
+    "$VLLN" score --json "$1" 2>/dev/null |
+        python3 -c 'import json,sys; print(json.load(sys.stdin)["groups"][0]["budgets"]["5"]["overall"]["sr"])'
+}
+printf 'steps\tepisodes\tsr_budget_5\n' > "$OUT/curve.tsv"
+for checkpoint in "$OUT"/model/checkpoint-*; do
+    steps="${checkpoint##*-}"
+    evaluate "curve-$steps" iign "$CURVE_EPISODES" "${model[@]}" --model "$checkpoint" \
+        --budgets 5
+    printf '%s\t%s\t%s\n' "$steps" "$CURVE_EPISODES" "$(sr_at_5 "$OUT/eval/curve-$steps")" \
+        >> "$OUT/curve.tsv"
+done
+for task in iign objectnav; do
+    "$VLLN" report "$OUT"/eval/"$task"-{model,random,fbe,teacher} --out "$OUT/report-$task"
+done
+log "done: $OUT/report-iign/report.md, $OUT/report-objectnav/report.md, $OUT/curve.tsv"
