@@ -44,3 +44,7 @@ class SftConfig(Config):
     """history frames in each prompt"""
     max_turn_run: Annotated[int, Field(ge=1, le=MAX_TURN_RUN)] = MAX_TURN_RUN
     """longest run of turns one answer names"""
+    forward_steps: bool = False
+    """a one-step <move>↑ sample at each forward frame with no visible pixel goal (the
+    reference writes none there, so an imitator has no decision to copy at the steps too close
+    to show on the look-down image, the last before most STOPs among them)"""

@@ -59,6 +59,7 @@ from vlln.eval.play import derive_seed
 from vlln.files import write_text_atomic
 from vlln.prompt import (
     Conversation,
+    ForwardOutput,
     PixelOutput,
     TiltDownOutput,
     build_conversation,
@@ -279,7 +280,7 @@ def _export_trajectory(
     for plan in plan_samples(trajectory, config):
         kind: str = plan.kind
         if kind == "step":
-            kind = "pixel" if isinstance(plan.move, PixelOutput) else "turn"
+            kind = {PixelOutput: "pixel", ForwardOutput: "forward"}.get(type(plan.move), "turn")
         for copy in range(plan.copies):
             answers_left = int(rng.integers(config.min_answers, config.max_answers + 1))
             conversation = sample_conversation(trajectory, plan, answers_left, config)
@@ -293,7 +294,7 @@ def _export_trajectory(
             )
             sink.write(SftRecord(sample_id, tuple(paths), conversation.turns).line())
             summary.samples += 1
-            summary.by_kind[kind] += 1
+            summary.by_kind[kind] = summary.by_kind.get(kind, 0) + 1
 
 
 def _prepare_out(out: Path) -> None:

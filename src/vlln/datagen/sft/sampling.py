@@ -3,7 +3,8 @@
 With ``actions[t]`` the action done at frame ``t`` (the last is STOP) and ``n`` frames:
 
 * every ``sample_step``-th frame ``t`` but the last: a pixel-goal sample where the
-  frame has a goal, a turn sample where it turns, nothing where it steps forward without one;
+  frame has a goal, a turn sample where it turns, nothing where it steps forward without one
+  (with ``forward_steps``, a one-step ``<move>↑`` sample there);
 * the last frame: a STOP sample, ``repeats`` times;
 * every frame where questions were asked: the same choice (a forward frame without a goal
   gives nothing), with those questions as ``<talk>`` turns first, ``repeats`` times.
@@ -22,11 +23,11 @@ from typing import Literal
 from vlln.datagen.sft.config import SftConfig
 from vlln.datagen.sft.source import SourceTrajectory
 from vlln.errors import DataFormatError
-from vlln.prompt import PixelOutput, StopOutput, TurnOutput
+from vlln.prompt import ForwardOutput, PixelOutput, StopOutput, TurnOutput
 from vlln.sim.agent import Action
 
 MIN_FRAMES = 4
-Move = PixelOutput | TurnOutput | StopOutput
+Move = PixelOutput | TurnOutput | StopOutput | ForwardOutput
 Kind = Literal["step", "stop", "dialog"]
 _DIRECTIONS: dict[int, Literal["left", "right"]] = {
     Action.TURN_LEFT: "left",
@@ -82,7 +83,7 @@ def _move(trajectory: SourceTrajectory, frame: int, config: SftConfig) -> Move |
     if action == Action.STOP:
         return StopOutput()
     if action == Action.MOVE_FORWARD:
-        return None
+        return ForwardOutput() if config.forward_steps else None
     if action not in _DIRECTIONS:
         raise DataFormatError(f"action {action} at frame {frame} is not a move, turn or STOP")
     asked = {exchange.frame for exchange in trajectory.exchanges}
@@ -95,3 +96,24 @@ def _move(trajectory: SourceTrajectory, frame: int, config: SftConfig) -> Move |
     ):
         count += 1
     return TurnOutput(_DIRECTIONS[action], count)
+
+
+def imitator_reaches_stop(trajectory: SourceTrajectory, config: SftConfig) -> bool:
+    """Whether an agent that makes exactly the exported decisions, and whose follower walks
+    each pixel goal as the teacher walked it, gets from frame 0 to the STOP: every frame such
+    an agent stands at needs a sample (the reference's sampling leaves forward frames without
+    a visible goal bare; ``forward_steps`` fills them)."""
+    frame = 0
+    while True:
+        move = _move(trajectory, frame, config)
+        match move:
+            case StopOutput():
+                return True
+            case None:
+                return False
+            case PixelOutput():
+                frame += trajectory.goals[frame][0]
+            case TurnOutput(count=count):
+                frame += count
+            case ForwardOutput():
+                frame += 1
