@@ -41,11 +41,13 @@ for task in iign objectnav; do
     wait
 done
 
-# 2. One mixed export of both tasks (the reference's conversation format, 8 history frames).
+# 2. One mixed export of both tasks (the reference's conversation format, 8 history frames),
+#    with a one-step sample where the teacher steps forward with no goal in view: without
+#    them an exact imitator is stranded before the STOP in most trajectories.
 if [[ ! -f "$OUT/sft/export.json" ]]; then
     log "export"
     "$VLLN" data export-sft "$OUT/data-iign" "$OUT/data-objectnav" --seed "$SEED" \
-        --out "$OUT/sft" --quiet
+        --forward-steps --out "$OUT/sft" --quiet
 fi
 
 # 3. A model from scratch, trained with a checkpoint every quarter (the learning curve).

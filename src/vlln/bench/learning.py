@@ -6,8 +6,8 @@ Steps, all on small houses of the training split (fast to build and to play):
 
 1. ``vlln data build`` of ``houses`` x ``per_house`` IIGN trajectories (the teacher: the
    collector's frontier exploration with dialog);
-2. ``vlln data export-sft`` of every decision (``sample_step`` 1, so each frame the model is
-   asked at in closed loop has its teacher's answer);
+2. ``vlln data export-sft`` of every decision (``sample_step`` 1 and ``forward_steps``, so
+   each frame the model is asked at in closed loop has its teacher's answer);
 3. ``vlln train new-model`` of ``size``, then ``vlln train sft`` for ``steps`` steps;
 4. the teacher's own score on the kept episodes (its trajectories replayed through the same
    evaluation runner, :class:`vlln.datagen.replay.TrajectoryReplay`), then ``vlln eval
@@ -112,6 +112,7 @@ def learn(settings: LearningBench, work: Path) -> LearningOutcome:
             sample_step=1,
             min_answers=SftConfig.model_fields["max_answers"].default,  # every answer heard
             history_frames=settings.history,
+            forward_steps=True,  # every frame the model stands at has its teacher's decision
             seed=settings.seed,
         )
         export_sft(work / "data", export, sampling, progress=False)

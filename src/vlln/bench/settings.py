@@ -119,7 +119,7 @@ class LearningBench(BenchOptions):
     """teacher trajectories tried per house"""
     size: Literal["tiny", "small", "base"] = "tiny"
     """model size (vlln train new-model --size)"""
-    steps: Count = 1500
+    steps: Count = 800
     """training steps"""
     batch_size: Count = 8
     """samples per step"""
@@ -127,8 +127,10 @@ class LearningBench(BenchOptions):
         float, Field(gt=0, validation_alias=AliasChoices("lr", "learning_rate"))
     ] = 5e-3
     """learning rate (vision tower too: the model starts from scratch)"""
-    history: Count = 8
-    """history frames in each prompt (the export's --history)"""
+    history: Count = 128
+    """history frames in each prompt (the export's --history; 128 shows every frame of these
+    trajectories, so their prompts differ in text and a model from scratch fits them in
+    minutes; with the reference's 8 they differ only in pixels from frame 8 on)"""
     agreement_samples: Count = 200
     """teacher decisions the agreement is measured on"""
     seed: int = 0
