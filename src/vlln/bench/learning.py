@@ -14,7 +14,10 @@ Steps, all on small houses of the training split (fast to build and to play):
    --agent vlln`` of the trained model on the same episode file.
 
 Figures: ``teacher_success_rate`` and ``overfit_success_rate`` (SR at budget 5, %),
-``overfit_ratio`` (the second over the first), ``action_agreement`` (the share of the
+``overfit_ratio`` (the second over the first), ``imitable_share`` (the teacher trajectories
+that a model making exactly the exported decisions could finish, if the follower walked each
+pixel goal as the teacher did: :func:`vlln.datagen.sft.sampling.imitator_reaches_stop`),
+``action_agreement`` (the share of the
 teacher's decisions, on the exported prompts, where the model's decoded output is the
 teacher's: the same move, turn run, STOP or question, and a pixel goal within
 :data:`PIXEL_TOLERANCE` pixels), ``pixel_error_median`` and ``train_seconds``. A model that
@@ -70,6 +73,7 @@ def run_learning_benchmark(settings: LearningBench) -> list[Figure]:
     note("overfit_ratio", outcome.ratio, "ratio")
     note("action_agreement", outcome.agreement, "%")
     note("pixel_error_median", outcome.pixel_error, "px")
+    note("imitable_share", outcome.imitable, "%")
     note("episodes", outcome.episodes, "count")
     note("train_samples", outcome.samples, "count")
     note("train_steps", outcome.steps, "steps")
@@ -87,6 +91,7 @@ class LearningOutcome:
     model_sr: float
     agreement: float
     pixel_error: float
+    imitable: float  # % of teacher trajectories an exact imitator of the export finishes
     episodes: int
     samples: int
     steps: int
@@ -103,18 +108,21 @@ def learn(settings: LearningBench, work: Path) -> LearningOutcome:
     """The whole cycle in ``work`` (module doc); every step resumes what is already there."""
     started = time.perf_counter()
     episode_file, trajectories = _teacher_data(settings, work)
+    from vlln.datagen.sft.config import SftConfig
+    from vlln.datagen.sft.sampling import imitator_reaches_stop
+
+    sampling = SftConfig(
+        sample_step=1,
+        min_answers=SftConfig.model_fields["max_answers"].default,  # every answer heard
+        history_frames=settings.history,
+        forward_steps=True,  # every frame the model stands at has its teacher's decision
+        seed=settings.seed,
+    )
+    imitable = sum(imitator_reaches_stop(t, sampling) for t in trajectories) / len(trajectories)
     export = work / "sft"
     if not (export / "export.json").is_file():
-        from vlln.datagen.sft.config import SftConfig
         from vlln.datagen.sft.export import export_sft
 
-        sampling = SftConfig(
-            sample_step=1,
-            min_answers=SftConfig.model_fields["max_answers"].default,  # every answer heard
-            history_frames=settings.history,
-            forward_steps=True,  # every frame the model stands at has its teacher's decision
-            seed=settings.seed,
-        )
         export_sft(work / "data", export, sampling, progress=False)
     model, samples, steps, loss, train_seconds = _train(settings, work, export)
     teacher_sr = _teacher_success(settings, work, episode_file, trajectories)
@@ -125,6 +133,7 @@ def learn(settings: LearningBench, work: Path) -> LearningOutcome:
         model_sr,
         agreement,
         pixel_error,
+        100.0 * imitable,
         len(trajectories),
         samples,
         steps,
