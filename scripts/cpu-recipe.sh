@@ -7,8 +7,8 @@
 #   OUT=out/r2 STEPS=2000 EPISODES=50 scripts/cpu-recipe.sh
 #
 # Every stage resumes what an earlier call left (data, export, checkpoints, evaluation runs),
-# so a killed recipe goes on where it stopped. Figures: $OUT/report/report.md (held-out SR,
-# SPL and intervals of every run side by side) and $OUT/curve.tsv (held-out SR per checkpoint).
+# so a killed recipe goes on where it stopped. Figures: $OUT/figures.md (held-out SR and SPL
+# with intervals of every run, dialog gains, the learning curve; vlln bench recipe-figures).
 # The scale is set by the variables below; the defaults fit 3 hours on a 2-core machine.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -23,7 +23,7 @@ LR="${LR:-2e-3}"
 EPISODES="${EPISODES:-100}"     # held-out episodes per task and run
 CURVE_EPISODES="${CURVE_EPISODES:-50}"  # held-out episodes per earlier checkpoint
 SEED="${SEED:-0}"
-# The data build runs JOBS processes side by side (one per core).
+# The data build and every evaluation run JOBS processes side by side (one per core).
 JOBS="${JOBS:-2}"
 
 mkdir -p "$OUT"
@@ -60,14 +60,19 @@ OMP_NUM_THREADS="${OMP_NUM_THREADS:-$JOBS}" "$VLLN" train sft --data "$OUT/sft" 
     --lr "$LR" --vision-lr "$LR" --save-steps $((STEPS / 4)) --save-limit 4 --workers 1 \
     --logging-steps $((STEPS / 40 > 0 ? STEPS / 40 : 1)) --seed "$SEED"
 
-# 4. Held-out evaluation: the test split of the small houses, never trained on. Each run
-#    resumes; the model plays CONCURRENT episodes side by side, its decisions batched.
+# 4. Held-out evaluation: the test split of the small houses, never trained on. Each run is
+#    JOBS shards side by side (one core each) and resumes; the model plays CONCURRENT
+#    episodes per shard, its decisions batched.
 evaluate() {  # evaluate NAME TASK EPISODES AGENT-FLAGS...
     local name="$1" task="$2" episodes="$3"
     shift 3
     log "eval $name"
-    "$VLLN" eval --preset small --split test --task "$task" --episodes "$episodes" \
-        --seed "$SEED" --out "$OUT/eval/$name" --quiet "$@"
+    for ((shard = 0; shard < JOBS; shard++)); do
+        OMP_NUM_THREADS=1 "$VLLN" eval --preset small --split test --task "$task" \
+            --episodes "$episodes" --seed "$SEED" --shard "$shard/$JOBS" \
+            --out "$OUT/eval/$name/shard-$shard" --quiet "$@" > /dev/null &
+    done
+    wait
 }
 model=(--agent vlln --concurrent "${CONCURRENT:-8}")
 for task in iign objectnav; do
@@ -79,20 +84,14 @@ for task in iign objectnav; do
     evaluate "$task-teacher" "$task" "$EPISODES" --agent frontier --detector truth "${budgets[@]}"
 done
 
-# 5. The learning curve: held-out IIGN SR at budget 5 of each checkpoint, then the reports.
-sr_at_5() {  # SR (%) at budget 5 of a run directory
-    "$VLLN" score --json "$1" 2>/dev/null |
-        python3 -c 'import json,sys; print(json.load(sys.stdin)["groups"][0]["budgets"]["5"]["overall"]["sr"])'
-}
-printf 'steps\tepisodes\tsr_budget_5\n' > "$OUT/curve.tsv"
+# 5. The learning curve: held-out IIGN SR at budget 5 of each earlier checkpoint; then the
+#    figures (SR and SPL with intervals, dialog gains, the curve) into figures.md.
 for checkpoint in "$OUT"/model/checkpoint-*; do
     steps="${checkpoint##*-}"
+    # the final model's run is iign-model; CURVE_EPISODES=0 leaves the curve out
+    [[ "$steps" == "$STEPS" || "$CURVE_EPISODES" == 0 ]] && continue
     evaluate "curve-$steps" iign "$CURVE_EPISODES" "${model[@]}" --model "$checkpoint" \
         --budgets 5
-    printf '%s\t%s\t%s\n' "$steps" "$CURVE_EPISODES" "$(sr_at_5 "$OUT/eval/curve-$steps")" \
-        >> "$OUT/curve.tsv"
 done
-for task in iign objectnav; do
-    "$VLLN" report "$OUT"/eval/"$task"-{model,random,fbe,teacher} --out "$OUT/report-$task"
-done
-log "done: $OUT/report-iign/report.md, $OUT/report-objectnav/report.md, $OUT/curve.tsv"
+"$VLLN" bench recipe-figures --out "$OUT" > "$OUT/figures.md"
+log "done: $OUT/figures.md"

@@ -1,8 +1,9 @@
 """`vlln bench recipe-figures`: the held-out figures of ``scripts/cpu-recipe.sh``.
 
-The recipe leaves one run directory per agent and task under ``OUT/eval`` (``iign-model``,
+The recipe leaves one run per agent and task under ``OUT/eval`` (``iign-model``,
 ``iign-random``, ``iign-fbe``, ``iign-teacher``, the same for ``objectnav``) and one per
-earlier checkpoint (``curve-STEPS``). This prints, as Markdown:
+checkpoint (``curve-STEPS``), each a run directory or a folder of its shards (``shard-*``).
+This prints, as Markdown:
 
 * SR and SPL with 95 % intervals (Wilson for SR, Student's t for SPL) of every run and budget,
   with the questions asked per episode and the failure classes;
@@ -66,7 +67,8 @@ def recipe_figures(out: Path) -> str:
 
 
 def _records(run: Path) -> list[EpisodeRecord]:
-    return load_run_records([run])
+    """The records of a run directory, or of its shards (``shard-*``) together."""
+    return load_run_records(sorted(run.glob("shard-*")) or [run])
 
 
 def _run_table(found: dict[str, list[EpisodeRecord]]) -> str:
