@@ -238,6 +238,7 @@ def test_export_json_counts_what_was_written(default_export: Path) -> None:
         "max_answers": 6,
         "history_frames": 8,
         "max_turn_run": 4,
+        "forward_steps": False,
     }
     assert SftConfig.from_json(summary["settings"], "export.json") == SftConfig()
 
