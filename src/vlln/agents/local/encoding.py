@@ -16,6 +16,7 @@ import json
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass
+from itertools import accumulate
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -125,10 +126,8 @@ class ChatEncoder:
     ) -> dict[str, torch.Tensor]:
         """A padded batch: ``texts[i]`` holds one ``<|image_pad|>`` per image of ``images[i]``."""
         flat = self.process_images([image for group in images for image in group])
-        groups: list[list[ProcessedImage]] = []
-        for group in images:
-            groups.append(flat[: len(group)])
-            flat = flat[len(group) :]
+        ends = list(accumulate(len(group) for group in images))
+        groups = [flat[end - len(group) : end] for group, end in zip(images, ends, strict=True)]
         return self.encode_processed(texts, groups, padding_side)
 
     def encode_processed(
