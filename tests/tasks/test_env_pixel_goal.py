@@ -8,8 +8,11 @@ from collections.abc import Iterator
 import numpy as np
 import pytest
 
+from tests.agents.world import RED_CHAIR, episode, two_room_house
+from tests.agents.world import make_env as make_world_env
 from tests.tasks.test_env import ambiguous_target, episode_for, far_start
 from vlln.sim.agent import Action
+from vlln.sim.simulator import Simulator
 from vlln.tasks.env import NavigationEnv
 from vlln.tasks.record import EndReason, EpisodeRecord
 from vlln.tasks.scenes import SceneCache
@@ -150,3 +153,20 @@ def test_records_written_before_failure_kinds_still_read() -> None:
         }
     )
     assert env_free.failures == {} and env_free.model_calls == []
+
+
+def test_a_pixel_goal_the_agent_already_stands_on_is_a_failed_goal() -> None:
+    """Facing a wall 0.3 m away, the wall's pixel snaps to floor within the follower's radius:
+    a goal that would not move the agent, which a model naming it again would loop on."""
+    with Simulator(two_room_house()) as sim:
+        start = episode(sim, RED_CHAIR, (3.0, 0.3), 0.0)  # room A's south wall lies at z = 0
+        env = make_world_env(sim, [start], TaskType.IGN)
+        env.reset(options={"episode_index": 0})
+        env.step(Action.LOOK_DOWN)
+        spec = sim.config.camera
+        col, row = spec.width // 2, spec.height // 2
+        observation, *_ = env.step(PixelGoal(col, row))
+        assert observation["waypoint_action"] is None and observation["tilt"] == 0.0
+        record = env.record("test")
+        assert record.actions[-1] == f"FAILED:goal:{col},{row}"
+        assert record.failures == {"goal": 1}

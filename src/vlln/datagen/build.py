@@ -45,6 +45,7 @@ from vlln import __version__
 from vlln.datagen.collector.collect import CollectorConfig, collect_trajectory
 from vlln.datagen.collector.visibility import DOWN_TILT
 from vlln.datagen.filtering import FilterConfig, rejection_reason
+from vlln.datagen.goals import FollowerWalks
 from vlln.datagen.house_locks import lock_houses
 from vlln.datagen.layout import (
     EPISODES_DIR,
@@ -325,7 +326,8 @@ def build_house(
         finals = (level.last, sim.render(AgentState(last.position, last.yaw, DOWN_TILT)))
         reason = rejection_reason(trajectory, finals, config.filter)
         if reason is None:
-            writer.write_kept(trajectory, level.stored, down_views(sim, trajectory))
+            down = down_views(sim, trajectory)
+            writer.write_kept(trajectory, level.stored, down, FollowerWalks(sim, trajectory))
         else:
             writer.write_rejected(episode.episode_id, reason)
     writer.finish({"generator": config.settings()})

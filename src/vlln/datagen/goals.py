@@ -11,14 +11,24 @@ there. At frame ``t`` whose action is MOVE_FORWARD, the goal is the later frame 
   matches the projected depth within ``DEPTH_TOLERANCE``, so a point hidden by furniture is
   never a goal).
 
+* the environment's waypoint follower, sent to that pixel (:func:`vlln.tasks.waypoint.
+  waypoint_for_pixel`), makes the teacher's moves from ``t`` to it and stops there
+  (:class:`FollowerWalks`).
+
 Frames that turn or stop, and forward frames where no later position shows (the look-down
 camera sees the floor from about 0.67 m ahead), have no goal. The goal is computed during the
 build, while the depth image is in memory, and stored with the frame.
+
+The last rule is not the reference's. Without it a model that names the goal is walked by the
+follower on its own path (it may turn first where the teacher stepped forward), so the frames
+it sees next, and its history, match no training prompt; a model that fits its teacher then
+fails in closed-loop play.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import NamedTuple
 
 import numpy as np
@@ -26,8 +36,11 @@ from numpy.typing import NDArray
 
 from vlln.datagen.collector.visibility import DOWN_TILT
 from vlln.datagen.trajectory import Trajectory
-from vlln.sim.agent import Action
+from vlln.sim.agent import Action, AgentState
 from vlln.sim.camera import CameraSpec
+from vlln.sim.renderer import Frame
+from vlln.sim.simulator import Simulator
+from vlln.tasks.waypoint import waypoint_for_pixel
 
 MAX_GOAL_STEPS = 8  # the reference's follower walks at most 8 steps per pixel goal
 DEPTH_TOLERANCE = 0.1  # metres between the rendered and the projected depth of the goal
@@ -67,16 +80,44 @@ def visible_pixel(
     return column, row
 
 
-class GoalFinder:
-    """The goals of one trajectory, frame by frame, given each frame's look-down depth."""
+WalkCheck = Callable[[int, int, tuple[int, int], Frame], bool]
+"""``(frame, later, pixel, down)``: whether a goal at ``pixel`` of frame ``frame``'s look-down
+view ``down`` leads the agent along the teacher's steps to frame ``later``."""
 
-    def __init__(self, spec: CameraSpec, trajectory: Trajectory) -> None:
+
+class FollowerWalks:
+    """The :data:`WalkCheck` of the environment's waypoint follower on a trajectory's house."""
+
+    def __init__(self, sim: Simulator, trajectory: Trajectory) -> None:
+        self.sim = sim
+        self.steps = trajectory.steps
+
+    def __call__(self, frame: int, later: int, pixel: tuple[int, int], down: Frame) -> bool:
+        position, yaw = self.steps[frame].state.position, self.steps[frame].state.yaw
+        found = waypoint_for_pixel(self.sim, down, *pixel, AgentState(position, yaw, DOWN_TILT))
+        if isinstance(found, str):
+            return False
+        walked = [found.next_action(step.state) for step in self.steps[frame : later + 1]]
+        return walked == [step.action for step in self.steps[frame:later]] + [None]
+
+
+class GoalFinder:
+    """The goals of one trajectory, frame by frame, given each frame's look-down view.
+
+    ``walks`` is the follower check (:class:`FollowerWalks`); None leaves it out, for
+    trajectories made without a house.
+    """
+
+    def __init__(
+        self, spec: CameraSpec, trajectory: Trajectory, walks: WalkCheck | None = None
+    ) -> None:
         self.spec = spec
         self.steps = trajectory.steps
+        self.walks = walks
         self.feet = np.array([step.state.position for step in self.steps], np.float64)
         self.question_frames = sorted({turn.frame_index for turn in trajectory.dialog})
 
-    def at(self, frame: int, down_depth: NDArray[np.float32]) -> Goal:
+    def at(self, frame: int, down: Frame) -> Goal:
         state = self.steps[frame].state
         if self.steps[frame].action != Action.MOVE_FORWARD:
             return NO_GOAL
@@ -87,7 +128,9 @@ class GoalFinder:
             arrived = self.steps[later - 1].action == Action.MOVE_FORWARD
             moved = float(np.linalg.norm(self.feet[later] - self.feet[frame])) > _SAME_POSITION_M
             if arrived and moved:
-                pixel = visible_pixel(self.spec, view, down_depth, self.feet[later])
-                if pixel is not None:
+                pixel = visible_pixel(self.spec, view, down.depth, self.feet[later])
+                if pixel is not None and (
+                    self.walks is None or self.walks(frame, later, pixel, down)
+                ):
                     return Goal(later - frame, pixel)
         return NO_GOAL

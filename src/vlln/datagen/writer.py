@@ -15,7 +15,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from vlln.datagen.goals import GoalFinder
+from vlln.datagen.goals import GoalFinder, WalkCheck
 from vlln.datagen.layout import (
     CAMERAS,
     EPISODES_FILE,
@@ -67,21 +67,26 @@ class HouseWriter:
         return sum(1 for a in self.attempts.values() if a.episode_index is not None)
 
     def write_kept(
-        self, trajectory: Trajectory, level: Sequence[bytes], down: Iterable[Frame]
+        self,
+        trajectory: Trajectory,
+        level: Sequence[bytes],
+        down: Iterable[Frame],
+        walks: WalkCheck | None = None,
     ) -> int:
         """Images and parquet of a trajectory, then its journal line; returns its index.
         ``level`` holds every step's level view as stored (:func:`stored_frame`), ``down``
-        its look-down views, whose depth places the pixel goals."""
+        its look-down views, whose depth places the pixel goals, and ``walks`` checks that
+        the follower walks each goal as the teacher did (:class:`GoalFinder`)."""
         index = self.next_index
         level_setting, down_setting = (camera_setting(self.camera, camera) for camera in CAMERAS)
-        finder = GoalFinder(self.camera, trajectory)
+        finder = GoalFinder(self.camera, trajectory, walks)
         goals = []
         for frame_index, (level_jpeg, down_frame) in enumerate(zip(level, down, strict=True)):
             self._write(frame_image_path(level_setting, index, frame_index), level_jpeg)
             self._write(
                 frame_image_path(down_setting, index, frame_index), stored_frame(down_frame.rgb)
             )
-            goals.append(finder.at(frame_index, down_frame.depth))
+            goals.append(finder.at(frame_index, down_frame))
         self._write(data_path(index), frame_table(self.camera, trajectory, index, goals))
         row = episode_row(trajectory, index)
         self._journal(Attempt(trajectory.episode.episode_id, index, None, row))

@@ -5,6 +5,8 @@ A :class:`~vlln.tasks.spec.PixelGoal` becomes a navigable floor point
 follower's next action toward it in every observation until the agent is within the follower's
 radius (0.25 m, as in the reference), takes another action, or sets another goal. The agent
 decides how many of these steps to take (the model agent: at most 8 before asking again).
+A pixel whose point is already within the radius gives no waypoint: the goal would not move
+the agent, and a model that names it again on the same frame would loop.
 In a house with several storeys the point is ``(x, y, z)`` on the agent's storey and the
 follower walks the storeys' graph, up or down a flight when the point is on it.
 """
@@ -40,10 +42,11 @@ class Waypoint:
         return None if action == Action.STOP else action
 
 
-def waypoint_for_pixel(sim: Simulator, frame: Frame, col: int, row: int) -> Waypoint | str:
-    """The waypoint that pixel ``(col, row)`` of ``frame`` (taken at the simulator's current
-    state) points to, or a short reason why it gives none."""
-    state = sim.state
+def waypoint_for_pixel(
+    sim: Simulator, frame: Frame, col: int, row: int, state: AgentState
+) -> Waypoint | str:
+    """The waypoint that pixel ``(col, row)`` of ``frame``, taken at ``state``, points to, or
+    a short reason why it gives none."""
     spec = sim.config.camera
     if not (0 <= col < spec.width and 0 <= row < spec.height):
         return f"pixel ({col}, {row}) is outside the {spec.width}x{spec.height} image"
@@ -54,5 +57,7 @@ def waypoint_for_pixel(sim: Simulator, frame: Frame, col: int, row: int) -> Wayp
     x, y, z = state.position
     if not field.is_reachable(x, z, y):
         return f"pixel ({col}, {row}) shows floor that cannot be reached"
-    follower = GreedyFollower(sim.nav, field, WAYPOINT_RADIUS, sim.config.motion)
-    return Waypoint(point, follower)
+    waypoint = Waypoint(point, GreedyFollower(sim.nav, field, WAYPOINT_RADIUS, sim.config.motion))
+    if waypoint.next_action(state) is None:
+        return f"pixel ({col}, {row}) shows floor the agent already stands on"
+    return waypoint

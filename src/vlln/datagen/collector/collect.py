@@ -155,9 +155,13 @@ def collect_trajectory(
 
 def _goals(episode: Episode, ground: Ground, every: bool) -> list[_Goal]:
     """The episode's goal instances with their view points: the target alone, or (``every``)
-    each goal the episode lists, in its order (ids and goals are listed alike)."""
+    each goal the episode lists that has view points, in its order (ids and goals are listed
+    alike). An ObjectNav episode lists every instance of its category, some with no view
+    point to walk to; aiming at one would leave the walk without a goal."""
     house = ground.sim.house
     pairs = list(zip(episode.instruction.instance_id, episode.goals, strict=False))
+    if every:
+        pairs = [(key, goal) for key, goal in pairs if goal.view_points]
     return [
         _Goal(
             key,
