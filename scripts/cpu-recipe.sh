@@ -41,6 +41,12 @@ for task in iign objectnav; do
     wait
 done
 
+#    A few teacher trajectories on held-out test houses: never trained on, only asked, to
+#    measure how much of the teacher's decisions a checkpoint makes alike off its training data.
+log "data build held-out iign"
+"$VLLN" data build --preset small --split test --houses "${AGREEMENT_HOUSES:-6}" --per-house 4 \
+    --task iign --seed "$SEED" --out "$OUT/data-heldout" --quiet --yes
+
 # 2. One mixed export of both tasks (the reference's conversation format, 8 history frames),
 #    with a one-step sample where the teacher steps forward with no goal in view: without
 #    them an exact imitator is stranded before the STOP in most trajectories.
@@ -48,6 +54,11 @@ if [[ ! -f "$OUT/sft/export.json" ]]; then
     log "export"
     "$VLLN" data export-sft "$OUT/data-iign" "$OUT/data-objectnav" --seed "$SEED" \
         --forward-steps --out "$OUT/sft" --quiet
+fi
+
+if [[ ! -f "$OUT/sft-heldout/export.json" ]]; then
+    "$VLLN" data export-sft "$OUT/data-heldout" --seed "$SEED" --forward-steps \
+        --out "$OUT/sft-heldout" --quiet
 fi
 
 # 3. A model from scratch, trained with a checkpoint every quarter (the learning curve).
@@ -84,8 +95,23 @@ for task in iign objectnav; do
     evaluate "$task-teacher" "$task" "$EPISODES" --agent frontier --detector truth "${budgets[@]}"
 done
 
-# 5. The learning curve: held-out IIGN SR at budget 5 of each earlier checkpoint; then the
+# 5. The learning curve: each checkpoint's agreement with the teacher on training and
+#    held-out prompts, and held-out IIGN SR at budget 5 of each earlier checkpoint; then the
 #    figures (SR and SPL with intervals, dialog gains, the curve) into figures.md.
+mkdir -p "$OUT/agreement"
+for checkpoint in "$OUT"/model/checkpoint-*; do
+    steps="${checkpoint##*-}"
+    for split in train heldout; do
+        export_dir="$OUT/sft"
+        [[ "$split" == heldout ]] && export_dir="$OUT/sft-heldout"
+        file="$OUT/agreement/$steps-$split.jsonl"
+        [[ -s "$file" ]] && continue
+        log "agreement $steps $split"
+        OMP_NUM_THREADS="$JOBS" "$VLLN" bench agreement --model "$checkpoint" \
+            --export "$export_dir" --samples "${AGREEMENT_SAMPLES:-200}" --json > "$file.part"
+        mv "$file.part" "$file"
+    done
+done
 for checkpoint in "$OUT"/model/checkpoint-*; do
     steps="${checkpoint##*-}"
     # the final model's run is iign-model; CURVE_EPISODES=0 leaves the curve out

@@ -44,7 +44,7 @@ def frame_of(sample_id: str) -> int:
 
 @pytest.mark.slow
 def test_a_model_that_fits_its_teacher_decides_alike_in_vlln_eval(
-    one_house_dataset: Path, tmp_path: Path
+    one_house_dataset: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
     (teacher,) = [t for house in open_houses(one_house_dataset) for t in read_trajectories(house)]
     assert set(teacher.actions[:FRAMES]) == {Action.TURN_LEFT}  # the scan, as collected
@@ -54,9 +54,16 @@ def test_a_model_that_fits_its_teacher_decides_alike_in_vlln_eval(
     settings |= {"out_dir": model, "max_steps": 120, "batch_size": 4, "workers": 0}
     settings |= {"learning_rate": 5e-3, "vision_learning_rate": 5e-3, "save_steps": 120}
     train_sft(TrainConfig.build(settings))
-    agreement, _ = action_agreement(model, export, limit=100)
+    agreement, *_ = action_agreement(model, export, limit=100)
     assert agreement == 100.0, "the model does not fit its teacher on the exported prompts"
     assert len(teacher_decisions(export)) >= 4
+    command = ["bench", "agreement", "--model", str(model), "--export", str(export)]
+    capsys.readouterr()
+    assert main([*command, "--samples", "5", "--json"]) == 0
+    printed = {
+        f["metric"]: f["value"] for f in map(json.loads, capsys.readouterr().out.split("\n")[:-1])
+    }
+    assert printed["action_agreement"] == 100.0 and 1 <= printed["decisions"] <= 5
 
     episodes = tmp_path / "episode.json.gz"
     all_episodes = read_episodes(one_house_dataset / "episodes" / "train_iign.json.gz")

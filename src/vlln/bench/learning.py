@@ -37,9 +37,10 @@ import time
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
+from typing import NamedTuple
 
 from vlln.bench.figures import Figure, emit
-from vlln.bench.settings import LearningBench
+from vlln.bench.settings import AgreementBench, LearningBench
 from vlln.datagen.sft.source import SourceTrajectory
 from vlln.errors import ConfigError
 from vlln.prompt import Conversation, ImageRef, PixelOutput, Turn, read_output
@@ -80,6 +81,19 @@ def run_learning_benchmark(settings: LearningBench) -> list[Figure]:
     note("final_loss", outcome.final_loss, "loss")
     note("train_seconds", outcome.train_seconds, "s")
     note("total_seconds", outcome.total_seconds, "s")
+    return figures
+
+
+def run_agreement_benchmark(settings: AgreementBench) -> list[Figure]:
+    """:func:`action_agreement` of a model on an export, printed as figures."""
+    agreement = action_agreement(settings.model, settings.export, settings.samples)
+    figures = [
+        Figure("action_agreement", agreement.share, "%"),
+        Figure("pixel_error_median", agreement.pixel_error, "px"),
+        Figure("decisions", agreement.decisions, "count"),
+    ]
+    for figure in figures:
+        emit(figure, settings.as_json)
     return figures
 
 
@@ -127,7 +141,7 @@ def learn(settings: LearningBench, work: Path) -> LearningOutcome:
     model, samples, steps, loss, train_seconds = _train(settings, work, export)
     teacher_sr = _teacher_success(settings, work, episode_file, trajectories)
     model_sr = _model_success(settings, work, episode_file, model)
-    agreement, pixel_error = action_agreement(model, export, settings.agreement_samples)
+    agreement, pixel_error, _ = action_agreement(model, export, settings.agreement_samples)
     return LearningOutcome(
         teacher_sr,
         model_sr,
@@ -251,10 +265,16 @@ def _success_rate(run: Path) -> float:
     return 100.0 * sum(success(record) for record in records) / len(records)
 
 
-def action_agreement(model: Path, export: Path, limit: int) -> tuple[float, float]:
-    """(% of teacher decisions the model's decoded output matches, median pixel error) over
-    ``limit`` decisions spread evenly over the export, each asked through the ``vlln``
-    agent's backend with exactly the exported prompt."""
+class Agreement(NamedTuple):
+    share: float  # % of the teacher's decisions the model's decoded output matches
+    pixel_error: float  # median pixel distance where both name a pixel goal
+    decisions: int  # decisions asked
+
+
+def action_agreement(model: Path, export: Path, limit: int) -> Agreement:
+    """The model's agreement with its teacher over at most ``limit`` decisions spread evenly
+    over the export, each asked through the ``vlln`` agent's backend with exactly the
+    exported prompt."""
     from vlln.agents.local.backend import ChatRequest, load_backend
     from vlln.train.data import load_rgb
 
@@ -277,7 +297,7 @@ def action_agreement(model: Path, export: Path, limit: int) -> tuple[float, floa
         else:
             agreed += got == wanted
     median = statistics.median(errors) if errors else math.nan
-    return 100.0 * agreed / max(1, len(chosen)), median
+    return Agreement(100.0 * agreed / max(1, len(chosen)), median, len(chosen))
 
 
 def teacher_decisions(export: Path) -> list[Decision]:

@@ -9,11 +9,16 @@ This prints, as Markdown:
   with the questions asked per episode and the failure classes;
 * the paired dialog gain of each IIGN run (SR at budget 5 minus SR at budget 0 on the same
   episodes) and the paired SR difference between the model and FBE;
-* the learning curve: held-out IIGN SR at budget 5 of each checkpoint.
+* the learning curve, one row per checkpoint: held-out IIGN SR at budget 5 (the last
+  checkpoint's is the ``iign-model`` run's) and the share of the teacher's decisions the
+  checkpoint makes alike on the training export's prompts and on an export of held-out
+  houses (``OUT/agreement/STEPS-train.jsonl`` and ``STEPS-heldout.jsonl``, the output of
+  ``vlln bench agreement --json``): agreement rises before SR does.
 """
 
 from __future__ import annotations
 
+import json
 import statistics
 from collections import Counter
 from collections.abc import Sequence
@@ -35,6 +40,7 @@ from vlln.tasks.taxonomy import CLASS_ABBREVIATIONS, FAILURE_CLASSES, SUCCESS, c
 
 AGENTS = ("model", "random", "fbe", "teacher")
 TASKS = ("iign", "objectnav")
+SPLITS = ("train", "heldout")  # the agreement files' suffixes
 
 
 def print_recipe_figures(settings: RecipeFigures) -> None:
@@ -55,15 +61,44 @@ def recipe_figures(out: Path) -> str:
             continue
         lines += [f"## {task.upper()} on held-out houses", "", _run_table(found), ""]
         lines += _comparisons(task, found)
-    curve = sorted(runs.glob("curve-*"), key=lambda path: int(path.name.split("-")[1]))
-    if curve:
-        lines += ["## Learning curve (IIGN, budget 5)", "", "| steps | n | SR % [95 % CI] |"]
-        lines += ["| --- | --- | --- |"]
-        for run in curve:
-            records = [r for r in _records(run) if r.budget == 5]
-            lines.append(f"| {run.name.split('-')[1]} | {len(records)} | {_sr(records)} |")
-        lines.append("")
+    lines += _curve(out)
     return "\n".join(lines)
+
+
+def _curve(out: Path) -> list[str]:
+    """The learning curve's table (module doc), or nothing before any checkpoint is measured."""
+    runs = out / "eval"
+    played = {int(run.name.split("-")[1]): run for run in runs.glob("curve-*")}
+    checkpoints = [int(path.name.split("-")[1]) for path in out.glob("model/checkpoint-*")]
+    if checkpoints and (runs / "iign-model").is_dir():
+        played[max(checkpoints)] = runs / "iign-model"
+    agreement = {
+        tuple(path.stem.split("-")): _agreement(path)
+        for path in (out / "agreement").glob("*-*.jsonl")
+    }
+    steps = sorted(set(played) | {int(step) for step, _ in agreement})
+    if not steps:
+        return []
+    lines = [
+        "## Learning curve (IIGN, budget 5)",
+        "",
+        "| steps | n | SR % [95 % CI] | agreement, training prompts % | agreement, held-out % |",
+        "| --- | --- | --- | --- | --- |",
+    ]
+    for step in steps:
+        records = [r for r in _records(played[step]) if r.budget == 5] if step in played else []
+        train, held_out = (agreement.get((str(step), split), "-") for split in SPLITS)
+        lines.append(f"| {step} | {len(records)} | {_sr(records)} | {train} | {held_out} |")
+    return [*lines, ""]
+
+
+def _agreement(path: Path) -> str:
+    """The ``action_agreement`` figure of a ``vlln bench agreement --json`` output."""
+    for line in path.read_text(encoding="utf-8").splitlines():
+        figure = json.loads(line)
+        if figure.get("metric") == "action_agreement":
+            return f"{float(figure['value']):.1f}"
+    raise ConfigError(f"{path} has no action_agreement figure; run vlln bench agreement again")
 
 
 def _records(run: Path) -> list[EpisodeRecord]:

@@ -211,6 +211,18 @@ class Mp3dConnectivityBench(BenchOptions):
     """<scan>_connectivity.json files"""
 
 
+class AgreementBench(BenchOptions):
+    """``vlln bench agreement``: how often a model's decision is its teacher's, on an export's
+    prompts (an export of held-out houses measures what it learned, not what it memorised)."""
+
+    model: Path
+    """the model folder or checkpoint"""
+    export: Path
+    """the export folder (vlln data export-sft --out)"""
+    samples: Count = 200
+    """teacher decisions asked, spread evenly over the export"""
+
+
 class RecipeFigures(Config):
     """``vlln bench recipe-figures``: the held-out figures of scripts/cpu-recipe.sh."""
 

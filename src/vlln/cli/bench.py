@@ -62,6 +62,12 @@ COMMANDS = (
         "a model from scratch fits its teacher's trajectories, then plays them in vlln eval",
     ),
     (
+        "agreement",
+        "AgreementBench",
+        ("learning:run_agreement_benchmark",),
+        "the share of an export's teacher decisions a model makes alike",
+    ),
+    (
         "recipe-figures",
         "RecipeFigures",
         ("recipe:print_recipe_figures",),
