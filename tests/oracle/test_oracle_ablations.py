@@ -9,10 +9,12 @@ from tests.oracle.episodes import iign_episode
 from tests.oracle.llm.chat_server import chat_server, completion
 from tests.oracle.test_llm_oracle import context, question, target
 from tests.oracle.test_rule_oracle import QUESTIONS, _states
+from vlln.eval.config import EvalConfig
 from vlln.oracle.disambiguation import PLAIN_NO
 from vlln.oracle.llm.openai_client import OpenAIChatClient, OpenAISettings
 from vlln.oracle.llm_oracle import LLMOracle
 from vlln.oracle.rule_oracle import TYPE_REFUSAL, RuleOracle
+from vlln.oracle.settings import Disambiguation, OracleSettings
 from vlln.sim.simulator import Simulator
 from vlln.tasks.env import NavigationEnv
 from vlln.tasks.episode import Episode
@@ -92,3 +94,12 @@ def test_the_llm_oracle_refuses_a_type_its_model_classifies_as_not_allowed(
     assert (reply.answer, reply.question_type) == (TYPE_REFUSAL, QuestionType.ROUTE)
     assert reply.type_refused and not reply.fallback
     assert len(server.requests) == 1  # classified, never worded
+
+
+def test_one_default_oracle_for_eval_data_and_the_rule_oracle() -> None:
+    """Training data hear the oracle vlln eval plays with by default: the paper's plain
+    disambiguation answers. A build that heard cues taught a model answers eval never gives."""
+    settings = EvalConfig(agent="random", task="iign").oracle_settings()
+    assert settings == OracleSettings()
+    assert settings.disambiguation == Disambiguation.PLAIN
+    assert not RuleOracle().cues

@@ -64,7 +64,7 @@ from vlln.errors import ConfigError, DataFormatError
 from vlln.eval.play import episode_seed
 from vlln.eval.sharding import Shard
 from vlln.files import write_text_atomic
-from vlln.oracle.rule_oracle import RuleOracle
+from vlln.oracle.settings import OracleSettings
 from vlln.sim.agent import AgentState
 from vlln.sim.simulator import Simulator
 from vlln.tasks.episode import Episode, read_episodes
@@ -309,9 +309,9 @@ def build_house(
         leave=False,
     )
     for episode in bar:
-        # Seeded as vlln eval seeds an episode's oracle: the answers are the ones a model
-        # asking the same questions in the same places hears.
-        oracle = RuleOracle(seed=episode_seed(config.seed, "oracle", episode))
+        # vlln eval's default oracle, seeded as eval seeds an episode's: the answers are the
+        # ones a model asking the same questions in the same places hears.
+        oracle = OracleSettings().make(episode_seed(config.seed, "oracle", episode))
         level = LevelViews()
         trajectory = collect_trajectory(
             sim,

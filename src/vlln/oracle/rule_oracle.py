@@ -58,7 +58,7 @@ class RuleOracle:
         goal_radius: float = 0.25,
         *,
         question_types: tuple[QuestionType, ...] = ALL_QUESTION_TYPES,
-        cues: bool = True,
+        cues: bool = False,
     ) -> None:
         if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
             raise ConfigError(f"seed must be a whole number >= 0, got {seed!r}")

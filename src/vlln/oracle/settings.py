@@ -61,7 +61,7 @@ class OracleSettings:
     backend: OracleBackend = OracleBackend.RULES
     llm: OpenAISettings | None = None
     question_types: tuple[QuestionType, ...] = ALL_QUESTION_TYPES
-    disambiguation: Disambiguation = Disambiguation.CUES
+    disambiguation: Disambiguation = Disambiguation.PLAIN
 
     def __post_init__(self) -> None:
         if (self.backend == OracleBackend.LLM) != (self.llm is not None):
