@@ -14,15 +14,36 @@ plain argparse.
 
 from __future__ import annotations
 
+import dataclasses
+import functools
 from dataclasses import dataclass
-from typing import Any, ClassVar, Self
+from typing import Annotated, Any, ClassVar, Self, TypeVar, dataclass_transform
 
-from pydantic import ValidationError
+from pydantic import Field, ValidationError
+from pydantic.dataclasses import dataclass as pydantic_dataclass
 from pydantic_settings import BaseSettings, PydanticBaseSettingsSource, SettingsConfigDict
 
 from vlln.errors import ConfigError, DataFormatError
 
-__all__ = ["BareFlag", "Config", "SettingsError", "describe_validation_error"]
+__all__ = [
+    "BareFlag",
+    "Config",
+    "Count",
+    "Positive",
+    "Probability",
+    "SettingsError",
+    "describe_validation_error",
+    "settings_dataclass",
+]
+
+_T = TypeVar("_T")
+
+Count = Annotated[int, Field(ge=1)]
+"""A whole number of at least 1 (steps, pixels, houses)."""
+Positive = Annotated[float, Field(gt=0.0)]
+"""A number above 0 (metres, seconds)."""
+Probability = Annotated[float, Field(ge=0.0, le=1.0)]
+"""A number in [0, 1]."""
 
 
 class Config(BaseSettings):
@@ -109,6 +130,26 @@ class SettingsError(ConfigError):
     def __init__(self, error: ValidationError) -> None:
         super().__init__(describe_validation_error(error, True))
         self.error = error
+
+
+@dataclass_transform(frozen_default=True, field_specifiers=(dataclasses.field, Field))
+def settings_dataclass(cls: type[_T]) -> type[_T]:
+    """``cls`` as a frozen pydantic dataclass: settings built in code (positionally, with
+    ``dataclasses.replace``) rather than from flags, whose ``Field`` constraints and validators
+    are their checks; an invalid value raises :class:`ConfigError` naming the field."""
+    checked: Any = pydantic_dataclass(frozen=True)(cls)
+    init = checked.__init__
+
+    @functools.wraps(init)
+    def __init__(self: Any, *args: Any, **kwargs: Any) -> None:
+        try:
+            init(self, *args, **kwargs)
+        except ValidationError as error:
+            problems = describe_validation_error(error, False)
+            raise ConfigError(f"{cls.__name__}: {problems}") from None
+
+    checked.__init__ = __init__
+    return checked
 
 
 @dataclass(frozen=True)
