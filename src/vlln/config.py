@@ -5,6 +5,9 @@ generated from the class (:mod:`vlln.cli.generated`: one flag per field, its hel
 field's docstring, its default the field's default), files such as ``run.json`` are written
 with :meth:`Config.to_json` and read back with :meth:`Config.from_json`, and every check is a
 pydantic validator. So a default or a rule is written once, and a stored run replays exactly.
+Settings built in code rather than from flags (an agent's tuning, a camera, a server) are
+:func:`settings_dataclass` classes, checked the same way; only value objects built in hot loops
+guard themselves in ``__post_init__``, each saying so.
 
 pydantic-settings was chosen over tyro and draccus because pydantic already validates the web
 app's and the oracle service's request bodies: one validation style everywhere, and its

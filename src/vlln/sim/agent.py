@@ -53,6 +53,7 @@ class AgentState:
     tilt: float = 0.0
 
     def __post_init__(self) -> None:
+        # A value object built on every step of every episode: it guards itself (pydantic: 3x).
         position = self.position
         if type(position) is not tuple:  # a list from a caller: keep states hashable
             object.__setattr__(self, "position", tuple(position))
