@@ -10,32 +10,30 @@ from __future__ import annotations
 
 import re
 from collections.abc import Sequence
-from typing import Self, TypeVar
+from dataclasses import dataclass
+from typing import TypeVar
 
-from pydantic import model_validator
-
-from vlln.config import settings_dataclass
 from vlln.errors import ConfigError
 
 T = TypeVar("T")
 _SHARD = re.compile(r"^\s*(\d+)\s*/\s*(\d+)\s*$")
 
 
-@settings_dataclass
+@dataclass(frozen=True)
 class Shard:
     """Shard ``index`` of ``count`` (0-based)."""
 
     index: int
     count: int
 
-    @model_validator(mode="after")
-    def _exists(self) -> Self:
+    def __post_init__(self) -> None:
+        # A flag's value (``--shard i/n``): as a pydantic dataclass the generated command line
+        # would expand it into nested flags, so it stays a plain dataclass that guards itself.
         if self.count < 1 or not 0 <= self.index < self.count:
             raise ConfigError(
                 f"shard {self.index}/{self.count} does not exist; write i/n with 0 <= i < n, "
                 "e.g. 0/4 for the first of four shards"
             )
-        return self
 
     @staticmethod
     def parse(text: str) -> Shard:
