@@ -5,6 +5,9 @@ generated from the class (:mod:`vlln.cli.generated`: one flag per field, its hel
 field's docstring, its default the field's default), files such as ``run.json`` are written
 with :meth:`Config.to_json` and read back with :meth:`Config.from_json`, and every check is a
 pydantic validator. So a default or a rule is written once, and a stored run replays exactly.
+Settings built in code rather than from flags (an agent's tuning, a camera, a server) are
+:func:`settings_dataclass` classes, checked the same way; only value objects built in hot loops
+guard themselves in ``__post_init__``, each saying so.
 
 pydantic-settings was chosen over tyro and draccus because pydantic already validates the web
 app's and the oracle service's request bodies: one validation style everywhere, and its
@@ -14,15 +17,36 @@ plain argparse.
 
 from __future__ import annotations
 
+import dataclasses
+import functools
 from dataclasses import dataclass
-from typing import Any, ClassVar, Self
+from typing import Annotated, Any, ClassVar, Self, TypeVar, dataclass_transform
 
-from pydantic import ValidationError
+from pydantic import Field, ValidationError
+from pydantic.dataclasses import dataclass as pydantic_dataclass
 from pydantic_settings import BaseSettings, PydanticBaseSettingsSource, SettingsConfigDict
 
 from vlln.errors import ConfigError, DataFormatError
 
-__all__ = ["BareFlag", "Config", "SettingsError", "describe_validation_error"]
+__all__ = [
+    "BareFlag",
+    "Config",
+    "Count",
+    "Positive",
+    "Probability",
+    "SettingsError",
+    "describe_validation_error",
+    "settings_dataclass",
+]
+
+_T = TypeVar("_T")
+
+Count = Annotated[int, Field(ge=1)]
+"""A whole number of at least 1 (steps, pixels, houses)."""
+Positive = Annotated[float, Field(gt=0.0)]
+"""A number above 0 (metres, seconds)."""
+Probability = Annotated[float, Field(ge=0.0, le=1.0)]
+"""A number in [0, 1]."""
 
 
 class Config(BaseSettings):
@@ -109,6 +133,26 @@ class SettingsError(ConfigError):
     def __init__(self, error: ValidationError) -> None:
         super().__init__(describe_validation_error(error, True))
         self.error = error
+
+
+@dataclass_transform(frozen_default=True, field_specifiers=(dataclasses.field, Field))
+def settings_dataclass(cls: type[_T]) -> type[_T]:
+    """``cls`` as a frozen pydantic dataclass: settings built in code (positionally, with
+    ``dataclasses.replace``) rather than from flags, whose ``Field`` constraints and validators
+    are their checks; an invalid value raises :class:`ConfigError` naming the field."""
+    checked: Any = pydantic_dataclass(frozen=True)(cls)
+    init = checked.__init__
+
+    @functools.wraps(init)
+    def __init__(self: Any, *args: Any, **kwargs: Any) -> None:
+        try:
+            init(self, *args, **kwargs)
+        except ValidationError as error:
+            problems = describe_validation_error(error, False)
+            raise ConfigError(f"{cls.__name__}: {problems}") from None
+
+    checked.__init__ = __init__
+    return checked
 
 
 @dataclass(frozen=True)

@@ -147,5 +147,5 @@ def test_the_ground_truth_detector_reports_everything_as_it_is() -> None:
     assert DETECTORS == ("truth", "noisy")
     with pytest.raises(ConfigError, match="unknown detector 'yolo'; choose one of: truth, noisy"):
         make_detector("yolo", chairs, [0])
-    with pytest.raises(ConfigError, match=r"\[0, 1\]"):
+    with pytest.raises(ConfigError, match="confusion_rate"):
         NoiseModel(confusion_rate=1.5)

@@ -161,5 +161,5 @@ def test_sphere_visibility_is_a_conservative_frustum_test() -> None:
 
 
 def test_image_size_must_be_whole_pixels() -> None:
-    with pytest.raises(ConfigError, match="whole number"):
+    with pytest.raises(ConfigError, match="width: Input should be a valid integer"):
         CameraSpec(width=640.5)  # type: ignore[arg-type]

@@ -12,13 +12,13 @@ to the actions after the scan (``scan_turns``).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from pydantic import Field
 
+from vlln.config import Count, settings_dataclass
 from vlln.datagen.collector.collect import TOO_LONG
 from vlln.datagen.collector.policy import NOT_FOUND
 from vlln.datagen.collector.visibility import best_central_pixels
 from vlln.datagen.trajectory import Trajectory
-from vlln.errors import ConfigError
 from vlln.sim.agent import Action
 from vlln.sim.renderer import Frame
 
@@ -28,17 +28,11 @@ TARGET_NOT_CENTRED = "target_not_in_final_view"
 REASONS = (NOT_FOUND, TOO_LONG, COLLISION, TOO_MANY_TURNS, TARGET_NOT_CENTRED)
 
 
-@dataclass(frozen=True)
+@settings_dataclass
 class FilterConfig:
-    max_consecutive_turns: int = 13
-    scan_turns: int = 12  # the opening scan, not counted in turn runs
-    min_target_pixels: int = 100  # target pixels inside the central region of the last frame
-
-    def __post_init__(self) -> None:
-        if self.max_consecutive_turns < 1 or self.min_target_pixels < 1 or self.scan_turns < 0:
-            raise ConfigError(
-                "max_consecutive_turns and min_target_pixels must be >= 1, scan_turns >= 0"
-            )
+    max_consecutive_turns: Count = 13
+    scan_turns: int = Field(default=12, ge=0)  # the opening scan, not counted in turn runs
+    min_target_pixels: Count = 100  # target pixels inside the central region of the last frame
 
 
 def longest_turn_run(actions: list[Action]) -> int:

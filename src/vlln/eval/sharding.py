@@ -27,6 +27,8 @@ class Shard:
     count: int
 
     def __post_init__(self) -> None:
+        # A flag's value (``--shard i/n``): as a pydantic dataclass the generated command line
+        # would expand it into nested flags, so it stays a plain dataclass that guards itself.
         if self.count < 1 or not 0 <= self.index < self.count:
             raise ConfigError(
                 f"shard {self.index}/{self.count} does not exist; write i/n with 0 <= i < n, "

@@ -18,7 +18,7 @@ import textwrap
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Annotated, Any
 
 import matplotlib
 
@@ -27,7 +27,9 @@ import matplotlib.pyplot as plt
 import numpy as np
 from numpy.typing import NDArray
 from PIL import Image, ImageDraw, ImageFont
+from pydantic import Field
 
+from vlln.config import Count, settings_dataclass
 from vlln.errors import ConfigError
 from vlln.sim.agent import Action, AgentState
 from vlln.sim.simulator import Simulator
@@ -40,19 +42,18 @@ _MOVES = {Action.MOVE_FORWARD.name, Action.TURN_LEFT.name, Action.TURN_RIGHT.nam
 Rgb = NDArray[np.uint8]
 
 
-@dataclass(frozen=True)
+Even = Annotated[int, Field(multiple_of=2)]
+
+
+@settings_dataclass
 class VideoConfig:
     """Frame rate, caption timing and panel sizes (pixels; even, as yuv420p needs)."""
 
-    fps: int = 4
+    fps: Count = 4
     hold_s: float = 1.5
     caption_s: float = 4.0
-    map_size: int = 480
-    caption_height: int = 112
-
-    def __post_init__(self) -> None:
-        if self.fps < 1 or self.map_size % 2 or self.caption_height % 2:
-            raise ConfigError("fps must be >= 1 and map_size, caption_height even numbers")
+    map_size: Even = 480
+    caption_height: Even = 112
 
 
 @dataclass(frozen=True)

@@ -13,12 +13,14 @@ The API key is never part of the settings: only the name of the variable that ho
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from enum import StrEnum
+from typing import Self
 
 import httpx
 import numpy as np
+from pydantic import model_validator
 
+from vlln.config import settings_dataclass
 from vlln.errors import ConfigError
 from vlln.oracle.llm.openai_client import OpenAIChatClient, OpenAISettings
 from vlln.oracle.llm_oracle import LLMOracle
@@ -53,7 +55,7 @@ def parse_question_types(text: str) -> tuple[QuestionType, ...]:
     return tuple(kind for kind in QuestionType if kind.value in names)
 
 
-@dataclass(frozen=True)
+@settings_dataclass
 class OracleSettings:
     """The oracle of a run: its backend (``llm`` needs ``llm``, the server's settings), the
     question types it answers, and how it answers disambiguation questions."""
@@ -63,12 +65,14 @@ class OracleSettings:
     question_types: tuple[QuestionType, ...] = ALL_QUESTION_TYPES
     disambiguation: Disambiguation = Disambiguation.PLAIN
 
-    def __post_init__(self) -> None:
+    @model_validator(mode="after")
+    def _llm_settings_for_llm_alone(self) -> Self:
         if (self.backend == OracleBackend.LLM) != (self.llm is not None):
             raise ConfigError(
                 "the llm oracle needs its server's settings (--oracle-model), and only it "
                 "takes them; pass --oracle llm with --oracle-model, or neither"
             )
+        return self
 
     @property
     def oracle_name(self) -> str:

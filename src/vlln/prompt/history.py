@@ -40,6 +40,7 @@ class DialogExchange:
     answer: str
 
     def __post_init__(self) -> None:
+        # A value object built per exchange of every prompt: it guards itself (pydantic: 3x cost).
         object.__setattr__(self, "frame", frame_index(self.frame))
         problem = question_problem(self.question)
         if problem is not None:

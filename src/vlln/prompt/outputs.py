@@ -38,6 +38,7 @@ class TalkOutput:
     question: str
 
     def __post_init__(self) -> None:
+        # A value object built per decision and training line: it guards itself (pydantic: 3x).
         problem = question_problem(self.question)
         if problem is not None:
             raise ConfigError(f"invalid question {self.question[:60]!r}: {problem}")
@@ -51,6 +52,7 @@ class TurnOutput:
     count: int = 1
 
     def __post_init__(self) -> None:
+        # A value object built per decision and training line: it guards itself (pydantic: 3x).
         if self.direction not in ("left", "right"):
             raise ConfigError(f"a turn goes 'left' or 'right', got {self.direction!r}")
         if isinstance(self.count, bool) or not 1 <= self.count <= MAX_TURN_RUN:
@@ -84,6 +86,7 @@ class PixelOutput:
     row: int
 
     def __post_init__(self) -> None:
+        # A value object built per decision and training line: it guards itself (pydantic: 3x).
         width, height = DOWN_IMAGE_SIZE
         for name, value, size in (("col", self.col, width), ("row", self.row, height)):
             if isinstance(value, bool) or not isinstance(value, int) or not 0 <= value < size:

@@ -17,6 +17,9 @@ from dataclasses import dataclass
 from enum import IntEnum
 from typing import Any
 
+from pydantic import Field
+
+from vlln.config import Positive, settings_dataclass
 from vlln.errors import ConfigError, DataFormatError
 from vlln.sim.navgrid import NavGrid, Point2
 from vlln.sim.storeys import Storeys
@@ -50,6 +53,7 @@ class AgentState:
     tilt: float = 0.0
 
     def __post_init__(self) -> None:
+        # A value object built on every step of every episode: it guards itself (pydantic: 3x).
         position = self.position
         if type(position) is not tuple:  # a list from a caller: keep states hashable
             object.__setattr__(self, "position", tuple(position))
@@ -92,28 +96,15 @@ class AgentState:
             raise DataFormatError(f"invalid agent state record {dict(record)!r}: {error}") from None
 
 
-@dataclass(frozen=True)
+@settings_dataclass
 class MotionConfig:
     """Step sizes and camera limits (degrees for angles, as people write them)."""
 
-    forward_step: float = 0.25
-    turn_deg: float = 30.0
-    tilt_step_deg: float = 30.0
-    min_tilt_deg: float = -60.0
-    max_tilt_deg: float = 30.0
-
-    def __post_init__(self) -> None:
-        if not self.forward_step > 0.0:
-            raise ConfigError(f"forward_step must be positive metres, got {self.forward_step}")
-        if not 0.0 < self.turn_deg <= 180.0:
-            raise ConfigError(f"turn_deg must be in (0, 180], got {self.turn_deg}")
-        if not self.tilt_step_deg > 0.0:
-            raise ConfigError(f"tilt_step_deg must be positive, got {self.tilt_step_deg}")
-        if not -90.0 <= self.min_tilt_deg <= 0.0 <= self.max_tilt_deg <= 90.0:
-            raise ConfigError(
-                "need -90 <= min_tilt_deg <= 0 <= max_tilt_deg <= 90, got "
-                f"min_tilt_deg={self.min_tilt_deg}, max_tilt_deg={self.max_tilt_deg}"
-            )
+    forward_step: Positive = 0.25
+    turn_deg: float = Field(default=30.0, gt=0.0, le=180.0)
+    tilt_step_deg: Positive = 30.0
+    min_tilt_deg: float = Field(default=-60.0, ge=-90.0, le=0.0)
+    max_tilt_deg: float = Field(default=30.0, ge=0.0, le=90.0)
 
     @property
     def turn(self) -> float:

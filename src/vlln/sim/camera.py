@@ -14,16 +14,18 @@ Depth is the z-distance along the optical axis, not the distance along the ray.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
-from typing import NamedTuple
+from typing import Annotated, NamedTuple, Self
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+from pydantic import Field, model_validator
 
+from vlln.config import settings_dataclass
 from vlln.errors import ConfigError
 
 Matrix4 = NDArray[np.float64]
 Position = tuple[float, float, float] | NDArray[np.floating]
+Pixels = Annotated[int, Field(ge=1, le=8192, strict=True)]
 
 
 class Intrinsics(NamedTuple):
@@ -35,36 +37,25 @@ class Intrinsics(NamedTuple):
     cy: float
 
 
-@dataclass(frozen=True)
+@settings_dataclass
 class CameraSpec:
     """The RGB-D sensor of the agent; defaults follow the reference benchmark."""
 
-    width: int = 640
-    height: int = 480
-    hfov_deg: float = 79.0
-    height_m: float = 1.25  # optical centre above the feet
-    near: float = 0.05
-    far: float = 50.0
-    max_depth: float = 10.0  # depth values beyond this are clamped to it
+    width: Pixels = 640
+    height: Pixels = 480
+    hfov_deg: float = Field(default=79.0, ge=1.0, le=170.0)
+    height_m: float = Field(default=1.25, ge=0.0, le=10.0)  # optical centre above the feet
+    near: float = Field(default=0.05, ge=1e-4, le=10.0)
+    far: float = Field(default=50.0, le=1e5)
+    max_depth: float = Field(default=10.0, gt=0.0)  # depth values beyond this are clamped to it
 
-    def __post_init__(self) -> None:
-        for name, size in (("width", self.width), ("height", self.height)):
-            if isinstance(size, bool) or not isinstance(size, int):
-                raise ConfigError(f"camera {name} = {size!r} must be a whole number of pixels")
-            _check_range(name, size, 1, 8192)
-        _check_range("hfov_deg", self.hfov_deg, 1.0, 170.0)
-        _check_range("height_m", self.height_m, 0.0, 10.0)
-        _check_range("near", self.near, 1e-4, 10.0)
-        if not self.near < self.far <= 1e5:
-            raise ConfigError(
-                f"camera far = {self.far} is invalid; it must be greater than near "
-                f"({self.near}) and at most 100000 m"
-            )
-        if not 0.0 < self.max_depth <= self.far:
-            raise ConfigError(
-                f"camera max_depth = {self.max_depth} is invalid; it must be in (0, far] = "
-                f"(0, {self.far}]"
-            )
+    @model_validator(mode="after")
+    def _depth_range(self) -> Self:
+        if not self.near < self.far:
+            raise ConfigError(f"far = {self.far} must be greater than near ({self.near})")
+        if not self.max_depth <= self.far:
+            raise ConfigError(f"max_depth = {self.max_depth} must be at most far ({self.far})")
+        return self
 
     def intrinsics(self) -> Intrinsics:
         """``fx, fy, cx, cy``; square pixels, so ``fy = fx``."""
@@ -173,10 +164,3 @@ class CameraSpec:
             & (beyond_y <= r * math.sqrt(1.0 + tan_y * tan_y))
         )
         return visible, depth
-
-
-def _check_range(name: str, value: float, low: float, high: float) -> None:
-    if not low <= value <= high:
-        raise ConfigError(
-            f"camera {name} = {value} is out of range; use a value in [{low}, {high}]"
-        )

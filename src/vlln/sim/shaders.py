@@ -20,12 +20,13 @@ surfaces do not shimmer with moiré.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import cast
 
 import moderngl
 import numpy as np
+from pydantic import Field
 
+from vlln.config import Positive, settings_dataclass
 from vlln.errors import ConfigError
 from vlln.sim.camera import CameraSpec, Position
 from vlln.world.materials import MATERIALS
@@ -73,7 +74,7 @@ def interleave_vertices(mesh: Mesh) -> bytes:
     return records[vertex_order].tobytes()
 
 
-@dataclass(frozen=True)
+@settings_dataclass
 class MaterialLook:
     """Parameters of the shared procedural texture and lighting model for one material.
 
@@ -84,7 +85,7 @@ class MaterialLook:
     stripe_cycles: tuple[float, float] = (0.0, 0.0)  # stripes across this direction
     warp_cycles: tuple[float, float] = (0.0, 0.0)  # a wave that bends the stripes
     warp: float = 0.0  # how far the stripes are bent, in stripe periods
-    stripe_sharpness: float = 1.0  # 1: soft bands; larger: thin lines
+    stripe_sharpness: float = Field(default=1.0, ge=1.0)  # 1: soft bands; larger: thin lines
     stripe_amount: float = 0.0  # negative: light stripes (reflections on glass)
     fine_cells: float = 1.0  # cells per metre of the fine noise
     fine_amount: float = 0.0
@@ -92,7 +93,7 @@ class MaterialLook:
     coarse_amount: float = 0.0
     coarse_tint: float = 0.0  # the coarse noise also turns green toward yellow (leaves)
     cell_warp: float = 0.0  # wavy coarse-cell borders instead of squares, in cells
-    grid_period: float = 1.0  # metres between grid lines
+    grid_period: Positive = 1.0  # metres between grid lines
     grid_half_width: float = 0.0  # metres
     grid_amount: float = 0.0
     diffuse: float = 1.0  # scale of the base colour
@@ -102,13 +103,6 @@ class MaterialLook:
     gloss: float = 0.0  # mirror-like reflection of a bright ceiling and a dark floor
     metallic: float = 0.0  # highlights and reflections take the base colour
     sheen: float = 0.0  # extra light at grazing angles (fabric pile)
-
-    def __post_init__(self) -> None:
-        if self.grid_period <= 0.0 or self.stripe_sharpness < 1.0:
-            raise ConfigError(
-                f"material look needs grid_period > 0 and stripe_sharpness >= 1, got "
-                f"{self.grid_period} and {self.stripe_sharpness}"
-            )
 
     def packed(self) -> list[float]:
         """24 floats (6 vec4) in the order the vertex shader reads them."""

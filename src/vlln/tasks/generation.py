@@ -25,12 +25,14 @@ from __future__ import annotations
 import math
 from collections import Counter
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Annotated, Any, Self
 
 import numpy as np
 from numpy.typing import NDArray
+from pydantic import Field, model_validator
 from scipy.sparse import csgraph
 
+from vlln.config import Count, settings_dataclass
 from vlln.errors import ConfigError
 from vlln.sim.simulator import Simulator
 from vlln.sim.storeys import Point3
@@ -60,30 +62,32 @@ SKIP_REASONS = (TOO_FEW_VIEW_POINTS, UNREACHABLE, AMBIGUOUS_INSTRUCTION, NO_STAR
 _RANGE_TOLERANCE = 1e-6
 
 
-@dataclass(frozen=True)
+Metres = Annotated[float, Field(ge=0.0, allow_inf_nan=False)]
+
+
+@settings_dataclass
 class EpisodeGenConfig:
     """How many episodes per target and which start poses and view points qualify."""
 
-    starts_per_target: int = 1
-    min_start_distance: float = 1.5  # geodesic metres from the start to the nearest view point
-    max_start_distance: float = 30.0
-    view_point_stride: int = 2  # keep every n-th grid row and column of view points
-    min_view_points: int = 1  # fewer reachable view points: the target is skipped
-    targets_per_house: int | None = None  # None: every usable instance
-    start_pool_size: int = 42  # start poses drawn per house (the paper's mean per scene)
+    starts_per_target: Count = 1
+    min_start_distance: Metres = 1.5  # geodesic metres from the start to the nearest view point
+    max_start_distance: Metres = 30.0
+    view_point_stride: Count = 2  # keep every n-th grid row and column of view points
+    min_view_points: Count = 1  # fewer reachable view points: the target is skipped
+    targets_per_house: Annotated[int, Field(ge=0)] | None = None  # None: every usable instance
+    start_pool_size: Count = 42  # start poses drawn per house (the paper's mean per scene)
 
-    def __post_init__(self) -> None:
-        for name in ("starts_per_target", "view_point_stride", "min_view_points"):
-            check_count(name, getattr(self, name), 1)
-        check_count("start_pool_size", self.start_pool_size, self.starts_per_target)
-        if self.targets_per_house is not None:
-            check_count("targets_per_house", self.targets_per_house, 0)
+    @model_validator(mode="after")
+    def _consistent(self) -> Self:
         low, high = self.min_start_distance, self.max_start_distance
-        if not (math.isfinite(low) and math.isfinite(high) and 0.0 <= low < high):
+        if not low < high:
+            raise ConfigError(f"need min_start_distance < max_start_distance, got {low}, {high}")
+        if self.start_pool_size < self.starts_per_target:
             raise ConfigError(
-                f"need 0 <= min_start_distance < max_start_distance (finite metres), got "
-                f"{low} and {high}"
+                f"start_pool_size ({self.start_pool_size}) must be at least starts_per_target "
+                f"({self.starts_per_target})"
             )
+        return self
 
 
 def episode_config(preset: str) -> EpisodeGenConfig:

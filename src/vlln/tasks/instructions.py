@@ -56,6 +56,7 @@ class AttributeConstraint:
     value: str
 
     def __post_init__(self) -> None:
+        # A value object built per candidate description: it guards itself (pydantic: 3x cost).
         if self.name not in DESCRIBABLE_ATTRIBUTES:
             raise ConfigError(
                 f"attribute {self.name!r} cannot describe an instance; use one of "
@@ -72,6 +73,7 @@ class RoomConstraint:
     room_type: str
 
     def __post_init__(self) -> None:
+        # A value object built per candidate description: it guards itself (pydantic: 3x cost).
         if not self.room_type:
             raise ConfigError("a room constraint needs a room type such as 'kitchen'")
 
@@ -85,6 +87,7 @@ class RelationConstraint:
     attribute: AttributeConstraint | None = None
 
     def __post_init__(self) -> None:
+        # A value object built per candidate description: it guards itself (pydantic: 3x cost).
         if not (self.word and self.category):
             raise ConfigError(
                 f"a relation constraint needs a word and a category, got {self.word!r} and "
@@ -103,6 +106,7 @@ class Description:
     constraints: tuple[Constraint, ...] = ()
 
     def __post_init__(self) -> None:
+        # A value object built per candidate description: it guards itself (pydantic: 3x cost).
         if not self.category:
             raise ConfigError("a description needs the category of the instance it describes")
 

@@ -4,8 +4,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from enum import StrEnum
-from typing import Literal
+from typing import Literal, Self
 
+from pydantic import model_validator
+
+from vlln.config import Count, Positive, settings_dataclass
 from vlln.errors import ConfigError
 from vlln.sim.agent import Action
 
@@ -98,7 +101,7 @@ class FailedOutput:
 AgentOutput = Action | Talk | PixelGoal | FailedOutput
 
 
-@dataclass(frozen=True)
+@settings_dataclass
 class TaskConfig:
     """Caps and budgets (docs/reference-facts.md §1). STOP, FORWARD and TURN count toward
     ``max_steps``; LOOK and TALK do not, so they have caps of their own; outputs that are
@@ -108,22 +111,19 @@ class TaskConfig:
     ``dialog_budget`` left at None becomes the task's :attr:`TaskType.default_budget`."""
 
     task: TaskType = TaskType.IIGN
-    max_steps: int = DEFAULT_MAX_STEPS
-    max_look_actions: int = DEFAULT_MAX_STEPS
-    max_talk_actions: int = 20
-    max_failed_actions: int = 20
+    max_steps: Count = DEFAULT_MAX_STEPS
+    max_look_actions: Count = DEFAULT_MAX_STEPS
+    max_talk_actions: Count = 20
+    max_failed_actions: Count = 20
     dialog_budget: int = None  # type: ignore[assignment]  # None: the task's default
-    success_radius: float = 0.25
+    success_radius: Positive = 0.25
 
-    def __post_init__(self) -> None:
+    @model_validator(mode="after")
+    def _budget_of_the_task(self) -> Self:
         if self.dialog_budget is None:
             object.__setattr__(self, "dialog_budget", self.task.default_budget)
-        for name in ("max_steps", "max_look_actions", "max_talk_actions", "max_failed_actions"):
-            if getattr(self, name) < 1:
-                raise ConfigError(f"{name} must be at least 1, got {getattr(self, name)}")
         self.task.check_budget(self.dialog_budget)
-        if not self.success_radius > 0:
-            raise ConfigError(f"success_radius must be positive, got {self.success_radius}")
+        return self
 
     @property
     def dialog_enabled(self) -> bool:

@@ -236,7 +236,7 @@ def test_invalid_settings_and_arguments_raise_config_errors() -> None:
     for values in bad:
         with pytest.raises(ConfigError):
             OpenAISettings(**values)
-    with pytest.raises(ConfigError, match="price"):
+    with pytest.raises(ConfigError, match="prompt_per_1k"):
         Pricing(prompt_per_1k=-1.0)
     client = client_for("http://127.0.0.1:9/v1")
     with pytest.raises(ConfigError, match="max_tokens"):

@@ -14,10 +14,11 @@ counted step, never a move; the object is examined again at the next step.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from typing import Self
 
 import numpy as np
 from numpy.typing import NDArray
+from pydantic import Field, model_validator
 
 from vlln.agents.aiuta import prompts
 from vlln.agents.frontier import dialog
@@ -25,6 +26,7 @@ from vlln.agents.frontier.detector import Candidate
 from vlln.agents.frontier.mapping import Pose
 from vlln.agents.model.openai_vlm import jpeg_data_url
 from vlln.agents.vlfm import VlfmAgent
+from vlln.config import settings_dataclass
 from vlln.errors import ConfigError
 from vlln.oracle.llm.openai_client import OpenAIChatClient
 from vlln.oracle.llm.protocol import ImagePart, LanguageModelError, Message, TextPart
@@ -34,22 +36,24 @@ from vlln.tasks.record import MAX_STORED_OUTPUT_CHARS, ModelCall
 from vlln.tasks.spec import AgentOutput, FailedOutput, TaskType
 
 
-@dataclass(frozen=True)
+@settings_dataclass
 class AiutaSettings:
     """The self-dialogue's knobs (AIUTA's thresholds on a 0-10 alignment score)."""
 
-    self_questions: int = 3  # questions the Self-Questioner asks itself per object
-    stop_score: float = 8.0  # at or above: this is the target, stop at it
-    skip_score: float = 4.0  # below: not the target, explore on
+    self_questions: int = Field(default=3, ge=0)
+    """questions the Self-Questioner asks itself per object"""
+    stop_score: float = Field(default=8.0, le=10.0)  # at or above: this is the target, stop at it
+    skip_score: float = Field(default=4.0, ge=0.0)  # below: not the target, explore on
     max_tokens: int = 256
     temperature: float = 0.0
 
-    def __post_init__(self) -> None:
-        if not 0.0 <= self.skip_score <= self.stop_score <= 10.0 or self.self_questions < 0:
+    @model_validator(mode="after")
+    def _skip_below_stop(self) -> Self:
+        if not self.skip_score <= self.stop_score:
             raise ConfigError(
-                "need 0 <= skip_score <= stop_score <= 10 and self_questions >= 0, got "
-                f"{self.skip_score}, {self.stop_score}, {self.self_questions}"
+                f"need skip_score <= stop_score, got {self.skip_score}, {self.stop_score}"
             )
+        return self
 
 
 class _CallFailed(Exception):

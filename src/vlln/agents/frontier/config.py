@@ -2,28 +2,30 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import field
+
+from pydantic import Field
 
 from vlln.agents.frontier.explorer import ExplorerConfig
 from vlln.agents.frontier.mapping import MapConfig
-from vlln.errors import ConfigError
+from vlln.config import Count, settings_dataclass
 
 
-@dataclass(frozen=True)
+@settings_dataclass
 class FrontierConfig:
     """Settings of the frontier agent; distances in metres, counts in steps or pixels."""
 
     map: MapConfig = field(default_factory=MapConfig)
     explorer: ExplorerConfig = field(default_factory=ExplorerConfig)
-    scan_turns: int = 12  # the opening 360° scan
+    scan_turns: int = Field(default=12, ge=0)  # the opening 360° scan
     min_detection_pixels: int = 100  # pixels an instance must cover to become a candidate
     arrive_distance: float = 0.5  # stop this close to the nearest seen point of the object
     ask_distance: float = 2.5  # ask "is this the one?" within this of the object
     min_central_pixels: int = 200  # object pixels in the image centre needed to ask
-    route_after: int = 60  # exploration steps without a candidate before asking the way
+    route_after: Count = 60  # exploration steps without a candidate before asking the way
     hint_steps: int = 60  # steps a route answer steers the frontier choice
     reserve_questions: int = 1  # kept for "is this the one?"
-    stuck_steps: int = 30  # mostly forward moves over this many steps ...
+    stuck_steps: int = Field(default=30, ge=2)  # mostly forward moves over this many steps ...
     stuck_distance: float = 0.6  # ... that got less far than this mean stuck
     max_looks: int = 40  # camera tilts per episode (the task caps them too)
     # Counted steps after which an instance of the category that the detector says does not
@@ -36,10 +38,3 @@ class FrontierConfig:
     # Whether it asks the oracle at all: off, it is the paper's FBE baseline, which explores
     # and detects but never talks, whatever budget the task gives.
     asks: bool = True
-
-    def __post_init__(self) -> None:
-        if self.scan_turns < 0 or self.stuck_steps < 2 or self.route_after < 1:
-            raise ConfigError(
-                "scan_turns must be >= 0, stuck_steps >= 2 and route_after >= 1; got "
-                f"{self.scan_turns}, {self.stuck_steps}, {self.route_after}"
-            )

@@ -10,10 +10,11 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import field
 
 import numpy as np
 from numpy.typing import NDArray
+from pydantic import Field
 from scipy import ndimage
 
 from vlln.agents.frontier.detector import Candidate
@@ -26,7 +27,7 @@ from vlln.agents.frontier.planner import (
     PlannerConfig,
     turn_toward,
 )
-from vlln.errors import ConfigError
+from vlln.config import Count, settings_dataclass
 from vlln.sim.agent import Action
 from vlln.world.frame import heading_vector, wrap_angle
 
@@ -37,23 +38,20 @@ FrontierRanker = Callable[[NDArray[np.float64], NDArray[np.float64], Pose], int 
 an index, or None when none is reachable."""
 
 
-@dataclass(frozen=True)
+@settings_dataclass
 class ExplorerConfig:
     """Frontier filtering and choice, replanning, and how close counts as arrived."""
 
     planner: PlannerConfig = field(default_factory=PlannerConfig)
     chooser: ChooserConfig = field(default_factory=ChooserConfig)
-    replan_interval: int = 20  # steps between routine replans
+    replan_interval: Count = 20  # steps between routine replans
     min_frontier_cells: int = 3
     min_pocket_area: float = 1.5  # m²; smaller unexplored pockets are not frontiers
     blacklist_radius: float = 0.5  # frontiers this close to a failed goal are skipped
-    approach_radii: tuple[float, ...] = (0.3, 0.5, 0.8, 1.2, 2.0, 3.0)  # tried in turn
+    approach_radii: tuple[float, ...] = Field(default=(0.3, 0.5, 0.8, 1.2, 2.0, 3.0), min_length=1)
+    """tried in turn"""
     frontier_tolerance: float = 0.3  # a frontier counts as reached this close
     candidate_tolerance: float = 0.2
-
-    def __post_init__(self) -> None:
-        if self.replan_interval < 1 or not self.approach_radii:
-            raise ConfigError("replan_interval must be >= 1 and approach_radii non-empty")
 
 
 class Explorer:

@@ -19,8 +19,10 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
+from pydantic import Field
 from scipy import ndimage
 
+from vlln.config import settings_dataclass
 from vlln.errors import ConfigError
 from vlln.world.frame import wrap_angle, yaw_of
 
@@ -83,18 +85,14 @@ def find_frontiers(
     return found
 
 
-@dataclass(frozen=True)
+@settings_dataclass
 class ChooserConfig:
     """The frontier choice rule's two knobs."""
 
-    p_continue: float = 0.9  # chance of the frontier nearest the previous one
-    hint_cone_deg: float = 50.0  # half-width of the cone around a hinted direction
-
-    def __post_init__(self) -> None:
-        if not 0.0 <= self.p_continue <= 1.0:
-            raise ConfigError(f"p_continue must be in [0, 1], got {self.p_continue}")
-        if not 0.0 < self.hint_cone_deg <= 180.0:
-            raise ConfigError(f"hint_cone_deg must be in (0, 180], got {self.hint_cone_deg}")
+    p_continue: float = Field(default=0.9, ge=0.0, le=1.0)
+    """chance of the frontier nearest the previous one"""
+    hint_cone_deg: float = Field(default=50.0, gt=0.0, le=180.0)
+    """half-width of the cone around a hinted direction"""
 
 
 def choose_frontier(

@@ -21,12 +21,13 @@ stair point seen in each cell, which tells where the flight leads (see ``stairs.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
-from typing import Any, NamedTuple, TypeVar
+from typing import Any, NamedTuple, Self, TypeVar
 
 import numpy as np
 from numpy.typing import NDArray
+from pydantic import Field, model_validator
 
+from vlln.config import Count, settings_dataclass
 from vlln.errors import ConfigError
 from vlln.sim.camera import CameraSpec
 from vlln.world.frame import heading_vector
@@ -51,13 +52,13 @@ class CellBox(NamedTuple):
     c1: int
 
 
-@dataclass(frozen=True)
+@settings_dataclass
 class MapConfig:
     """Resolution and sensing limits of the map."""
 
-    cell_size: float = 0.1
+    cell_size: float = Field(default=0.1, ge=0.01, le=0.5)
     extent: float = 60.0  # side of the square map, metres, centred on the start
-    pixel_stride: int = 4  # back-project every n-th pixel in both directions
+    pixel_stride: Count = 4  # back-project every n-th pixel in both directions
     floor_height: float = 0.08  # points lower than this are floor
     below_floor: float = 0.3  # ... unless this far below it: they are on a storey below
     stair_step: float = 0.3  # stair cells further than this from the floor are off it (steep)
@@ -65,21 +66,19 @@ class MapConfig:
     free_range: float = 5.0  # free space is traced this far along each column at most
     obstacle_range: float = 7.0  # obstacle points farther than this are ignored
 
-    def __post_init__(self) -> None:
-        if not 0.01 <= self.cell_size <= 0.5:
-            raise ConfigError(f"cell_size must be in [0.01, 0.5] m, got {self.cell_size}")
+    @model_validator(mode="after")
+    def _consistent(self) -> Self:
         if not self.extent > 4.0 * self.free_range:
             raise ConfigError(
                 f"extent ({self.extent} m) must exceed 4 * free_range ({self.free_range} m)"
             )
-        if self.pixel_stride < 1:
-            raise ConfigError(f"pixel_stride must be >= 1, got {self.pixel_stride}")
         low, high = self.obstacle_band
         if not -self.below_floor < self.floor_height < low < high:
             raise ConfigError(
                 f"need -below_floor < floor_height < obstacle_band[0] < obstacle_band[1], got "
                 f"{self.below_floor}, {self.floor_height}, {self.obstacle_band}"
             )
+        return self
 
 
 class ObstacleMap:

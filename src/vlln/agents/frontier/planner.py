@@ -14,14 +14,16 @@ vectorised array operations and no sorting.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from typing import Self
 
 import numpy as np
 from numpy.typing import NDArray
+from pydantic import Field, model_validator
 from scipy import ndimage, sparse
 from scipy.sparse import csgraph
 
 from vlln.agents.frontier.mapping import CellBox, ObstacleMap, Pose
+from vlln.config import settings_dataclass
 from vlln.errors import ConfigError
 from vlln.sim.agent import Action
 from vlln.world.frame import wrap_angle, yaw_of
@@ -29,23 +31,22 @@ from vlln.world.frame import wrap_angle, yaw_of
 _OFFSETS = ((0, 1), (1, 0), (0, -1), (-1, 0), (1, 1), (1, -1), (-1, 1), (-1, -1))
 
 
-@dataclass(frozen=True)
+@settings_dataclass
 class PlannerConfig:
     """How the map becomes a graph: obstacle inflation, wall clearance, search window."""
 
-    inflation: float = 0.18  # obstacle cells closer than this (centre to centre) are blocked
+    inflation: float = Field(default=0.18, ge=0.0)
+    """obstacle cells closer than this (centre to centre) are blocked"""
     near_wall: float = 0.45  # cells closer than this to an obstacle cost extra
-    near_wall_cost: float = 2.0  # cost multiplier of those cells
+    near_wall_cost: float = Field(default=2.0, ge=1.0)  # cost multiplier of those cells
     escape: float = 0.4  # around the agent only obstacle cells themselves block
     margin: int = 10  # cells around the explored box that the search may use
 
-    def __post_init__(self) -> None:
-        if not 0.0 <= self.inflation < self.near_wall:
-            raise ConfigError(
-                f"need 0 <= inflation < near_wall, got {self.inflation}, {self.near_wall}"
-            )
-        if self.near_wall_cost < 1.0:
-            raise ConfigError(f"near_wall_cost must be >= 1, got {self.near_wall_cost}")
+    @model_validator(mode="after")
+    def _inflation_below_near_wall(self) -> Self:
+        if not self.inflation < self.near_wall:
+            raise ConfigError(f"need inflation < near_wall, got {self.inflation}, {self.near_wall}")
+        return self
 
 
 def _disc(radius_cells: float) -> NDArray[np.bool_]:

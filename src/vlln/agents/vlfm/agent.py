@@ -15,7 +15,7 @@ instance of the target category, storeys), with asking off: VLFM does not talk.
 from __future__ import annotations
 
 from collections import Counter
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -25,20 +25,16 @@ from vlln.agents.frontier.mapping import Pose
 from vlln.agents.frontier.storeys import Storey
 from vlln.agents.vlfm.prior import CooccurrencePrior, shipped_prior
 from vlln.agents.vlfm.value_map import ValueMap
-from vlln.errors import ConfigError
+from vlln.config import Positive, settings_dataclass
 from vlln.tasks.env import EpisodeInfo, Observation
 
 
-@dataclass(frozen=True)
+@settings_dataclass
 class ValueRanking:
     """How a frontier's value trades off against the walk to it."""
 
-    distance_scale: float = 5.0  # metres of extra walk worth one prior's worth of value
-    radius: float = 0.6  # metres around a frontier whose values count
-
-    def __post_init__(self) -> None:
-        if self.distance_scale <= 0.0 or self.radius <= 0.0:
-            raise ConfigError("distance_scale and radius must be positive")
+    distance_scale: Positive = 5.0  # metres of extra walk worth one prior's worth of value
+    radius: Positive = 0.6  # metres around a frontier whose values count
 
 
 class ValueRanker:

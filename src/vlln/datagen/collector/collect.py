@@ -13,17 +13,17 @@ from __future__ import annotations
 import math
 import zlib
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import field
 from typing import NamedTuple
 
 import numpy as np
 
+from vlln.config import Count, Positive, settings_dataclass
 from vlln.datagen.collector.dialog import DialogConfig, DialogTriggers
 from vlln.datagen.collector.ground import Ground
 from vlln.datagen.collector.lattice import LatticeFollower
 from vlln.datagen.collector.policy import CollectorPolicy, PolicyConfig
 from vlln.datagen.trajectory import Step, Trajectory
-from vlln.errors import ConfigError
 from vlln.sim.agent import Action, AgentState
 from vlln.sim.renderer import Frame
 from vlln.sim.simulator import Simulator
@@ -43,21 +43,14 @@ class _Goal(NamedTuple):
     points: tuple[Point3, ...]  # its view points
 
 
-@dataclass(frozen=True)
+@settings_dataclass
 class CollectorConfig:
     """Everything that shapes a collected trajectory (recorded in the dataset's info)."""
 
     policy: PolicyConfig = field(default_factory=PolicyConfig)
     dialog: DialogConfig = field(default_factory=DialogConfig)
-    goal_radius: float = 0.25  # the follower stops this close to a view point
-    max_steps: int = DEFAULT_MAX_STEPS
-
-    def __post_init__(self) -> None:
-        if self.max_steps < 1 or not self.goal_radius > 0.0:
-            raise ConfigError(
-                f"max_steps must be >= 1 and goal_radius > 0, got {self.max_steps}, "
-                f"{self.goal_radius}"
-            )
+    goal_radius: Positive = 0.25  # the follower stops this close to a view point
+    max_steps: Count = DEFAULT_MAX_STEPS
 
 
 def episode_rng(seed: int, episode_id: str, stream: str) -> np.random.Generator:

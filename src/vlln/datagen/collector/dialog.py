@@ -19,6 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from vlln.config import Positive, settings_dataclass
 from vlln.datagen.collector.chooser import BEST, Choice
 from vlln.datagen.collector.templates import (
     ATTRIBUTE_TEMPLATES,
@@ -27,7 +28,6 @@ from vlln.datagen.collector.templates import (
     fill,
 )
 from vlln.datagen.trajectory import Exchange
-from vlln.errors import ConfigError
 from vlln.oracle.disambiguation import centre_counts, is_centred, most_visible_of
 from vlln.sim.agent import AgentState
 from vlln.sim.renderer import Frame
@@ -38,14 +38,10 @@ from vlln.world.model import House, ObjectInstance
 ATTRIBUTE, ROUTE, DISAMBIGUATION = "attribute", "route", "disambiguation"
 
 
-@dataclass(frozen=True)
+@settings_dataclass
 class DialogConfig:
-    ask_range: float = 3.0  # m, floor-plan distance to a candidate's box
-    route_progress: float = 1.0  # m walked after a best-frontier choice
-
-    def __post_init__(self) -> None:
-        if not (self.ask_range > 0.0 and self.route_progress > 0.0):
-            raise ConfigError("ask_range and route_progress must be positive metres")
+    ask_range: Positive = 3.0  # m, floor-plan distance to a candidate's box
+    route_progress: Positive = 1.0  # m walked after a best-frontier choice
 
 
 @dataclass

@@ -23,21 +23,22 @@ chooser only once the storey has no frontier left.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import field
 
 import numpy as np
+from pydantic import Field
 
 from vlln.agents.frontier.explorer import unexplored_heading
 from vlln.agents.frontier.frontiers import ChooserConfig
 from vlln.agents.frontier.mapping import MapConfig
 from vlln.agents.frontier.planner import turn_toward
+from vlln.config import Count, Positive, settings_dataclass
 from vlln.datagen.collector.chooser import TargetAwareChooser
 from vlln.datagen.collector.ground import Ground
 from vlln.datagen.collector.lattice import LatticeFollower
 from vlln.datagen.collector.stairs import Flight, FlightChoices, house_flights
 from vlln.datagen.collector.storey_maps import StoreyMaps
 from vlln.datagen.collector.visibility import DOWN_TILT, best_central_pixels
-from vlln.errors import ConfigError
 from vlln.sim.agent import Action, AgentState
 from vlln.sim.follower import GreedyFollower
 from vlln.sim.geodesic import GeodesicField
@@ -54,13 +55,13 @@ _STAND_SPREAD = 0.3  # m; how far from a stand point the follower may stop
 _ARRIVAL_SCAN_TURNS = 7
 
 
-@dataclass(frozen=True)
+@settings_dataclass
 class PolicyConfig:
     """Settings of the collector's policy; distances in metres."""
 
     map: MapConfig = field(default_factory=lambda: MapConfig(cell_size=0.05))
     chooser: ChooserConfig = field(default_factory=ChooserConfig)
-    scan_turns: int = 12
+    scan_turns: int = Field(default=12, ge=0)
     min_frontier_cells: int = 3
     min_pocket_area: float = 1.5  # m²; smaller unexplored pockets are not frontiers
     frontier_reached: float = 0.3  # m; a frontier goal counts as reached this close
@@ -68,18 +69,11 @@ class PolicyConfig:
     frontier_clear_radius: float = 0.25  # m; a frontier is cleared when all around is seen
     goal_timeout: int = 80  # steps after which a frontier goal is chosen afresh
     goal_attempts: int = 8  # frontiers tried in one step before exploration gives up
-    seen_pixels: int = 200  # target pixels (640x480) that count as having seen it ...
-    seen_range: float = 5.0  # ... when its nearest seen point is this close
+    seen_pixels: Count = 200  # target pixels (640x480) that count as having seen it ...
+    seen_range: Positive = 5.0  # ... when its nearest seen point is this close
     final_pixels: int = 300  # target pixels wanted in the middle of the last frame ...
     relocations: int = 3  # ... else up to this many moves to a view point that shows it
     stand_candidates: int = 40  # view points tried (nearest first) when looking for one
-
-    def __post_init__(self) -> None:
-        if self.scan_turns < 0 or self.seen_pixels < 1 or not self.seen_range > 0.0:
-            raise ConfigError(
-                "scan_turns must be >= 0, seen_pixels >= 1 and seen_range > 0; got "
-                f"{self.scan_turns}, {self.seen_pixels}, {self.seen_range}"
-            )
 
 
 class CollectorPolicy:

@@ -2,29 +2,27 @@
 
 from __future__ import annotations
 
-import math
 import threading
 from dataclasses import dataclass, field
+from typing import Annotated
 
-from vlln.errors import ConfigError
+from pydantic import Field
+
+from vlln.config import settings_dataclass
 from vlln.oracle.llm.protocol import Usage
 
+Price = Annotated[float, Field(ge=0.0, allow_inf_nan=False)]
 
-@dataclass(frozen=True)
+
+@settings_dataclass
 class Pricing:
     """Prices per 1000 tokens, in whatever currency the provider bills (OpenAI: USD).
 
     Zero (the default) for local servers, where tokens cost nothing but time.
     """
 
-    prompt_per_1k: float = 0.0
-    completion_per_1k: float = 0.0
-
-    def __post_init__(self) -> None:
-        for name in ("prompt_per_1k", "completion_per_1k"):
-            value = getattr(self, name)
-            if not (isinstance(value, int | float) and math.isfinite(value) and value >= 0.0):
-                raise ConfigError(f"price {name} must be a finite number >= 0, got {value!r}")
+    prompt_per_1k: Price = 0.0
+    completion_per_1k: Price = 0.0
 
     def cost(self, usage: Usage) -> float:
         return (

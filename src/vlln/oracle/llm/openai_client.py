@@ -25,14 +25,16 @@ import logging
 import math
 import os
 import time
-from dataclasses import dataclass, field
+from dataclasses import field
 from pathlib import Path
-from typing import Any
+from typing import Annotated, Any, Self
 
 import httpcore
 import httpx
 import numpy as np
+from pydantic import AfterValidator, Field, field_validator, model_validator
 
+from vlln.config import settings_dataclass
 from vlln.errors import ConfigError
 from vlln.http.addresses import is_loopback
 from vlln.oracle.llm.accounting import Pricing, UsageLedger
@@ -55,56 +57,65 @@ MAX_REPLY_BYTES = 1 << 20  # a completion of a few hundred tokens is a few kilob
 _TRANSPORT_ERRORS = (httpcore.TimeoutException, httpcore.NetworkError, httpcore.RemoteProtocolError)
 
 
-@dataclass(frozen=True)
+def check_base_url(base_url: str) -> str:
+    """``base_url`` if it is HTTPS, or HTTP to a loopback host; else :class:`ConfigError`."""
+    try:
+        url = httpx.URL(base_url)
+    except (httpx.InvalidURL, TypeError) as error:
+        raise ConfigError(f"{base_url!r} is not a URL: {error}") from None
+    if url.scheme == "https" and url.host:
+        return base_url
+    if url.scheme == "http" and is_loopback(url.host):
+        return base_url
+    raise ConfigError(
+        f"{base_url!r} must use https:// (plain http:// is only allowed for "
+        "localhost, 127.0.0.0/8 and ::1, where the key never leaves the machine)"
+    )
+
+
+Seconds = Annotated[float, Field(ge=0.0, allow_inf_nan=False)]
+
+
+@settings_dataclass
 class OpenAISettings:
     """Where the model is served and how patiently to talk to it."""
 
     model: str
-    base_url: str = "https://api.openai.com/v1"
+    base_url: Annotated[str, AfterValidator(check_base_url)] = "https://api.openai.com/v1"
     api_key_env: str = "OPENAI_API_KEY"  # unset or empty: no Authorization header
-    timeout_s: float = 30.0  # deadline of each request (attempt), from connect to last byte
-    max_retries: int = 4  # retries after the first attempt
-    backoff_base_s: float = 0.5  # first back-off; doubles on each retry
-    backoff_max_s: float = 30.0  # cap of one wait, Retry-After included
+    # deadline of each request (attempt), from connect to last byte
+    timeout_s: float = Field(default=30.0, gt=0.0, allow_inf_nan=False)
+    max_retries: int = Field(default=4, ge=0, strict=True)  # retries after the first attempt
+    backoff_base_s: Seconds = 0.5  # first back-off; doubles on each retry
+    backoff_max_s: Seconds = 30.0  # cap of one wait, Retry-After included
     pricing: Pricing = field(default_factory=Pricing)
     cache_dir: Path | None = None  # None: no disk cache
     # Retry replies that are not chat completions (a body that is not JSON, no choices), as a
     # proxy or an overloaded server sometimes sends; off for the oracle, which falls back.
     retry_bad_replies: bool = False
 
-    def __post_init__(self) -> None:
-        if not self.model.strip():
-            raise ConfigError("model must name the served model, e.g. 'gpt-4o'")
-        check_base_url(self.base_url)
-        if not self.api_key_env.isidentifier():
-            raise ConfigError(
-                f"api_key_env must be an environment variable name, got {self.api_key_env!r}"
-            )
-        if not (math.isfinite(self.timeout_s) and self.timeout_s > 0.0):
-            raise ConfigError(f"timeout_s must be positive seconds, got {self.timeout_s!r}")
-        if isinstance(self.max_retries, bool) or self.max_retries < 0:
-            raise ConfigError(f"max_retries must be a whole number >= 0, got {self.max_retries!r}")
-        if not (0.0 <= self.backoff_base_s <= self.backoff_max_s < math.inf):
-            raise ConfigError(
-                "back-off needs 0 <= backoff_base_s <= backoff_max_s (finite seconds), got "
-                f"{self.backoff_base_s!r} and {self.backoff_max_s!r}"
-            )
+    @field_validator("model")
+    @classmethod
+    def _names_a_model(cls, model: str) -> str:
+        if not model.strip():
+            raise ConfigError("must name the served model, e.g. 'gpt-4o'")
+        return model
 
+    @field_validator("api_key_env")
+    @classmethod
+    def _names_a_variable(cls, name: str) -> str:
+        if not name.isidentifier():
+            raise ConfigError(f"must be an environment variable name, got {name!r}")
+        return name
 
-def check_base_url(base_url: str) -> None:
-    """Raise :class:`ConfigError` unless the URL is HTTPS, or HTTP to a loopback host."""
-    try:
-        url = httpx.URL(base_url)
-    except (httpx.InvalidURL, TypeError) as error:
-        raise ConfigError(f"base_url {base_url!r} is not a URL: {error}") from None
-    if url.scheme == "https" and url.host:
-        return
-    if url.scheme == "http" and is_loopback(url.host):
-        return
-    raise ConfigError(
-        f"base_url {base_url!r} must use https:// (plain http:// is only allowed for "
-        "localhost, 127.0.0.0/8 and ::1, where the key never leaves the machine)"
-    )
+    @model_validator(mode="after")
+    def _backoff_base_below_max(self) -> Self:
+        if not self.backoff_base_s <= self.backoff_max_s:
+            raise ConfigError(
+                f"back-off needs backoff_base_s <= backoff_max_s, got {self.backoff_base_s!r} "
+                f"and {self.backoff_max_s!r}"
+            )
+        return self
 
 
 class OpenAIChatClient:

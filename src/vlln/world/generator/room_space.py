@@ -68,6 +68,7 @@ class RoomSpace:
     _cell_area: float = field(init=False)
 
     def __post_init__(self) -> None:
+        # No check: this builds the occupancy grid that the fields above imply.
         inner = self.interior
         nx = max(1, round(inner.width / GRID_CELL))
         nz = max(1, round(inner.depth / GRID_CELL))

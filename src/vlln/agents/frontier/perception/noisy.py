@@ -23,7 +23,7 @@ gives the same detections.
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -34,7 +34,7 @@ from vlln.agents.frontier.perception.confusions import (
     SIZE_LOOKALIKES,
     category_lookalikes,
 )
-from vlln.errors import ConfigError
+from vlln.config import Positive, Probability, settings_dataclass
 from vlln.tasks.env import DetectedObject
 from vlln.world.materials import MATERIAL_TEXTURE
 
@@ -42,31 +42,18 @@ _LABEL_STREAM = 0  # seeds the per-instance (whole-episode) errors
 _FRAME_STREAM = 1  # seeds the per-frame misses
 
 
-@dataclass(frozen=True)
+@settings_dataclass
 class NoiseModel:
     """Constants of the noise model (module doc); rates are probabilities."""
 
-    max_recall: float = 0.95  # a large, near object is still missed 5 % of frames
-    half_area: float = 400.0  # pixels at 640x480 where the size factor is 1/2
-    half_distance: float = 4.0  # metres where the distance factor is 1/2
-    power: float = 4.0  # how sharply recall falls past half_distance
-    confusion_rate: float = 0.2
-    color_error_rate: float = 0.2
-    material_error_rate: float = 0.15
-    size_error_rate: float = 0.1
-
-    def __post_init__(self) -> None:
-        rates = (
-            self.max_recall,
-            self.confusion_rate,
-            self.color_error_rate,
-            self.material_error_rate,
-            self.size_error_rate,
-        )
-        if not all(0.0 <= rate <= 1.0 for rate in rates):
-            raise ConfigError(f"noise-model rates must lie in [0, 1], got {rates}")
-        if min(self.half_area, self.half_distance, self.power) <= 0.0:
-            raise ConfigError("half_area, half_distance and power must be positive")
+    max_recall: Probability = 0.95  # a large, near object is still missed 5 % of frames
+    half_area: Positive = 400.0  # pixels at 640x480 where the size factor is 1/2
+    half_distance: Positive = 4.0  # metres where the distance factor is 1/2
+    power: Positive = 4.0  # how sharply recall falls past half_distance
+    confusion_rate: Probability = 0.2
+    color_error_rate: Probability = 0.2
+    material_error_rate: Probability = 0.15
+    size_error_rate: Probability = 0.1
 
     def recall(
         self, distance: NDArray[np.float64], area: NDArray[np.float64]
