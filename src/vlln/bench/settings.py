@@ -119,7 +119,7 @@ class LearningBench(BenchOptions):
     """teacher trajectories tried per house"""
     size: Literal["tiny", "small", "base"] = "tiny"
     """model size (vlln train new-model --size)"""
-    steps: Count = 800
+    steps: Count = 1200
     """training steps"""
     batch_size: Count = 8
     """samples per step"""
