@@ -44,8 +44,10 @@ def _goals(sim: Simulator, target: ObjectInstance) -> tuple[tuple[float, float],
     return tuple(view_points(sim.grid, target.box))
 
 
-def _oracle(sim: Simulator, target: ObjectInstance, seed: int = 0) -> RuleOracle:
-    oracle = RuleOracle(seed)
+def _oracle(
+    sim: Simulator, target: ObjectInstance, seed: int = 0, cues: bool = False
+) -> RuleOracle:
+    oracle = RuleOracle(seed, cues=cues)
     oracle.start(EpisodeContext(sim, target, _goals(sim, target)))
     return oracle
 
@@ -339,7 +341,7 @@ def test_disambiguation_no_with_a_distinguishing_colour_for_a_distractor(sim: Si
     rng = np.random.default_rng(7)
     checked = 0
     for target, distractor in _same_category_pairs(sim):
-        oracle = _oracle(sim, target)
+        oracle = _oracle(sim, target, cues=True)
         for state, frame in itertools.islice(_facing_views(sim, distractor, 0.4, 2.5, rng), 2):
             if np.any(_centre(frame.instance_ids) == target.id):
                 continue
