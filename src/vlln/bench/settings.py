@@ -10,11 +10,10 @@ from typing import Annotated, Literal
 from pydantic import AliasChoices, Field
 from pydantic_settings import CliPositionalArg
 
-from vlln.config import Config
+from vlln.config import Config, Count
 from vlln.tasks.splits import TEST_PROTOCOL_EPISODES
 from vlln.world.options import PresetOptions
 
-Count = Annotated[int, Field(ge=1)]
 Storeys = Annotated[int, Field(ge=2, le=3)]
 
 

@@ -11,9 +11,9 @@ Datasheet
   to walk to: back-projected with depth and tilt, snapped to the navigable area; the camera
   returns level; counted like a LOOK unless the camera was tilted, whose LOOK_DOWN counted).
   :class:`vlln.tasks.spec.FailedOutput` (a model's output that could not be read, or a server
-  that gave none), a pixel that shows no reachable floor or floor the agent already stands on,
-  and anything else are failed actions: recorded by kind, the agent does not move, the camera
-  returns level, and it counts as a step.
+  that gave none), a pixel that shows no reachable floor (or floor the agent stands on or
+  cannot step toward), and anything else are failed actions: recorded by kind, the agent does
+  not move, the camera returns level, and it counts as a step.
 * **Observations** (a dict): ``rgb`` (H, W, 3) uint8; ``depth`` (H, W) float32 metres;
   ``gps`` float32 (x, z) in metres from the start in the start's frame (the start heading looks
   along -z); ``height`` the feet's height above the start's (metres; it changes only on

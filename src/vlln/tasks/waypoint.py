@@ -5,8 +5,9 @@ A :class:`~vlln.tasks.spec.PixelGoal` becomes a navigable floor point
 follower's next action toward it in every observation until the agent is within the follower's
 radius (0.25 m, as in the reference), takes another action, or sets another goal. The agent
 decides how many of these steps to take (the model agent: at most 8 before asking again).
-A pixel whose point is already within the radius gives no waypoint: the goal would not move
-the agent, and a model that names it again on the same frame would loop.
+A pixel whose point is already within the radius, or that no forward step brings closer, gives
+no waypoint: the goal would not move the agent, and a model that names it again on the same
+frame would loop.
 In a house with several storeys the point is ``(x, y, z)`` on the agent's storey and the
 follower walks the storeys' graph, up or down a flight when the point is on it.
 """
@@ -59,5 +60,5 @@ def waypoint_for_pixel(
         return f"pixel ({col}, {row}) shows floor that cannot be reached"
     waypoint = Waypoint(point, GreedyFollower(sim.nav, field, WAYPOINT_RADIUS, sim.config.motion))
     if waypoint.next_action(state) is None:
-        return f"pixel ({col}, {row}) shows floor the agent already stands on"
+        return f"pixel ({col}, {row}) shows floor the agent stands on or cannot step toward"
     return waypoint

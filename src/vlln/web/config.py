@@ -20,7 +20,7 @@ from pydantic import (
 
 from vlln.agents.options import AgentOptions
 from vlln.agents.registry import AGENTS, CONFIGURED_AGENTS, agent_options
-from vlln.config import Config
+from vlln.config import Config, Count
 from vlln.errors import ConfigError
 from vlln.oracle.llm.openai_client import OpenAISettings
 from vlln.tasks.episode import Episode
@@ -48,7 +48,6 @@ def _seconds(value: float) -> float:
 
 
 Seconds = Annotated[float, AfterValidator(_seconds)]
-Count = Annotated[int, Field(ge=1)]
 
 
 class WebLimits(Config):
