@@ -1,7 +1,8 @@
 """The training contract in small: a model from scratch that fits the teacher's first
 decisions on the exported prompts makes the same decisions when ``vlln eval --agent vlln``
-plays the episode. Any drift between what training and evaluation show the model (prompt
-text, connectives, dialog answers, history length, action decoding) breaks it.
+plays the episode, and every prompt it is shown there is, text and image bytes, one it was
+trained on. Any drift between what training and evaluation show the model (prompt text,
+connectives, dialog answers, history length, images, action decoding) breaks it.
 
 It trains on the opening scan of one trajectory only (its first frames), so that it fits in
 seconds; ``vlln bench learning`` is the whole-episode version (docs/learning.md)."""
@@ -13,7 +14,7 @@ from pathlib import Path
 
 import pytest
 
-from vlln.bench.learning import action_agreement, teacher_decisions
+from vlln.bench.learning import PromptMatch, action_agreement, prompt_match, teacher_decisions
 from vlln.cli import main
 from vlln.datagen.sft import SftConfig, export_sft
 from vlln.datagen.sft.source import open_houses, read_trajectories
@@ -79,3 +80,4 @@ def test_a_model_that_fits_its_teacher_decides_alike_in_vlln_eval(
     assert record.actions == ["TALK"] * len(asked) + ["TURN_LEFT"] * FRAMES
     replies = [call.text for call in record.model_calls]
     assert replies == [f"<talk>{q}" for q in asked] + ["<move>←←←←"] * (FRAMES // 4)
+    assert prompt_match(run, export) == PromptMatch(100.0, len(replies))

@@ -28,6 +28,7 @@ from vlln.prompt import (
     connective_for,
     history_frames,
     limit_answers,
+    prompt_digest,
     with_answer,
     with_look_down,
     with_reply,
@@ -260,6 +261,19 @@ def test_connective_is_a_pure_function_of_seed_episode_and_frame() -> None:
     ]
     assert connective_for(0, "a", 0, look_down=True) == "you can spot "
     assert connective_for(1, 17, 3) == connective_for(1, "17", 3)
+
+
+def test_prompt_digest_changes_with_any_byte_of_text_or_image() -> None:
+    turns = build_conversation("Search for the chair.", 0, [], connective="you can see ").turns
+    image = bytes(range(256))
+    digest = prompt_digest(turns, [image])
+    assert len(digest) == 16 and digest == prompt_digest(turns, [bytes(range(256))])
+    other_image = image[:-1] + b"\x00"
+    other_text = (Turn(turns[0].role, turns[0].text.replace("chair", "chairs")),)
+    other_role = (Turn("gpt", turns[0].text),)
+    others = [(other_text, [image]), (other_role, [image]), (turns, [other_image])]
+    others += [(turns, [image, b""]), (turns, [image[:128], image[128:]])]
+    assert digest not in {prompt_digest(t, i) for t, i in others}
 
 
 def test_question_limit_replaces_later_answers() -> None:

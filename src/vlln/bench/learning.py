@@ -20,9 +20,11 @@ pixel goal as the teacher did: :func:`vlln.datagen.sft.sampling.imitator_reaches
 ``action_agreement`` (the share of the
 teacher's decisions, on the exported prompts, where the model's decoded output is the
 teacher's: the same move, turn run, STOP or question, and a pixel goal within
-:data:`PIXEL_TOLERANCE` pixels), ``pixel_error_median`` and ``train_seconds``. A model that
-fits its teacher on the prompts and then fails in closed loop points at a drift between what
-training and evaluation show the model.
+:data:`PIXEL_TOLERANCE` pixels), ``pixel_error_median``, ``prompt_match`` (the share of the
+model's calls in evaluation whose prompt, text and image bytes, is one the export trained on:
+:func:`prompt_match`) and ``train_seconds``. A model that fits its teacher on the prompts and
+then fails in closed loop points at a drift between what training and evaluation show the
+model; ``prompt_match`` below 100 % while the model still follows its teacher names it.
 """
 
 from __future__ import annotations
@@ -43,7 +45,7 @@ from vlln.bench.figures import Figure, emit
 from vlln.bench.settings import AgreementBench, LearningBench
 from vlln.datagen.sft.source import SourceTrajectory
 from vlln.errors import ConfigError
-from vlln.prompt import Conversation, ImageRef, PixelOutput, Turn, read_output
+from vlln.prompt import Conversation, ImageRef, PixelOutput, Turn, prompt_digest, read_output
 
 PIXEL_TOLERANCE = 48.0  # pixels of the 640x480 look-down image: about 0.3 m of floor ahead
 _BUDGET = 5
@@ -75,6 +77,7 @@ def run_learning_benchmark(settings: LearningBench) -> list[Figure]:
     note("action_agreement", outcome.agreement, "%")
     note("pixel_error_median", outcome.pixel_error, "px")
     note("imitable_share", outcome.imitable, "%")
+    note("prompt_match", outcome.prompt_match, "%")
     note("episodes", outcome.episodes, "count")
     note("train_samples", outcome.samples, "count")
     note("train_steps", outcome.steps, "steps")
@@ -106,6 +109,7 @@ class LearningOutcome:
     agreement: float
     pixel_error: float
     imitable: float  # % of teacher trajectories an exact imitator of the export finishes
+    prompt_match: float  # % of the model's calls in evaluation shown a prompt trained on
     episodes: int
     samples: int
     steps: int
@@ -148,6 +152,7 @@ def learn(settings: LearningBench, work: Path) -> LearningOutcome:
         agreement,
         pixel_error,
         100.0 * imitable,
+        prompt_match(work / "eval-model", export).share,
         len(trajectories),
         samples,
         steps,
@@ -298,6 +303,33 @@ def action_agreement(model: Path, export: Path, limit: int) -> Agreement:
             agreed += got == wanted
     median = statistics.median(errors) if errors else math.nan
     return Agreement(100.0 * agreed / max(1, len(chosen)), median, len(chosen))
+
+
+class PromptMatch(NamedTuple):
+    share: float  # % of the calls whose prompt is one of the export's decision prompts
+    calls: int  # model calls of the run that recorded their prompt's digest
+
+
+def prompt_match(run: Path, export: Path) -> PromptMatch:
+    """How many of the model calls recorded in ``run`` were shown, byte for byte, a prompt
+    of one of ``export``'s teacher decisions (:func:`vlln.prompt.prompt_digest` of the turns
+    and the image files). A model that follows its teacher in closed loop is shown exactly its
+    training prompts, so every call matches; one that does not names a drift in the text
+    (connectives, history, dialog) or in the pixels."""
+    from vlln.eval.results import load_run_records
+
+    trained = {
+        prompt_digest(d.turns, [path.read_bytes() for path in d.images])
+        for d in teacher_decisions(export)
+    }
+    digests = [
+        call.prompt_digest
+        for record in load_run_records([run])
+        for call in record.model_calls
+        if call.prompt_digest
+    ]
+    matched = sum(digest in trained for digest in digests)
+    return PromptMatch(100.0 * matched / max(1, len(digests)), len(digests))
 
 
 def teacher_decisions(export: Path) -> list[Decision]:

@@ -90,6 +90,18 @@ class Conversation:
         return result
 
 
+def prompt_digest(turns: Sequence[Turn], images: Sequence[bytes]) -> str:
+    """A 16-hex fingerprint of exactly what a model is shown (every turn's role and text, every
+    image's bytes), so an evaluation's prompts can be matched with the training samples' ones
+    without storing either: any drift in text or pixels changes it."""
+    digest = hashlib.blake2b(digest_size=8)
+    for turn in turns:
+        digest.update(f"{turn.role}\x1f{turn.text}\x1e".encode())
+    for image in images:
+        digest.update(len(image).to_bytes(8, "big") + image)
+    return digest.hexdigest()
+
+
 def connective_for(seed: int, episode_id: str | int, frame: int, *, look_down: bool = False) -> str:
     """The reference's randomly chosen connective, as a pure function of its arguments (the
     look-down turn draws its own), so the export and an agent pick the same one."""

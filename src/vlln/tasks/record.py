@@ -72,6 +72,7 @@ class ModelCall:
     prompt_tokens: int = 0
     completion_tokens: int = 0
     truncated_chars: int = 0  # characters of the output cut before storing
+    prompt_digest: str = ""  # vlln.prompt.prompt_digest of the prompt, where the agent built it
 
 
 @dataclass(frozen=True)
@@ -138,9 +139,10 @@ class EpisodeRecord:
         for turn in data["dialog"]:
             if not turn["type_refused"]:
                 del turn["type_refused"]
-        for call in data["model_calls"]:  # written only when something was cut
-            if not call["truncated_chars"]:
-                del call["truncated_chars"]
+        for call in data["model_calls"]:  # written only when something was cut or built
+            for name in ("truncated_chars", "prompt_digest"):
+                if not call[name]:
+                    del call[name]
         return data
 
     @staticmethod

@@ -37,6 +37,7 @@ from vlln.prompt import (
     TurnOutput,
     build_conversation,
     connective_for,
+    prompt_digest,
     read_output,
     with_look_down,
     with_reply,
@@ -149,7 +150,7 @@ class ModelAgent:
         ]
         look_down = conversation.images[-1].camera == "down"
         reply = self.model.generate(conversation, images)
-        self._record(reply, look_down)
+        self._record(reply, look_down, prompt_digest(conversation.turns, images))
         if reply.text is None:
             return FailedOutput("server", reply.error or "no reply")
         output = read_output(reply.text, look_down=look_down)
@@ -183,7 +184,7 @@ class ModelAgent:
             return [output.action] * output.count
         return [Action.MOVE_FORWARD if isinstance(output, ForwardOutput) else Action.STOP]
 
-    def _record(self, reply: ModelReply, look_down: bool) -> None:
+    def _record(self, reply: ModelReply, look_down: bool, digest: str) -> None:
         text = reply.text
         cut = 0 if text is None else max(0, len(text) - MAX_STORED_OUTPUT_CHARS)
         self._calls.append(
@@ -196,6 +197,7 @@ class ModelAgent:
                 prompt_tokens=reply.prompt_tokens,
                 completion_tokens=reply.completion_tokens,
                 truncated_chars=cut,
+                prompt_digest=digest,
             )
         )
 
