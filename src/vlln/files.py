@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import shutil
 import tempfile
 from collections.abc import Callable
@@ -108,6 +109,9 @@ def check_output_folder(out: Path, option: str = "--out") -> None:
 MAX_JSON_DEPTH = 64
 # An integer with more digits does not fit in a float (and Python refuses to read 4,300+).
 MAX_INTEGER_DIGITS = 308
+# A lone UTF-16 surrogate (escaped as \ud800 in JSON, or raw in a str) decodes but can never be
+# encoded as UTF-8 again, so every later write of the value would fail: it is refused on reading.
+_SURROGATE = re.compile(r"\\u[dD][89a-fA-F]|[\ud800-\udfff]")
 
 
 def parse_json(
@@ -115,8 +119,9 @@ def parse_json(
 ) -> Any:
     """The JSON value of untrusted bytes or text. Anything that is not plain UTF-8 JSON (a
     binary file, a torn write, an integer of hundreds of digits, nesting deeper than
-    :data:`MAX_JSON_DEPTH`) is a :class:`DataFormatError` with a short reason, never a
-    ``ValueError``, ``OverflowError`` or ``RecursionError``; callers add the file's name.
+    :data:`MAX_JSON_DEPTH`, text that cannot be written back as UTF-8) is a
+    :class:`DataFormatError` with a short reason, never a ``ValueError``, ``OverflowError``,
+    ``RecursionError`` or a later ``UnicodeEncodeError``; callers add the file's name.
     ``object_hook`` sees every object as it is decoded, innermost first (``json.loads``)."""
     try:
         text = data.decode("utf-8") if isinstance(data, bytes) else data
@@ -128,6 +133,8 @@ def parse_json(
     except json.JSONDecodeError as error:
         raise DataFormatError(f"not JSON ({error})") from None
     _check_depth(value)
+    if _SURROGATE.search(text):  # rare: only then is every string looked at
+        _check_encodable(value)
     return value
 
 
@@ -153,3 +160,24 @@ def _check_depth(value: Any) -> None:
         level = deeper
     if level:
         raise DataFormatError(f"JSON nested deeper than {MAX_JSON_DEPTH} levels")
+
+
+def _check_encodable(value: Any) -> None:
+    """Refuse a string (or key) holding a lone surrogate; a valid pair escaped in JSON decodes
+    to one character and passes. Iterative, as :func:`_check_depth` has bounded the depth."""
+    pending = [value]
+    while pending:
+        item = pending.pop()
+        if type(item) is dict:
+            pending += item.keys()
+            pending += item.values()
+        elif type(item) is list:
+            pending += item
+        elif type(item) is str:
+            try:
+                item.encode("utf-8")
+            except UnicodeEncodeError as error:
+                raise DataFormatError(
+                    f"text with a lone UTF-16 surrogate ({item[error.start]!r} at character "
+                    f"{error.start}), which is not Unicode text"
+                ) from None
