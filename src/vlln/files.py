@@ -1,14 +1,17 @@
 """Files: written so that a kill never leaves a half-written one behind, output folders
-checked before any work, and JSON read from untrusted bytes without a traceback."""
+checked before any work, untrusted files read only up to a cap, and JSON read from untrusted
+bytes without a traceback."""
 
 from __future__ import annotations
 
+import gzip
 import json
 import os
 import re
 import shutil
 import tempfile
 from collections.abc import Callable
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, TypeVar
 
@@ -102,6 +105,45 @@ def check_output_folder(out: Path, option: str = "--out") -> None:
             f"{option} {out}: cannot write in {existing} ({error.strerror}); "
             "give a folder you can write to"
         ) from None
+
+
+@dataclass(frozen=True)
+class ReadCap:
+    """The most bytes one kind of input is read to, after decompression: what keeps a gzip
+    bomb, ``/dev/zero`` or a wrong file from filling the memory. Where real inputs may be
+    larger, ``variable`` names an environment variable that sets the cap in MiB."""
+
+    what: str  # the kind of input, as the error names it
+    mib: int
+    variable: str | None = None
+
+    def limit(self) -> int:
+        """The cap in bytes; a bad value of ``variable`` is a one-line error."""
+        text = os.environ.get(self.variable) if self.variable else None
+        if text is None:
+            return self.mib << 20
+        if not text.strip().isdecimal() or int(text) < 1:
+            raise ConfigError(f"{self.variable}={text!r}: give a whole number of MiB, 1 or more")
+        return int(text) << 20
+
+    def read(self, path: Path, gzipped: bool = False) -> bytes:
+        """The bytes of ``path`` (decompressed when ``gzipped``), never more than the cap
+        held in memory; over it is a :class:`DataFormatError` naming the cap and its fix.
+        Missing files and folders raise ``OSError`` as ``open`` does."""
+        limit = self.limit()
+        with gzip.open(path, "rb") if gzipped else path.open("rb") as handle:
+            data = handle.read(limit + 1)
+        if len(data) <= limit:
+            return data
+        after = " after decompression" if gzipped else ""
+        fix = (
+            f"set {self.variable} to more MiB if the file is right"
+            if self.variable
+            else "give the right file"
+        )
+        raise DataFormatError(
+            f"{path} holds more than {limit >> 20} MiB{after}, the cap on {self.what}; {fix}"
+        )
 
 
 # JSON nested deeper than this is refused: no file vlln reads nests more than a few levels,

@@ -39,10 +39,22 @@ from vlln.eval.run_dir import (
     SUMMARY_JSON,
     SUMMARY_MD,
 )
-from vlln.files import check_output_folder, parse_json, write_bytes_atomic, write_text_atomic
+from vlln.files import (
+    ReadCap,
+    check_output_folder,
+    parse_json,
+    write_bytes_atomic,
+    write_text_atomic,
+)
 from vlln.tasks.record import EpisodeRecord
 
 RecordKey = tuple[str, str, int, str, str]
+
+# A record line is about 3 kB and takes a few times that in memory once parsed: 256 MiB is
+# some 80,000 episode lines; a bigger run may raise the cap.
+RESULTS_CAP = ReadCap("a results file", 256, "VLLN_MAX_RESULTS_FILE_MB")
+# run.json holds the arguments and the plan, one short entry per planned episode line.
+_RUN_FILE_CAP = ReadCap("a run.json", 16)
 
 
 def record_key(record: EpisodeRecord) -> RecordKey:
@@ -87,7 +99,7 @@ def scan_records(path: Path, max_steps: int | None = None) -> RecordScan:
     ``max_steps``: the run's step cap, which no record may exceed (None: unknown)."""
     scan = RecordScan()
     try:
-        data = path.read_bytes()
+        data = RESULTS_CAP.read(path)
     except FileNotFoundError:
         return scan
     parts = data.split(b"\n")
@@ -233,7 +245,7 @@ class RunDirectory:
     def stored_run(self) -> dict[str, Any] | None:
         """``run.json`` as stored, or None for a fresh directory."""
         try:
-            text = self.run_path.read_text(encoding="utf-8")
+            text = _RUN_FILE_CAP.read(self.run_path)
         except FileNotFoundError:
             return None
         try:
@@ -410,7 +422,9 @@ def load_runs(paths: Iterable[Path], whole: bool = True) -> RunContents:
         contents.skipped += scan.skipped
         aside = file.parent / SKIPPED_FILE
         if aside.is_file():
-            contents.set_aside += aside.read_bytes().count(b"\n")
+            with aside.open("rb") as handle:  # by blocks: the file is never read whole
+                blocks = iter(lambda: handle.read(1 << 20), b"")
+                contents.set_aside += sum(block.count(b"\n") for block in blocks)
         if path.is_dir():
             contents.refused += read_refusals(path)
         planned = plan.lines if plan is not None else None if run is None else run.stored_planned()
