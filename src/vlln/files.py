@@ -10,12 +10,13 @@ import os
 import re
 import shutil
 import tempfile
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, TypeVar
 
-from vlln.errors import ConfigError, DataFormatError
+from vlln.errors import ConfigError, DataFormatError, VllnError, WriteError
 
 T = TypeVar("T")
 
@@ -23,21 +24,37 @@ T = TypeVar("T")
 _MODE = 0o644
 
 
+@contextmanager
+def writing(path: Path) -> Iterator[None]:
+    """Turn an ``OSError`` of writing ``path`` (a full disk, a read-only folder, no
+    permission) into a one-line :class:`WriteError` naming the path and the cause."""
+    try:
+        yield
+    except OSError as error:
+        if isinstance(error, VllnError):
+            raise
+        raise WriteError(
+            f"cannot write {path}: {error.strerror or error}; free some space or make the "
+            "folder writable, then run the same command again"
+        ) from None
+
+
 def write_bytes_atomic(path: Path, data: bytes) -> None:
     """Write ``data`` through a temporary file in the same folder and a rename: readers see
-    the old file or the new one, never a partial one."""
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, temp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "wb") as handle:
-            handle.write(data)
-            handle.flush()
-            os.fsync(handle.fileno())  # on disk before the rename makes it visible
-        os.chmod(temp, _MODE)
-        os.replace(temp, path)
-    except BaseException:
-        Path(temp).unlink(missing_ok=True)
-        raise
+    the old file or the new one, never a partial one; a failed write is a :class:`WriteError`."""
+    with writing(path):
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, temp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+        try:
+            with os.fdopen(fd, "wb") as handle:
+                handle.write(data)
+                handle.flush()
+                os.fsync(handle.fileno())  # on disk before the rename makes it visible
+            os.chmod(temp, _MODE)
+            os.replace(temp, path)
+        except BaseException:
+            Path(temp).unlink(missing_ok=True)
+            raise
 
 
 def remove_leftover_temp_files(folder: Path) -> None:

@@ -45,6 +45,7 @@ from vlln.files import (
     parse_json,
     write_bytes_atomic,
     write_text_atomic,
+    writing,
 )
 from vlln.tasks.record import EpisodeRecord
 
@@ -167,6 +168,11 @@ def read_records(path: Path, repair: bool = False) -> list[EpisodeRecord]:
 
 def repair_file(path: Path, scan: RecordScan) -> None:
     """Make ``path`` hold exactly ``scan``'s records (see :func:`read_records`)."""
+    with writing(path):
+        _repair(path, scan)
+
+
+def _repair(path: Path, scan: RecordScan) -> None:
     if scan.skipped_lines:
         with (path.parent / SKIPPED_FILE).open("ab") as handle:
             handle.write(b"".join(text + b"\n" for text in scan.skipped_lines))
@@ -215,9 +221,13 @@ class RecordWriter:
     def append(self, record: EpisodeRecord) -> None:
         data = record.to_json()
         line = json.dumps(data, allow_nan=False, separators=(",", ":")) + "\n"
-        self._handle.write(line.encode("utf-8"))
-        self._handle.flush()
-        os.fsync(self._handle.fileno())
+        # unbuffered, so a failed write leaves nothing to flush again; a resume cuts the
+        # partial line it may leave
+        with writing(Path(self._handle.name)):
+            rest = memoryview(line.encode("utf-8"))
+            while rest:
+                rest = rest[self._handle.write(rest) or 0 :]
+            os.fsync(self._handle.fileno())
         # keep what the file holds (distances rounded by to_json), so a summary made now
         # equals one recomputed from the file later
         self.records.append(EpisodeRecord.from_json(data))
@@ -354,7 +364,7 @@ class RunDirectory:
             if plan is not None:
                 drop_unplanned(scan, plan, self.episodes_path)
             repair_file(self.episodes_path, scan)
-            with self.episodes_path.open("ab") as handle:
+            with self.episodes_path.open("ab", buffering=0) as handle:
                 yield RecordWriter(handle, scan.records, scan.skipped)
 
     def records(self) -> list[EpisodeRecord]:
