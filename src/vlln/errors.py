@@ -8,6 +8,7 @@ fix it, so command-line entry points can print the message instead of a tracebac
     │   ├── UnknownCategoryError    an object category the catalogue does not have
     │   └── HouseParametersError    house-generator parameters that cannot be satisfied
     ├── DataFormatError             a file does not follow the expected format
+    ├── WriteError                  a file cannot be written (a full disk, a read-only folder)
     ├── RendererUnavailableError    no headless OpenGL (EGL) context could be created
     └── NavigationError             a point or goal is off the navigable area or unreachable
         └── EpisodeRefusedError     an episode that cannot be played honestly in its scene
@@ -37,6 +38,11 @@ class HouseParametersError(ConfigError):
 
 class DataFormatError(VllnError, ValueError):
     """A file or record does not follow the expected format."""
+
+
+class WriteError(VllnError, OSError):
+    """A file cannot be written: the disk is full, the folder read-only or not ours. What was
+    written before stays, so the same command resumes once the cause is fixed."""
 
 
 class RendererUnavailableError(VllnError, RuntimeError):

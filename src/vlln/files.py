@@ -1,17 +1,22 @@
 """Files: written so that a kill never leaves a half-written one behind, output folders
-checked before any work, and JSON read from untrusted bytes without a traceback."""
+checked before any work, untrusted files read only up to a cap, and JSON read from untrusted
+bytes without a traceback."""
 
 from __future__ import annotations
 
+import gzip
 import json
 import os
+import re
 import shutil
 import tempfile
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, TypeVar
 
-from vlln.errors import ConfigError, DataFormatError
+from vlln.errors import ConfigError, DataFormatError, VllnError, WriteError
 
 T = TypeVar("T")
 
@@ -19,21 +24,37 @@ T = TypeVar("T")
 _MODE = 0o644
 
 
+@contextmanager
+def writing(path: Path) -> Iterator[None]:
+    """Turn an ``OSError`` of writing ``path`` (a full disk, a read-only folder, no
+    permission) into a one-line :class:`WriteError` naming the path and the cause."""
+    try:
+        yield
+    except OSError as error:
+        if isinstance(error, VllnError):
+            raise
+        raise WriteError(
+            f"cannot write {path}: {error.strerror or error}; free some space or make the "
+            "folder writable, then run the same command again"
+        ) from None
+
+
 def write_bytes_atomic(path: Path, data: bytes) -> None:
     """Write ``data`` through a temporary file in the same folder and a rename: readers see
-    the old file or the new one, never a partial one."""
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, temp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "wb") as handle:
-            handle.write(data)
-            handle.flush()
-            os.fsync(handle.fileno())  # on disk before the rename makes it visible
-        os.chmod(temp, _MODE)
-        os.replace(temp, path)
-    except BaseException:
-        Path(temp).unlink(missing_ok=True)
-        raise
+    the old file or the new one, never a partial one; a failed write is a :class:`WriteError`."""
+    with writing(path):
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, temp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+        try:
+            with os.fdopen(fd, "wb") as handle:
+                handle.write(data)
+                handle.flush()
+                os.fsync(handle.fileno())  # on disk before the rename makes it visible
+            os.chmod(temp, _MODE)
+            os.replace(temp, path)
+        except BaseException:
+            Path(temp).unlink(missing_ok=True)
+            raise
 
 
 def remove_leftover_temp_files(folder: Path) -> None:
@@ -103,11 +124,53 @@ def check_output_folder(out: Path, option: str = "--out") -> None:
         ) from None
 
 
+@dataclass(frozen=True)
+class ReadCap:
+    """The most bytes one kind of input is read to, after decompression: what keeps a gzip
+    bomb, ``/dev/zero`` or a wrong file from filling the memory. Where real inputs may be
+    larger, ``variable`` names an environment variable that sets the cap in MiB."""
+
+    what: str  # the kind of input, as the error names it
+    mib: int
+    variable: str | None = None
+
+    def limit(self) -> int:
+        """The cap in bytes; a bad value of ``variable`` is a one-line error."""
+        text = os.environ.get(self.variable) if self.variable else None
+        if text is None:
+            return self.mib << 20
+        if not text.strip().isdecimal() or int(text) < 1:
+            raise ConfigError(f"{self.variable}={text!r}: give a whole number of MiB, 1 or more")
+        return int(text) << 20
+
+    def read(self, path: Path, gzipped: bool = False) -> bytes:
+        """The bytes of ``path`` (decompressed when ``gzipped``), never more than the cap
+        held in memory; over it is a :class:`DataFormatError` naming the cap and its fix.
+        Missing files and folders raise ``OSError`` as ``open`` does."""
+        limit = self.limit()
+        with gzip.open(path, "rb") if gzipped else path.open("rb") as handle:
+            data = handle.read(limit + 1)
+        if len(data) <= limit:
+            return data
+        after = " after decompression" if gzipped else ""
+        fix = (
+            f"set {self.variable} to more MiB if the file is right"
+            if self.variable
+            else "give the right file"
+        )
+        raise DataFormatError(
+            f"{path} holds more than {limit >> 20} MiB{after}, the cap on {self.what}; {fix}"
+        )
+
+
 # JSON nested deeper than this is refused: no file vlln reads nests more than a few levels,
 # and a deeper value would only overflow the stack of whatever walks it next.
 MAX_JSON_DEPTH = 64
 # An integer with more digits does not fit in a float (and Python refuses to read 4,300+).
 MAX_INTEGER_DIGITS = 308
+# A lone UTF-16 surrogate (escaped as \ud800 in JSON, or raw in a str) decodes but can never be
+# encoded as UTF-8 again, so every later write of the value would fail: it is refused on reading.
+_SURROGATE = re.compile(r"\\u[dD][89a-fA-F]|[\ud800-\udfff]")
 
 
 def parse_json(
@@ -115,8 +178,9 @@ def parse_json(
 ) -> Any:
     """The JSON value of untrusted bytes or text. Anything that is not plain UTF-8 JSON (a
     binary file, a torn write, an integer of hundreds of digits, nesting deeper than
-    :data:`MAX_JSON_DEPTH`) is a :class:`DataFormatError` with a short reason, never a
-    ``ValueError``, ``OverflowError`` or ``RecursionError``; callers add the file's name.
+    :data:`MAX_JSON_DEPTH`, text that cannot be written back as UTF-8) is a
+    :class:`DataFormatError` with a short reason, never a ``ValueError``, ``OverflowError``,
+    ``RecursionError`` or a later ``UnicodeEncodeError``; callers add the file's name.
     ``object_hook`` sees every object as it is decoded, innermost first (``json.loads``)."""
     try:
         text = data.decode("utf-8") if isinstance(data, bytes) else data
@@ -128,6 +192,8 @@ def parse_json(
     except json.JSONDecodeError as error:
         raise DataFormatError(f"not JSON ({error})") from None
     _check_depth(value)
+    if _SURROGATE.search(text):  # rare: only then is every string looked at
+        _check_encodable(value)
     return value
 
 
@@ -153,3 +219,24 @@ def _check_depth(value: Any) -> None:
         level = deeper
     if level:
         raise DataFormatError(f"JSON nested deeper than {MAX_JSON_DEPTH} levels")
+
+
+def _check_encodable(value: Any) -> None:
+    """Refuse a string (or key) holding a lone surrogate; a valid pair escaped in JSON decodes
+    to one character and passes. Iterative, as :func:`_check_depth` has bounded the depth."""
+    pending = [value]
+    while pending:
+        item = pending.pop()
+        if type(item) is dict:
+            pending += item.keys()
+            pending += item.values()
+        elif type(item) is list:
+            pending += item
+        elif type(item) is str:
+            try:
+                item.encode("utf-8")
+            except UnicodeEncodeError as error:
+                raise DataFormatError(
+                    f"text with a lone UTF-16 surrogate ({item[error.start]!r} at character "
+                    f"{error.start}), which is not Unicode text"
+                ) from None

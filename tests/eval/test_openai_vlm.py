@@ -369,6 +369,21 @@ def test_a_trickling_server_is_cut_off_and_counted_as_a_server_failure(
     assert summary["health"]["failures"]["model server failures"] == 1
 
 
+@pytest.mark.slow
+def test_a_reply_nested_100000_deep_is_counted_as_a_failed_call(
+    split_cache: Path, scenes: SceneCache, tmp_path: Path
+) -> None:
+    episode = split_episodes(split_cache)[0]
+    deep = Scripted(200, '{"choices": ' + "[" * 100_000 + "]" * 100_000 + "}")
+    with chat_server([deep, completion("<move>STOP")]) as server:
+        outcome = run(
+            server, episode_file(tmp_path, episode), tmp_path / "run", scenes, max_retries="0"
+        )
+    (record,) = outcome.records
+    assert record.actions == ["FAILED:server", "STOP"]
+    assert "nested deeper" in (record.model_calls[0].error or "")
+
+
 def test_an_endless_output_is_stored_cut_and_the_cut_counted(
     split_cache: Path, scenes: SceneCache, tmp_path: Path
 ) -> None:

@@ -60,6 +60,7 @@ HOSTILE = {
         '"answered": false}]',
     ),
     "the target seen after the last step": raw("x", "target_seen_step", "77"),
+    "a lone surrogate in a text": raw("x", "object_category", '"chair\\ud800"'),
 }
 
 

@@ -169,6 +169,7 @@ def test_unparseable_classification_uses_the_offline_type(
         [completion("attribute", 30, 1), Scripted(200, "not json")],
         [completion("attribute", 30, 1), Scripted(200, {"choices": []})],
         [completion("attribute", 30, 1), completion("   ", 0, 0)],  # an empty answer
+        [completion("attribute", 30, 1), Scripted(200, "[" * 100_000 + "]" * 100_000)],
     ],
 )
 def test_failed_calls_fall_back_to_the_rule_answer_and_say_so(

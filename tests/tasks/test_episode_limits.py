@@ -28,6 +28,7 @@ HOSTILE = {
     "400-digit float": ("start_position", "[" + "9" * 400 + ".5, 0, 0]", "3 finite numbers"),
     "deep nesting": ("info", '{"a": ' + "[" * 5000 + "]" * 5000 + "}", "nested deeper"),
     "nesting under the parser's limit": ("info", "[" * 950 + "]" * 950, "nested deeper"),
+    "a lone surrogate in a text": ("episode_id", '"7\\udfff"', "lone UTF-16 surrogate"),
 }
 
 

@@ -9,6 +9,7 @@ import pytest
 from vlln.errors import DataFormatError
 from vlln.tasks.oracle_protocol import QuestionType, Reply
 from vlln.web.journal import (
+    JOURNAL_CAP,
     JOURNAL_FOLDER,
     Journal,
     SessionSpec,
@@ -50,3 +51,34 @@ def test_a_file_that_is_not_a_journal_is_named(tmp_path: Path) -> None:
     (folder / "x.jsonl").write_text('{"kind": "action", "action": "STOP"}\n')
     with pytest.raises(DataFormatError, match="not a session journal"):
         unfinished_journals(tmp_path)
+
+
+@pytest.mark.parametrize(
+    ("line", "reason"),
+    [
+        ('{"kind": "action", "action": ' + "[" * 100_000 + "]" * 100_000 + "}", "nested deeper"),
+        ('{"kind": "action", "action": ' + "9" * 5000 + "}", "5000 digits"),
+        ('{"kind": "invalid", "text": "\\udc80"}', "surrogate"),
+    ],
+)
+def test_a_hostile_journal_line_is_one_line_naming_the_file(
+    tmp_path: Path, line: str, reason: str
+) -> None:
+    journal = Journal(tmp_path / JOURNAL_FOLDER, SPEC)
+    journal.close()
+    with journal.path.open("a") as handle:
+        handle.write(line + "\n")
+    with pytest.raises(DataFormatError) as info:
+        unfinished_journals(tmp_path)
+    message = str(info.value)
+    assert message.startswith(f"{journal.path} is not a session journal") and reason in message
+    assert "\n" not in message and len(message) < 300
+
+
+def test_a_journal_past_its_cap_is_refused_unread(tmp_path: Path) -> None:
+    journal = Journal(tmp_path / JOURNAL_FOLDER, SPEC)
+    journal.close()
+    with journal.path.open("ab") as handle:
+        handle.truncate(JOURNAL_CAP.limit() + 1)  # sparse: no disk used
+    with pytest.raises(DataFormatError, match=f"more than {JOURNAL_CAP.mib} MiB"):
+        read_journal(journal.path)

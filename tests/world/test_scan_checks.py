@@ -3,8 +3,10 @@ empty HM3D `semantic.txt`, or a scan without rooms says so in one line naming th
 
 from __future__ import annotations
 
+import json
 import random
 import shutil
+import struct
 from pathlib import Path
 
 import pytest
@@ -58,6 +60,44 @@ def roomless(text: str) -> bytes:
     return "\n".join([lines[0], " ".join(header), *kept, ""]).encode()
 
 
+def with_field(text: str, kind: str, index: int, value: str) -> bytes:
+    """The file with field ``index`` of its first ``kind`` record replaced by ``value``."""
+    lines = text.splitlines(keepends=True)
+    first = next(i for i, line in enumerate(lines) if line.startswith(f"{kind} "))
+    fields = lines[first].split()
+    fields[index] = value
+    lines[first] = " ".join(fields) + "\n"
+    return "".join(lines).encode()
+
+
+def glb(document: str, binary: bytes = b"") -> bytes:
+    """A binary glTF as Khronos's glTF 2.0 specification lays it out: a 12-byte header (magic,
+    version 2, total length), a JSON chunk padded with spaces, an optional BIN chunk padded
+    with zeros, each chunk led by its length and type."""
+    chunk = document.encode() + b" " * (-len(document) % 4)
+    body = struct.pack("<I4s", len(chunk), b"JSON") + chunk
+    if binary:
+        binary += b"\0" * (-len(binary) % 4)
+        body += struct.pack("<I4s", len(binary), b"BIN\0") + binary
+    return struct.pack("<4sII", b"glTF", 2, 12 + len(body)) + body
+
+
+def triangle(*coordinates: float) -> bytes:
+    """A .glb of one triangle: its nine float32 coordinates in the BIN chunk, one accessor."""
+    document = {
+        "asset": {"version": "2.0"},
+        "scene": 0,
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"}],
+        "bufferViews": [{"buffer": 0, "byteLength": 36}],
+        "buffers": [{"byteLength": 36}],
+    }
+    return glb(json.dumps(document), struct.pack("<9f", *coordinates))
+
+
+DEEP = "[" * 100_000 + "]" * 100_000
 CASES = {
     "binary .house": ("mp3d", ".house", lambda t: noise(3000), "is a binary file"),
     "latin-1 .house": (
@@ -71,6 +111,42 @@ CASES = {
     "cut mid-record": ("mp3d", ".house", lambda t: t.encode()[: len(t) // 2], "fields, not"),
     "cut between records": ("mp3d", ".house", lambda t: cut_at_line(t, "V"), "cut short"),
     "roomless .house": ("mp3d", ".house", roomless, "no regions"),
+    "5000-digit id in a .house": (
+        "mp3d",
+        ".house",
+        lambda t: with_field(t, "O", 1, "9" * 5000),
+        "not a finite number",
+    ),
+    "NaN coordinate in a .house": (
+        "mp3d",
+        ".house",
+        lambda t: with_field(t, "V", 4, "nan"),
+        "not a finite number",
+    ),
+    "glb JSON nested 100,000 deep": (
+        "mp3d",
+        ".glb",
+        lambda t: glb('{"asset": {"version": "2.0"}, "extras": ' + DEEP + "}"),
+        "nested deeper",
+    ),
+    "5000-digit integer in a glb": (
+        "hm3d",
+        ".glb",
+        lambda t: glb('{"asset": {"version": "2.0"}, "scene": ' + "9" * 5000 + "}"),
+        "5000 digits",
+    ),
+    "glb JSON chunk past its cap": (
+        "mp3d",
+        ".glb",
+        lambda t: struct.pack("<4sIII4s", b"glTF", 2, 1 << 30, 1 << 30, b"JSON"),
+        "over the cap",
+    ),
+    "NaN vertex in a glb": (
+        "mp3d",
+        ".glb",
+        lambda t: triangle(0, 0, 0, 1, float("nan"), 0, 0, 1, 0),
+        "not finite",
+    ),
     "binary semantic.txt": ("hm3d", ".semantic.txt", lambda t: noise(2000), "binary file"),
     "empty semantic.txt": ("hm3d", ".semantic.txt", lambda t: b"", "lists no objects"),
     "semantic.txt without floors": (

@@ -22,7 +22,7 @@ from pydantic_settings import CliSettingsSource
 from vlln.cli.options import Commands
 from vlln.config import BareFlag, Config
 from vlln.errors import ConfigError, DataFormatError
-from vlln.files import parse_json
+from vlln.files import ReadCap, parse_json
 
 C = TypeVar("C", bound=Config)
 
@@ -178,13 +178,15 @@ def _by_field_name(config: type[Config], flags: dict[str, Any]) -> dict[str, Any
     return {names.get(key, key): value for key, value in flags.items()}
 
 
+# A settings file is a few hundred bytes; the cap stops ``--config /dev/zero`` at once.
+_SETTINGS_CAP = ReadCap("a settings file", 1)
+
+
 def _read_settings(path: Path) -> Any:
-    """The JSON of a ``--config`` file; a missing or unreadable one is one line."""
+    """The JSON of a ``--config`` file; a missing, unreadable or endless one is one line."""
     try:
-        data = path.read_bytes()
+        return parse_json(_SETTINGS_CAP.read(path))
     except OSError as error:
         raise ConfigError(f"--config {path}: cannot read it ({error.strerror})") from None
-    try:
-        return parse_json(data)
     except DataFormatError as error:
         raise ConfigError(f"--config {path}: {error}") from None

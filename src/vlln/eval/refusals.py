@@ -16,6 +16,10 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 
 from vlln.eval.run_dir import REFUSED_FILE
+from vlln.files import ReadCap, parse_json
+
+# A refusal line is about 200 bytes, and a run refuses at most its planned episodes.
+_REFUSALS_CAP = ReadCap("a run's refusals file", 64)
 
 
 @dataclass(frozen=True)
@@ -40,13 +44,13 @@ class Refusal:
 def read_refusals(run_dir: Path) -> list[Refusal]:
     """The refusals of a run directory, each (episode, budget) once, in file order."""
     try:
-        lines = (run_dir / REFUSED_FILE).read_text(encoding="utf-8").splitlines()
-    except (FileNotFoundError, NotADirectoryError, UnicodeDecodeError):
+        lines = _REFUSALS_CAP.read(run_dir / REFUSED_FILE).splitlines()
+    except (FileNotFoundError, NotADirectoryError):
         return []
     found: dict[tuple[str, str, int, str, str], Refusal] = {}
     for line in lines:
         try:
-            data = json.loads(line)
+            data = parse_json(line)
             refusal = Refusal(
                 str(data["agent_label"]),
                 str(data["task"]),

@@ -39,10 +39,23 @@ from vlln.eval.run_dir import (
     SUMMARY_JSON,
     SUMMARY_MD,
 )
-from vlln.files import check_output_folder, parse_json, write_bytes_atomic, write_text_atomic
+from vlln.files import (
+    ReadCap,
+    check_output_folder,
+    parse_json,
+    write_bytes_atomic,
+    write_text_atomic,
+    writing,
+)
 from vlln.tasks.record import EpisodeRecord
 
 RecordKey = tuple[str, str, int, str, str]
+
+# A record line is about 3 kB and takes a few times that in memory once parsed: 256 MiB is
+# some 80,000 episode lines; a bigger run may raise the cap.
+RESULTS_CAP = ReadCap("a results file", 256, "VLLN_MAX_RESULTS_FILE_MB")
+# run.json holds the arguments and the plan, one short entry per planned episode line.
+_RUN_FILE_CAP = ReadCap("a run.json", 16)
 
 
 def record_key(record: EpisodeRecord) -> RecordKey:
@@ -87,7 +100,7 @@ def scan_records(path: Path, max_steps: int | None = None) -> RecordScan:
     ``max_steps``: the run's step cap, which no record may exceed (None: unknown)."""
     scan = RecordScan()
     try:
-        data = path.read_bytes()
+        data = RESULTS_CAP.read(path)
     except FileNotFoundError:
         return scan
     parts = data.split(b"\n")
@@ -155,6 +168,11 @@ def read_records(path: Path, repair: bool = False) -> list[EpisodeRecord]:
 
 def repair_file(path: Path, scan: RecordScan) -> None:
     """Make ``path`` hold exactly ``scan``'s records (see :func:`read_records`)."""
+    with writing(path):
+        _repair(path, scan)
+
+
+def _repair(path: Path, scan: RecordScan) -> None:
     if scan.skipped_lines:
         with (path.parent / SKIPPED_FILE).open("ab") as handle:
             handle.write(b"".join(text + b"\n" for text in scan.skipped_lines))
@@ -203,9 +221,13 @@ class RecordWriter:
     def append(self, record: EpisodeRecord) -> None:
         data = record.to_json()
         line = json.dumps(data, allow_nan=False, separators=(",", ":")) + "\n"
-        self._handle.write(line.encode("utf-8"))
-        self._handle.flush()
-        os.fsync(self._handle.fileno())
+        # unbuffered, so a failed write leaves nothing to flush again; a resume cuts the
+        # partial line it may leave
+        with writing(Path(self._handle.name)):
+            rest = memoryview(line.encode("utf-8"))
+            while rest:
+                rest = rest[self._handle.write(rest) or 0 :]
+            os.fsync(self._handle.fileno())
         # keep what the file holds (distances rounded by to_json), so a summary made now
         # equals one recomputed from the file later
         self.records.append(EpisodeRecord.from_json(data))
@@ -233,7 +255,7 @@ class RunDirectory:
     def stored_run(self) -> dict[str, Any] | None:
         """``run.json`` as stored, or None for a fresh directory."""
         try:
-            text = self.run_path.read_text(encoding="utf-8")
+            text = _RUN_FILE_CAP.read(self.run_path)
         except FileNotFoundError:
             return None
         try:
@@ -342,7 +364,7 @@ class RunDirectory:
             if plan is not None:
                 drop_unplanned(scan, plan, self.episodes_path)
             repair_file(self.episodes_path, scan)
-            with self.episodes_path.open("ab") as handle:
+            with self.episodes_path.open("ab", buffering=0) as handle:
                 yield RecordWriter(handle, scan.records, scan.skipped)
 
     def records(self) -> list[EpisodeRecord]:
@@ -410,7 +432,9 @@ def load_runs(paths: Iterable[Path], whole: bool = True) -> RunContents:
         contents.skipped += scan.skipped
         aside = file.parent / SKIPPED_FILE
         if aside.is_file():
-            contents.set_aside += aside.read_bytes().count(b"\n")
+            with aside.open("rb") as handle:  # by blocks: the file is never read whole
+                blocks = iter(lambda: handle.read(1 << 20), b"")
+                contents.set_aside += sum(block.count(b"\n") for block in blocks)
         if path.is_dir():
             contents.refused += read_refusals(path)
         planned = plan.lines if plan is not None else None if run is None else run.stored_planned()

@@ -21,9 +21,12 @@ from pathlib import Path
 from typing import IO, Any
 
 from vlln.errors import DataFormatError
+from vlln.files import ReadCap, parse_json
 from vlln.tasks.oracle_protocol import QuestionType, Reply
 
 JOURNAL_FOLDER = "sessions"
+# One session is a few hundred lines of tens of bytes each.
+JOURNAL_CAP = ReadCap("a session journal", 16)
 
 
 def code_digest(code: str) -> str:
@@ -106,7 +109,7 @@ class Journal:
 
 def _cut_torn_line(path: Path) -> None:
     """Cut a partial last line (a kill mid-write), so the next line starts on its own."""
-    data = path.read_bytes()
+    data = JOURNAL_CAP.read(path)
     complete = data.rfind(b"\n") + 1
     if complete < len(data):
         with path.open("r+b") as handle:
@@ -115,19 +118,20 @@ def _cut_torn_line(path: Path) -> None:
 
 
 def read_journal(path: Path) -> JournalContents:
-    """A journal's settings, steps and whether it ended; a torn last line is ignored."""
-    data = path.read_bytes()
+    """A journal's settings, steps and whether it ended; a torn last line is ignored, and
+    any other damage (:func:`~vlln.files.parse_json`'s included) is one line naming it."""
+    data = JOURNAL_CAP.read(path)
     lines = data[: data.rfind(b"\n") + 1].split(b"\n")[:-1]
     if not lines:
         raise DataFormatError(f"{path} holds no session settings; delete it")
     try:
-        entries = [json.loads(line) for line in lines]
+        entries = [parse_json(line) for line in lines]
         header = dict(entries[0])
         if header.pop("kind") != "session":
             raise KeyError("kind")
         spec = SessionSpec(**header)
         steps = [_step(entry) for entry in entries[1:] if entry["kind"] != "end"]
-    except (json.JSONDecodeError, KeyError, TypeError, ValueError) as error:
+    except (KeyError, TypeError, ValueError) as error:
         raise DataFormatError(f"{path} is not a session journal ({error}); move it away") from None
     return JournalContents(spec, steps, entries[-1]["kind"] == "end")
 

@@ -6,6 +6,8 @@ import math
 import threading
 from pathlib import Path
 
+import pytest
+
 from vlln.oracle.llm.accounting import Pricing, UsageLedger
 from vlln.oracle.llm.cache import ResponseCache, cache_key
 from vlln.oracle.llm.protocol import Message, Usage
@@ -37,6 +39,23 @@ def test_entries_round_trip_and_unreadable_ones_are_misses(tmp_path: Path) -> No
     assert cache.get(key) is None
     cache.put(key, "again")
     assert cache.get(key) == "again"
+
+
+@pytest.mark.parametrize(
+    "entry",
+    [
+        b'{"text": ' + b"[" * 100_000 + b"]" * 100_000 + b"}",
+        b'{"text": ' + b"9" * 5000 + b"}",
+        b'{"text": "' + b" " * (9 << 20) + b'"}',  # past the cap on an entry
+    ],
+)
+def test_a_hostile_entry_is_a_miss(tmp_path: Path, entry: bytes) -> None:
+    cache = ResponseCache(tmp_path)
+    key = cache_key("https://a/v1", "m", MESSAGES, PARAMS)
+    cache.put(key, "first")
+    (path,) = tmp_path.rglob("*.json")
+    path.write_bytes(entry)
+    assert cache.get(key) is None
 
 
 def test_the_ledger_totals_requests_tokens_and_cost_across_threads() -> None:

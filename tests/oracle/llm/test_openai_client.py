@@ -117,6 +117,9 @@ def test_an_unreachable_server_is_unavailable() -> None:
         ({"choices": [{"message": {"role": "assistant", "content": None}}]}, "content"),
         ({"choices": [{"message": {"content": "hi"}}], "usage": {"prompt_tokens": -1}}, "usage"),
         ([1, 2], "not an object"),
+        ('{"choices": ' + "[" * 100_000 + "]" * 100_000 + "}", "nested deeper"),
+        ('{"choices": [], "usage": {"prompt_tokens": ' + "9" * 5000 + "}}", "5000 digits"),
+        ('{"choices": [{"message": {"content": "\\ud800"}}]}', "surrogate"),
     ],
 )
 def test_malformed_replies_raise_a_typed_error_without_retrying(

@@ -14,10 +14,13 @@ import logging
 from pathlib import Path
 from typing import Any
 
-from vlln.files import write_text_atomic
+from vlln.files import ReadCap, parse_json, write_text_atomic
 from vlln.oracle.llm.protocol import Message
 
 logger = logging.getLogger(__name__)
+
+# An entry holds one reply of at most MAX_REPLY_BYTES (openai_client), escaped as JSON.
+_ENTRY_CAP = ReadCap("a model-cache entry", 8)
 
 
 def cache_key(base_url: str, model: str, messages: list[Message], params: dict[str, Any]) -> str:
@@ -46,7 +49,7 @@ class ResponseCache:
         if not path.is_file():
             return None
         try:
-            entry = json.loads(path.read_text(encoding="utf-8"))
+            entry = parse_json(_ENTRY_CAP.read(path))
             text = entry["text"]
         except (OSError, ValueError, KeyError, TypeError) as error:
             logger.warning("ignoring unreadable cache entry %s (%s)", path, error)

@@ -35,7 +35,8 @@ import numpy as np
 from pydantic import AfterValidator, Field, field_validator, model_validator
 
 from vlln.config import settings_dataclass
-from vlln.errors import ConfigError
+from vlln.errors import ConfigError, DataFormatError
+from vlln.files import parse_json
 from vlln.http.addresses import is_loopback
 from vlln.oracle.llm.accounting import Pricing, UsageLedger
 from vlln.oracle.llm.cache import ResponseCache, cache_key
@@ -307,11 +308,11 @@ def _retry_after_s(response: httpx.Response) -> float | None:
 def _parse_completion(response: httpx.Response, backend: str) -> tuple[str, Usage]:
     """The first choice's text and the usage, or :class:`LanguageModelReplyError`."""
     try:
-        data = response.json()
-    except ValueError:
+        data = parse_json(response.content)
+    except DataFormatError as error:
         raise LanguageModelReplyError(
-            f"{backend} answered HTTP {response.status_code} with a body that is not JSON: "
-            f"{response.text[:_ERROR_EXCERPT]!r}"
+            f"{backend} answered HTTP {response.status_code} with a body that is not plain "
+            f"JSON ({str(error)[:_ERROR_EXCERPT]}): {response.text[:_ERROR_EXCERPT]!r}"
         ) from None
     if not isinstance(data, dict):
         raise LanguageModelReplyError(f"{backend} answered JSON that is not an object")

@@ -16,6 +16,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from vlln.errors import DataFormatError
+from vlln.files import ReadCap
 
 HOUSE_HEADER = "ASCII 1.1"
 # Fields per record, the record letter included, as real files have them (module doc).
@@ -23,12 +24,14 @@ HOUSE_FIELDS = {"H": 29, "L": 18, "R": 20, "S": 22, "V": 13, "C": 11, "O": 24}
 # Counts of the H record (its field index) that the records after it must reach.
 HOUSE_COUNTS = {"V": 5, "S": 6, "O": 8, "C": 9, "R": 10}
 _NAMES = {"R": "regions", "S": "surfaces", "V": "vertices", "C": "categories", "O": "objects"}
+# Real .house files and semantic.txt are a few MB; a bigger scan may raise the cap.
+ANNOTATION_CAP = ReadCap("a scan's annotation file", 64, "VLLN_MAX_SCAN_ANNOTATION_MB")
 
 
 def annotation_text(path: Path, what: str) -> str:
     """The text of an annotation file; a binary or non-UTF-8 file is refused, naming ``what``
-    the file should be."""
-    data = path.read_bytes()
+    the file should be; at most :data:`ANNOTATION_CAP` is read."""
+    data = ANNOTATION_CAP.read(path)
     if b"\0" in data:
         raise DataFormatError(f"{path} is a binary file, not {what}; give the scan's own file")
     try:

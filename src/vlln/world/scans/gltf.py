@@ -10,7 +10,6 @@ decoded here: reading one is a :class:`DataFormatError` that names the file to u
 
 from __future__ import annotations
 
-import json
 import struct
 from pathlib import Path
 from typing import Any
@@ -20,8 +19,12 @@ import trimesh
 from numpy.typing import NDArray
 
 from vlln.errors import DataFormatError
+from vlln.files import parse_json
 
 FloatArray = NDArray[np.float64]
+
+# A scan's glTF JSON (nodes, accessors, materials) is kilobytes; the mesh is in the binary chunk.
+MAX_GLTF_JSON_BYTES = 16 << 20
 
 
 def to_scan_frame(points: NDArray[np.floating]) -> FloatArray:
@@ -39,16 +42,21 @@ def from_scan_frame(points: NDArray[np.floating]) -> FloatArray:
 
 
 def _gltf_json(path: Path) -> dict[str, Any]:
-    """The JSON chunk of a ``.glb`` (header: magic, version, length; then the JSON chunk)."""
-    head = path.read_bytes()[:20]
-    if len(head) < 20 or head[:4] != b"glTF":
-        raise DataFormatError(f"{path} is not a binary glTF (.glb) file")
-    (length,) = struct.unpack("<I", head[12:16])
+    """The JSON chunk of a ``.glb`` (header: magic, version, length; then the JSON chunk's
+    length and type, and the chunk), untrusted JSON of at most :data:`MAX_GLTF_JSON_BYTES`."""
     with path.open("rb") as handle:
-        handle.seek(20)
+        head = handle.read(20)
+        if len(head) < 20 or head[:4] != b"glTF":
+            raise DataFormatError(f"{path} is not a binary glTF (.glb) file")
+        (length,) = struct.unpack("<I", head[12:16])
+        if length > MAX_GLTF_JSON_BYTES:
+            raise DataFormatError(
+                f"{path}: its JSON chunk declares {length} bytes, over the cap of "
+                f"{MAX_GLTF_JSON_BYTES >> 20} MiB; give the scan's own .glb"
+            )
         try:
-            data = json.loads(handle.read(length))
-        except (UnicodeDecodeError, json.JSONDecodeError) as err:
+            data = parse_json(handle.read(length))
+        except DataFormatError as err:
             raise DataFormatError(f"{path}: its glTF JSON chunk cannot be read: {err}") from None
     if not isinstance(data, dict):
         raise DataFormatError(f"{path}: its glTF JSON chunk is not an object")
@@ -91,6 +99,11 @@ def read_glb(path: Path) -> tuple[FloatArray, FloatArray]:
         colours.append(_vertex_colours(mesh)[faces].reshape(-1, 3))
     if not triangles:
         raise DataFormatError(f"{path} holds no triangles")
+    if not all(np.isfinite(part).all() for part in triangles):
+        raise DataFormatError(
+            f"{path} has vertices that are not finite numbers (NaN or infinity); "
+            "give the scan's own .glb"
+        )
     return (
         np.concatenate(triangles).reshape(-1, 3, 3),
         np.concatenate(colours).reshape(-1, 3, 3),

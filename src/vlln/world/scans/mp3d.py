@@ -23,6 +23,7 @@ what the annotation is (:mod:`vlln.world.scans.categories`). Coordinates are z-u
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import numpy as np
@@ -76,7 +77,7 @@ def read_house_file(path: Path) -> tuple[list[Room], list[ScanObject]]:
     surfaces: dict[int, int] = {}  # surface -> region
     polygons: dict[int, list[tuple[float, float]]] = {}
     categories: dict[int, tuple[str, str | None]] = {}  # index -> raw word, mpcat40 group
-    raw_objects: list[list[str]] = []
+    raw_objects: list[tuple[tuple[int, int, int], list[float]]] = []  # ids, numbers
     for number, line in enumerate(house_text(path).splitlines(), 1):
         fields = line.split()
         if not fields:
@@ -84,21 +85,24 @@ def read_house_file(path: Path) -> tuple[list[Room], list[ScanObject]]:
         try:
             kind = fields[0]
             if kind == "R":
-                zlo, zhi = float(fields[11]), float(fields[14])
-                regions[int(fields[1])] = (int(fields[2]), fields[5], zlo, zhi)
+                zlo, zhi = _number(fields[11]), _number(fields[14])
+                regions[_index(fields[1])] = (_index(fields[2]), fields[5], zlo, zhi)
             elif kind == "S":
-                surfaces[int(fields[1])] = int(fields[2])
+                surfaces[_index(fields[1])] = _index(fields[2])
             elif kind == "V":
-                x, y = float(fields[4]), float(fields[5])
-                polygons.setdefault(int(fields[2]), []).append((x, -y))
+                x, y = _number(fields[4]), _number(fields[5])
+                polygons.setdefault(_index(fields[2]), []).append((x, -y))
             elif kind == "C":
-                group = mpcat40_group(int(fields[4]), fields[5]) if len(fields) > 5 else None
-                categories[int(fields[1])] = (fields[3].replace("#", " "), group)
+                group = mpcat40_group(_index(fields[4]), fields[5]) if len(fields) > 5 else None
+                categories[_index(fields[1])] = (fields[3].replace("#", " "), group)
             elif kind == "O":
-                raw_objects.append(fields)
+                numbers = [_number(v) for v in fields[4:16]]
+                ids = (_index(fields[1]), _index(fields[2]), _index(fields[3]))
+                raw_objects.append((ids, numbers))
         except (IndexError, ValueError):
             raise DataFormatError(
-                f"{path}:{number}: a {fields[0]!r} record with too few or non-numeric fields"
+                f"{path}:{number}: a {fields[0]!r} record with too few fields, or one that is "
+                "not a finite number; copy the scan's .house file again"
             ) from None
     rooms = []
     for region_id, (_level, label, zlo, zhi) in sorted(regions.items()):
@@ -119,25 +123,38 @@ def read_house_file(path: Path) -> tuple[list[Room], list[ScanObject]]:
             )
         )
     objects = []
-    for fields in raw_objects:
-        centre = from_scan_frame(np.array([[float(v) for v in fields[4:7]]]))[0]
-        a0 = from_scan_frame(np.array([[float(v) for v in fields[7:10]]]))[0]
-        a1 = from_scan_frame(np.array([[float(v) for v in fields[10:13]]]))[0]
+    for (object_id, region, category), numbers in raw_objects:
+        centre, a0, a1 = from_scan_frame(np.array(numbers[:9]).reshape(3, 3))
         a2 = np.cross(a0, a1)
-        radii = tuple(float(v) for v in fields[13:16])
-        raw, group = categories.get(int(fields[3]), (NO_CATEGORY, None))
+        raw, group = categories.get(category, (NO_CATEGORY, None))
         objects.append(
             ScanObject(
-                id=int(fields[1]),
+                id=object_id,
                 category=raw,
-                region=int(fields[2]),
+                region=region,
                 center=(float(centre[0]), float(centre[1]), float(centre[2])),
                 axes=tuple((float(a[0]), float(a[1]), float(a[2])) for a in (a0, a1, a2)),
-                half=(radii[0], radii[1], radii[2]),
+                half=(numbers[9], numbers[10], numbers[11]),
                 group=group,
             )
         )
     return rooms, objects
+
+
+def _number(text: str) -> float:
+    """A coordinate or size: NaN or infinity (``nan``, ``inf``, or digits past the float
+    range) would pass ``float`` and poison every distance computed from it."""
+    value = float(text)
+    if not math.isfinite(value):
+        raise ValueError(text)
+    return value
+
+
+def _index(text: str) -> int:
+    """An index or count; real ones have a few digits, and ``int`` refuses 4,300 or more."""
+    if len(text) > 18:
+        raise ValueError(text)
+    return int(text)
 
 
 def export_mp3d(house: House, out_dir: Path) -> Path:
