@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from importlib import import_module
+from pathlib import Path
 
 from vlln.errors import ConfigError
 
@@ -13,8 +14,18 @@ SERVE_PACKAGES = ("fastapi", "uvicorn")
 SERVICE_BENCH_PACKAGES = (*SERVE_PACKAGES, "aiohttp")
 
 
+def install_command(extra: str) -> str:
+    """The pip line that adds ``extra`` to this install. vlln is not on a package index, so
+    ``pip install 'vlln[extra]'`` fails: from a clone (an editable install) it is the clone's
+    path, otherwise the wheel's or clone's that vlln was installed from."""
+    root = Path(__file__).resolve().parents[2]
+    if (root / "pyproject.toml").is_file():
+        return f"pip install -e '{root}[{extra}]'"
+    return f"pip install '<the vlln clone or wheel you installed>[{extra}]'"
+
+
 def require_extra(extra: str, what: str, packages: Sequence[str]) -> None:
-    """Raise one line naming ``pip install 'vlln[extra]'`` when one of ``packages`` cannot be
+    """Raise one line naming :func:`install_command` when one of ``packages`` cannot be
     imported (checked in order, stopping at the first, so a later package is never imported
     without the one it builds on)."""
     for name in packages:
@@ -23,5 +34,5 @@ def require_extra(extra: str, what: str, packages: Sequence[str]) -> None:
         except ImportError as error:
             raise ConfigError(
                 f"{what} needs {name}, which is not installed; "
-                f"install the {extra} extra with: pip install 'vlln[{extra}]'"
+                f"install the {extra} extra with: {install_command(extra)}"
             ) from error

@@ -26,9 +26,7 @@ def test_the_tiny_gpu_check_prints_every_figure(
     # A kept --work folder: the check resumes the one-house build it makes (the session's,
     # built with the same settings) and reads the test split it plays from the cache there.
     shutil.copytree(one_house_dataset, tmp_path / "dataset")
-    (tmp_path / "splits").mkdir()
-    for built in split_cache.glob("test_*"):
-        shutil.copy2(built, tmp_path / "splits" / built.name)
+    shutil.copytree(split_cache, tmp_path / "splits")
     env = os.environ | {"PYTHON": sys.executable, "VLLN_GPU_CHECK_TINY": "1"}
     flags = ["--decisions", "8", "--sft-steps", "2", "--max-tokens", "8", "--torch-threads", "1"]
     done = subprocess.run(

@@ -14,7 +14,7 @@ import pytest
 
 from tests.datagen.conftest import SMALL, dataset_files
 from vlln.cli import main
-from vlln.datagen.build import BuildConfig, build_dataset, check_settings, summarize
+from vlln.datagen.build import BuildConfig, BuildSummary, build_dataset, check_settings, summarize
 from vlln.datagen.house_locks import lock_houses
 from vlln.datagen.reader import HouseDataset, house_folders
 from vlln.errors import ConfigError
@@ -193,3 +193,8 @@ def test_a_build_of_houses_another_build_holds_stops_in_one_line(
         holder.wait(timeout=30)
     with lock_houses(out, house_seeds("train", 2), SMALL.scene_id):  # released at its end
         pass
+
+
+def test_a_build_that_kept_nothing_says_where_to_look() -> None:
+    assert BuildSummary(2, 0, 0, 0).line().endswith("none kept: `vlln data stats` shows why")
+    assert "none kept" not in BuildSummary(2, 1, 90, 10**6).line()

@@ -56,6 +56,27 @@ def test_killed_process_resumes_to_the_uninterrupted_result(
 
 
 @pytest.mark.slow
+def test_ctrl_c_says_a_rerun_resumes_and_it_does(
+    tmp_path: Path, split_cache: Path, scenes: SceneCache
+) -> None:
+    out = tmp_path / "interrupted"
+    command = [sys.executable, "-m", "vlln.cli", *eval_args(out, split_cache)]
+    process = subprocess.Popen(
+        command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True
+    )
+    deadline = time.monotonic() + 60.0
+    while process.poll() is None and time.monotonic() < deadline:
+        if (out / "episodes.jsonl").exists():
+            process.send_signal(signal.SIGINT)
+            break
+        time.sleep(0.01)
+    _, stderr = process.communicate(timeout=30)
+    assert process.returncode == 130, stderr
+    assert stderr.endswith("run the same command again to resume\n")
+    assert evaluate(out, split_cache, scenes).complete
+
+
+@pytest.mark.slow
 def test_eval_command_writes_the_run_and_prints_the_summary(
     tmp_path: Path, split_cache: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

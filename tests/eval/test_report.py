@@ -7,15 +7,16 @@ import re
 from pathlib import Path
 
 import pytest
+from matplotlib.figure import Figure
 from PIL import Image
 
 from tests.eval.runs import evaluate
 from tests.tasks.test_metrics import make_record
 from vlln.cli import main
-from vlln.eval.episode_map import question_positions
+from vlln.eval.episode_map import _draw_storey, question_positions
 from vlln.eval.report import pick_samples
 from vlln.tasks.record import DialogTurn, EndReason
-from vlln.tasks.scenes import SceneCache
+from vlln.tasks.scenes import SceneCache, procedural_scene_id
 
 
 @pytest.fixture(scope="module")
@@ -111,3 +112,30 @@ def test_rows_and_scores_name_the_detector(
     scores = capsys.readouterr().out
     assert "## frontier (truth detector) on IIGN" in scores
     assert "## frontier (noisy detector) on IIGN" in scores
+
+
+@pytest.mark.parametrize(
+    ("answered", "labels"),
+    [
+        ([True], {"question (answered)"}),
+        ([True, False], {"question (answered)", "question (refused)"}),
+        ([False], {"question (refused)"}),
+    ],
+)
+def test_the_map_legend_names_each_kind_of_question_drawn(
+    scenes: SceneCache, answered: list[bool], labels: set[str]
+) -> None:
+    house = scenes.get(procedural_scene_id(0)).house
+    target = house.instances[0]
+    x, _, z = target.box.max
+    record = make_record(
+        object_category=target.category,
+        target_ids=[target.id],
+        positions=[[x, z, 0.0]],
+        actions=["TALK"] * len(answered),
+        dialog=[DialogTurn(0, "q", "a", "route", yes) for yes in answered],
+    )
+    axes = Figure().subplots()
+    _draw_storey(axes, record, house, 0, None, mark_stop_object=False)
+    drawn = set(axes.get_legend_handles_labels()[1])
+    assert drawn & {"question (answered)", "question (refused)"} == labels

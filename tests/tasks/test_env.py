@@ -159,6 +159,7 @@ def test_garbage_outputs_are_failed_actions_not_stops(scenes: SceneCache) -> Non
         assert not terminated
     record = env.record("broken")
     assert truncated and record.end_reason == EndReason.ERROR and record.failed_actions == 3
+    assert record.error == "3 failed actions (invalid 3), the cap max_failed_actions"
     with pytest.raises(ConfigError, match="has ended"):
         env.step(Action.STOP)
 

@@ -30,7 +30,13 @@ from vlln.tasks.instructions import (
 )
 from vlln.tasks.scenes import SceneCache, procedural_scene_id, procedural_seed
 from vlln.tasks.spec import TaskType
-from vlln.tasks.split_files import build_split, episode_path, load_or_build_split, stats_path
+from vlln.tasks.split_files import (
+    build_split,
+    episode_path,
+    load_or_build_split,
+    split_cache_folder,
+    stats_path,
+)
 from vlln.tasks.splits import house_seeds
 from vlln.world.catalogue import default_catalogue
 from vlln.world.generator import HouseParameters, generate_house
@@ -316,23 +322,28 @@ def test_load_or_build_builds_once(
     built = load_or_build_split(
         "test", "iign", 1, tmp_path, 0, SPLIT_CONFIG, scenes=scenes, progress=False
     )
-    assert built == read_episodes(episode_path(tmp_path, "test", TaskType.IIGN))
+    folder = split_cache_folder(tmp_path, "small", 1)
+    assert built == read_episodes(episode_path(folder, "test", TaskType.IIGN))
     assert {e.scene_id for e in built} == {"vlln/house_00076/house_00076.glb"}
+    two = load_or_build_split("test", "iign", 2, tmp_path, 0, SPLIT_CONFIG, scenes=scenes)
+    assert len({e.scene_id for e in two}) == 2
 
     def refuse(*args: Any, **kwargs: Any) -> Path:
         raise AssertionError("the cached split was built again")
 
     monkeypatch.setattr(split_files, "build_split", refuse)
+    # Each number of houses keeps its own files: building two left the one-house split.
     assert load_or_build_split("test", "ign", 1, tmp_path, 0, SPLIT_CONFIG, scenes=scenes) != []
+    assert load_or_build_split("test", "iign", 2, tmp_path, 0, SPLIT_CONFIG, scenes=scenes) == two
     with pytest.raises(AssertionError, match="built again"):
-        load_or_build_split("test", "ign", 2, tmp_path, 0, SPLIT_CONFIG, scenes=scenes)
+        load_or_build_split("test", "ign", 3, tmp_path, 0, SPLIT_CONFIG, scenes=scenes)
 
 
 def test_a_split_built_from_another_catalogue_is_built_again(
     tmp_path: Path, scenes: SmallHouses, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     load_or_build_split("test", "ign", 1, tmp_path, 0, SPLIT_CONFIG, scenes=scenes, progress=False)
-    stats = stats_path(tmp_path, "test")
+    stats = stats_path(split_cache_folder(tmp_path, "small", 1), "test")
     recorded = json.loads(stats.read_text())
     assert recorded["build"]["catalogue"] == default_catalogue().fingerprint()
     recorded["build"]["catalogue"] = "an older catalogue"

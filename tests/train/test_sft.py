@@ -91,22 +91,25 @@ def test_a_resumed_run_goes_on_from_the_checkpoints_weights(
     assert not _same_weights(tiny_model, resumed)
 
 
+FOUR_STEPS = ("--max-steps", "4", "--save-steps", "2", "--logging-steps", "10")  # none logged
+
+
 @pytest.mark.slow
 def test_a_finished_run_rerun_changes_nothing(
     sft_export: Path, tiny_model: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
     out = tmp_path / "run"
-    _train(sft_export, tiny_model, out, "--max-steps", "4", "--save-steps", "2")
+    _train(sft_export, tiny_model, out, *FOUR_STEPS)
     files = {path: path.read_bytes() for path in out.rglob("*") if path.is_file()}
-    capsys.readouterr()
-    _train(sft_export, tiny_model, out, "--max-steps", "4", "--save-steps", "2")
+    assert "loss not logged (it is every --logging-steps 10 steps)" in capsys.readouterr().out
+    _train(sft_export, tiny_model, out, *FOUR_STEPS)
     assert "already trained to step 4; nothing to do" in capsys.readouterr().out
     assert {path: path.read_bytes() for path in out.rglob("*") if path.is_file()} == files
     # Stopped after the last checkpoint, before the final model: the rerun writes the
     # checkpoint's weights, without another step.
     (out / "model.safetensors").unlink()
     (out / "training.json").unlink()
-    summary = _train(sft_export, tiny_model, out, "--max-steps", "4", "--save-steps", "2")
+    summary = _train(sft_export, tiny_model, out, *FOUR_STEPS)
     assert summary["steps"] == 4
     assert _same_weights(out, out / "checkpoint-4")
     assert {p.name for p in out.glob("checkpoint-*")} == {"checkpoint-2", "checkpoint-4"}

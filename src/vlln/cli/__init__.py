@@ -46,5 +46,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(f"error: {error}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
-        print("interrupted", file=sys.stderr)
+        print(
+            "interrupted; what finished is kept: run the same command again to resume",
+            file=sys.stderr,
+        )
         return 130

@@ -15,7 +15,8 @@ def _train_sft(config: TrainConfig) -> int:
         print(f"already trained to step {outcome.steps}; nothing to do (model in {config.out_dir})")
         return 0
     resumed = f", resumed from {outcome.resumed_from}" if outcome.resumed_from else ""
-    curve = " -> ".join(f"{loss:.3f}" for _, loss in outcome.losses) or "no new steps"
+    curve = " -> ".join(f"{loss:.3f}" for _, loss in outcome.losses)
+    curve = curve or f"not logged (it is every --logging-steps {config.logging_steps} steps)"
     print(
         f"trained to step {outcome.steps} on {outcome.samples} samples in "
         f"{outcome.seconds:.1f} s{resumed}; loss {curve}; model in {config.out_dir}"

@@ -15,6 +15,7 @@ from collections.abc import Callable, Sequence
 from typing import Any
 
 from vlln.errors import ConfigError, VllnError
+from vlln.extras import install_command
 
 DEFAULT_MAX_RETRIES = 3
 
@@ -27,7 +28,7 @@ def import_ray() -> Any:
     try:
         import ray
     except ImportError:
-        raise ConfigError("running on Ray needs the extra: pip install 'vlln[ray]'") from None
+        raise ConfigError(f"running on Ray needs the ray extra: {install_command('ray')}") from None
     return ray
 
 

@@ -347,10 +347,11 @@ class BuildSummary:
         return self.disk_bytes / 1e6 / self.kept if self.kept else 0.0
 
     def line(self) -> str:
+        none_kept = self.attempted and not self.kept
         return (
             f"kept {self.kept} of {self.attempted} trajectories ({self.frames} frames); "
             f"{self.disk_bytes / 1e6:.1f} MB on disk, {self.mb_per_trajectory:.2f} MB per "
-            "kept trajectory"
+            "kept trajectory" + ("; none kept: `vlln data stats` shows why" if none_kept else "")
         )
 
 

@@ -165,8 +165,10 @@ def _draw_storey(
         x, z = record.positions[pose][0], record.positions[pose][1]
         ax.plot(x, z, "D", color="#e377c2" if turn.answered else "#aaaaaa", markersize=6)
         ax.annotate(f"Q{k}", (x, z), textcoords="offset points", xytext=(5, 5), fontsize=8)
-    if record.dialog:
+    if any(turn.answered for turn in record.dialog):
         ax.plot([], [], "D", color="#e377c2", label="question (answered)")
+    if not all(turn.answered for turn in record.dialog):
+        ax.plot([], [], "D", color="#aaaaaa", label="question (refused)")
     north_up(ax)
 
 

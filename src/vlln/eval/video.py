@@ -8,7 +8,7 @@ failed actions keep the view. One action is one frame; a question holds its fram
 ``caption_s``. The map is drawn once with matplotlib; the trail and the agent are drawn on it
 per frame. In a house with several storeys the map shows the storey the agent is on (from the
 record's ``heights``) and the trail's part on it. Encoding is H.264 in MP4 (yuv420p,
-``faststart`` for the web) with PyAV, an extra: ``pip install 'vlln[video]'``.
+``faststart`` for the web) with PyAV, the video extra.
 """
 
 from __future__ import annotations
@@ -31,6 +31,7 @@ from pydantic import Field
 
 from vlln.config import Count, settings_dataclass
 from vlln.errors import ConfigError
+from vlln.extras import install_command
 from vlln.sim.agent import Action, AgentState
 from vlln.sim.simulator import Simulator
 from vlln.tasks.record import DialogTurn, EpisodeRecord
@@ -72,7 +73,7 @@ def write_episode_video(
     try:
         import av
     except ImportError:
-        raise ConfigError("episode videos need PyAV: pip install 'vlln[video]'") from None
+        raise ConfigError(f"episode videos need PyAV: {install_command('video')}") from None
     bases, to_pixel = map_images(house, record, config.map_size)
     camera = sim.config.camera
     width = camera.width + config.map_size

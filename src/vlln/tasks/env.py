@@ -326,6 +326,14 @@ class NavigationEnv:
         elif self._talks >= cfg.max_talk_actions:
             self._end = EndReason.TALK_CAP
 
+    def _error_text(self) -> str:
+        """Why an episode ended in error when the agent gave no reason: the failed-action cap
+        (with the failures by kind), or a record taken before the episode ended."""
+        if self._failed >= self.config.max_failed_actions:
+            kinds = ", ".join(f"{kind} {count}" for kind, count in sorted(self._failures.items()))
+            return f"{self._failed} failed actions ({kinds}), the cap max_failed_actions"
+        return "recorded before the episode ended"
+
     # ----------------------------------------------------------------- what the agent sees
     def _observe(self) -> Observation:
         state = self.sim.state
@@ -386,6 +394,8 @@ class NavigationEnv:
         records what it was at (:mod:`vlln.tasks.stop`)."""
         episode = self._require_episode()
         end = self._end or EndReason.ERROR
+        if end == EndReason.ERROR and error is None:
+            error = self._error_text()
         stop_id = stop_category = near = None
         if end == EndReason.STOP:
             goals = {t.id for t in self.targets}

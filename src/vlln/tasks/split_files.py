@@ -112,13 +112,14 @@ def load_or_build_split(
     preset: str = SMALL.name,
 ) -> list[Episode]:
     """The split's episodes of ``task`` on houses of ``preset``: read from ``cache_dir``
-    (a folder per preset), built there first if needed.
+    (a folder per preset and number of houses, so a run on another ``houses`` leaves the
+    others' files in place), built there first if needed.
 
-    The cache is rebuilt when its stats file records other houses, seed, settings or vlln
-    version than asked for.
+    The cache is rebuilt when its stats file records another seed, settings or vlln version
+    than asked for.
     """
     config = config or episode_config(preset)
-    folder = Path(cache_dir) if preset == SMALL.name else Path(cache_dir) / preset
+    folder = split_cache_folder(cache_dir, preset, houses)
     path = episode_path(folder, split, task)
     wanted = _build_settings(split, house_seeds(split, houses), rng_seed, config, 1, preset)
     if not (path.exists() and _recorded_settings(stats_path(folder, split)) == wanted):
@@ -134,6 +135,11 @@ def load_or_build_split(
         )
     stat = path.stat()
     return list(_read_split(str(path), stat.st_mtime_ns, stat.st_size))
+
+
+def split_cache_folder(cache_dir: str | Path, preset: str, houses: int) -> Path:
+    """Where :func:`load_or_build_split` keeps the split files of ``houses`` houses."""
+    return Path(cache_dir) / preset / f"{houses}_houses"
 
 
 @lru_cache(maxsize=3)

@@ -23,6 +23,8 @@ from vlln.datagen.layout import DOWN_TILT_DEG
 from vlln.datagen.reader import HouseDataset
 from vlln.datagen.sft import SftConfig, export_sft
 from vlln.datagen.sft.records import sharegpt
+from vlln.datagen.writer import HouseWriter
+from vlln.errors import DataFormatError
 from vlln.eval.play import derive_seed
 from vlln.prompt import (
     QUESTION_LIMIT_ANSWER,
@@ -345,3 +347,14 @@ def test_the_model_agent_is_shown_the_exported_images_byte_for_byte(
     down = house.image_file("down", episode, 0).read_bytes()
     assert _sent_images(requests[0]) == [level]
     assert _sent_images(requests[1]) == [level, down]
+
+
+def test_a_dataset_that_kept_no_trajectory_is_refused_before_any_file(
+    sim: Simulator, tmp_path: Path
+) -> None:
+    writer = HouseWriter(tmp_path / "data" / "trajectories", "house_a", sim.config.camera)
+    writer.write_rejected("episode-1", "never saw the target")
+    writer.finish({})
+    with pytest.raises(DataFormatError, match="kept no trajectory, so there is nothing to export"):
+        export_sft(tmp_path / "data", tmp_path / "sft", progress=False)
+    assert not (tmp_path / "sft").exists()

@@ -121,13 +121,20 @@ def export_sft(
     """Export every trajectory of one built dataset, or of several mixed, into ``out_dir``."""
     config = config or SftConfig()
     sources = _sources(dataset_root)
+    total = sum(len(house.episodes) for s in sources for house in s.houses)
+    if total == 0:
+        raise DataFormatError(
+            f"{', '.join(str(s.root) for s in sources)} kept no trajectory, so there is nothing "
+            "to export; `vlln data stats` shows why, and a build with more --per-house or "
+            "--houses keeps some"
+        )
     out = Path(out_dir)
     _prepare_out(out)
     store = ImageStore(out)
     summary = SftSummary(out)
     mix: list[dict[str, Any]] = []
     bar = tqdm(
-        total=sum(len(house.episodes) for s in sources for house in s.houses),
+        total=total,
         desc="export-sft",
         unit="traj",
         disable=not progress,
