@@ -34,7 +34,7 @@ from vlln.world.catalogue import default_catalogue
 from vlln.world.generator.presets import SMALL
 
 # The stats file holds a few hundred bytes per house; an unreadable one rebuilds the split.
-_STATS_CAP = ReadCap("a split's stats file", 16)
+STATS_CAP = ReadCap("a split's stats file", 16)
 
 
 def episode_path(out_dir: str | Path, split: str, task: TaskType | str) -> Path:
@@ -172,6 +172,6 @@ def _build_settings(
 
 def _recorded_settings(path: Path) -> Any:
     try:
-        return parse_json(_STATS_CAP.read(path)).get("build")
+        return parse_json(STATS_CAP.read(path)).get("build")
     except (OSError, ValueError, AttributeError):
         return None
