@@ -85,7 +85,7 @@ def train_sft(config: TrainConfig) -> TrainOutcome:
 
         def _save_checkpoint(self, model: Any, trial: Any) -> None:
             # One cut short (a full disk) is removed, so a rerun resumes from the one before.
-            folder = Path(self.args.output_dir) / f"checkpoint-{self.state.global_step}"
+            folder = config.out_dir / f"checkpoint-{self.state.global_step}"
             try:
                 with writing(folder):
                     super()._save_checkpoint(model, trial)
