@@ -52,7 +52,8 @@ def test_a_file_loads_into_labelled_questions(tmp_path: Path) -> None:
 @pytest.mark.parametrize(
     ("bad_row", "complaint"),
     [
-        ('{"question": "Is it red?", "type": "attribute"', "not valid JSON"),
+        ('{"question": "Is it red?", "type": "attribute"', "not JSON"),
+        ("[" * 100 + "]" * 100, "nested deeper than 64 levels"),
         ('["Is it red?", "attribute"]', "JSON object"),
         ('{"question": "Is it red?", "type": "colour"}', "'type'"),
         ('{"question": "", "type": "attribute"}', "'question'"),

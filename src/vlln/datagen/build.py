@@ -51,6 +51,7 @@ from vlln.datagen.layout import (
     EPISODES_DIR,
     FORMAT_VERSION,
     SCENE_SUMMARY_DIR,
+    SETTINGS_CAP,
     SETTINGS_FILE,
     TRAJECTORIES_DIR,
     house_dir,
@@ -63,7 +64,7 @@ from vlln.datagen.writer import HouseWriter
 from vlln.errors import ConfigError, DataFormatError
 from vlln.eval.play import episode_seed
 from vlln.eval.sharding import Shard
-from vlln.files import write_text_atomic
+from vlln.files import parse_json, write_text_atomic
 from vlln.oracle.settings import OracleSettings
 from vlln.sim.agent import AgentState
 from vlln.sim.simulator import Simulator
@@ -392,7 +393,7 @@ def recorded_strategy(root: Path) -> Strategy | None:
     if not path.exists():
         return None
     try:
-        recorded = _with_legacy_preset(json.loads(path.read_text(encoding="utf-8")))
+        recorded = _with_legacy_preset(parse_json(SETTINGS_CAP.read(path)))
         task, policy = (
             str(recorded.get(name, BuildOptions.model_fields[name].default))
             for name in ("task", "policy")
@@ -415,12 +416,13 @@ def check_settings(root: Path, config: BuildConfig) -> None:
     path = root / SETTINGS_FILE
     wanted = config.settings()
     if path.exists():
+        data = SETTINGS_CAP.read(path)
         try:
-            recorded = _with_legacy_preset(json.loads(path.read_text(encoding="utf-8")))
-        except ValueError as error:
-            raise ConfigError(
-                f"{path} is not valid JSON ({error}); delete it to rebuild"
-            ) from error
+            recorded = _with_legacy_preset(parse_json(data))
+        except DataFormatError as error:
+            raise ConfigError(f"{path}: {error}; delete it to rebuild") from None
+        if not isinstance(recorded, dict):
+            raise ConfigError(f"{path} is not a JSON object of settings; delete it to rebuild")
         if recorded != wanted:
             keys = wanted.keys() | recorded.keys()
             changed = sorted(k for k in keys if recorded.get(k) != wanted.get(k))

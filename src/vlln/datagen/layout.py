@@ -44,6 +44,7 @@ from numpy.typing import NDArray
 from vlln.datagen.collector.visibility import DOWN_TILT_DEG
 from vlln.datagen.goals import Goal
 from vlln.datagen.trajectory import Trajectory
+from vlln.files import ReadCap
 from vlln.sim.agent import Action
 from vlln.sim.camera import CameraSpec, Position
 from vlln.tasks.episode import scene_name
@@ -58,6 +59,11 @@ INFO_FILE = "meta/info.json"  # written last: its presence marks a finished hous
 EPISODES_FILE = "meta/episodes.jsonl"
 JOURNAL_FILE = "meta/journal.jsonl"
 LAST_FILES = (JOURNAL_FILE, INFO_FILE)  # written after every other file of a house, in order
+# The caps on reading them back: build.json and info.json are a few kB; a line of episodes.jsonl
+# or of the journal is about 1 kB, so 64 MiB is some 80,000 episodes of one house.
+SETTINGS_CAP = ReadCap("a build.json", 1)
+INFO_CAP = ReadCap("a house's info.json", 1)
+HOUSE_LINES_CAP = ReadCap("a house's episodes.jsonl or journal", 64)
 CHUNK_SIZE = 1000
 NO_ACTION = -1  # action[0]: no action led to the first frame
 CAMERAS = ("level", "down")

@@ -7,7 +7,6 @@ one this vlln writes.
 
 from __future__ import annotations
 
-import json
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -21,6 +20,8 @@ from vlln.datagen.layout import (
     CAMERAS,
     EPISODES_FILE,
     FORMAT_VERSION,
+    HOUSE_LINES_CAP,
+    INFO_CAP,
     INFO_FILE,
     TRAJECTORIES_DIR,
     camera_setting,
@@ -28,6 +29,7 @@ from vlln.datagen.layout import (
     frame_image_path,
 )
 from vlln.errors import DataFormatError
+from vlln.files import parse_json
 from vlln.sim.camera import CameraSpec
 
 
@@ -40,7 +42,9 @@ class HouseDataset:
         self.info: dict[str, Any] = {}
         self.settings = {camera: camera_setting(CameraSpec(), camera) for camera in CAMERAS}
         if info_path.exists():
-            self.info = json.loads(info_path.read_text(encoding="utf-8"))
+            self.info = _parse(info_path, INFO_CAP.read(info_path))
+            if not isinstance(self.info, dict):
+                raise DataFormatError(f"{info_path}: expected a JSON object")
             if self.info.get("format_version") != FORMAT_VERSION:
                 raise DataFormatError(
                     f"{info_path}: format {self.info.get('format_version')!r}, this vlln reads "
@@ -53,8 +57,12 @@ class HouseDataset:
                 f"{self.root} is not a finished trajectory folder (no {EPISODES_FILE}); "
                 "run or resume `vlln data build` to finish it"
             )
-        lines = episodes_path.read_text(encoding="utf-8").splitlines()
-        self.episodes: list[dict[str, Any]] = [json.loads(line) for line in lines if line]
+        lines = HOUSE_LINES_CAP.read(episodes_path).splitlines()
+        self.episodes: list[dict[str, Any]] = [
+            _parse(episodes_path, line, number)
+            for number, line in enumerate(lines, 1)
+            if line.strip()
+        ]
 
     def frames(self, episode_index: int) -> dict[str, NDArray[Any]]:
         """The parquet columns of one episode as arrays (a 4x4 pose per frame: (n, 4, 4))."""
@@ -68,6 +76,16 @@ class HouseDataset:
     def rgb(self, camera: str, episode_index: int, frame_index: int) -> NDArray[np.uint8]:
         with Image.open(self.image_file(camera, episode_index, frame_index)) as image:
             return np.asarray(image.convert("RGB"))
+
+
+def _parse(path: Path, data: bytes, line: int | None = None) -> Any:
+    try:
+        return parse_json(data)
+    except DataFormatError as error:
+        where = path if line is None else f"{path}:{line}"
+        raise DataFormatError(
+            f"{where}: {error}; rebuild the house (delete its folder, then `vlln data build`)"
+        ) from None
 
 
 def instruction_of(row: dict[str, Any]) -> str:

@@ -19,6 +19,7 @@ from vlln.datagen.goals import GoalFinder, WalkCheck
 from vlln.datagen.layout import (
     CAMERAS,
     EPISODES_FILE,
+    HOUSE_LINES_CAP,
     INFO_FILE,
     JOURNAL_FILE,
     camera_setting,
@@ -32,7 +33,13 @@ from vlln.datagen.layout import (
 )
 from vlln.datagen.trajectory import Trajectory
 from vlln.errors import DataFormatError
-from vlln.files import remove_leftover_temp_files, write_text_atomic
+from vlln.files import (
+    parse_json,
+    remove_leftover_temp_files,
+    write_bytes_atomic,
+    write_text_atomic,
+    writing,
+)
 from vlln.prompt.images import stored_frame
 from vlln.sim.camera import CameraSpec
 from vlln.sim.renderer import Frame
@@ -119,22 +126,25 @@ class HouseWriter:
     # ----------------------------------------------------------------- internals
     def _write(self, relative: str, data: bytes) -> None:
         path = self.root / relative
-        path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_bytes(data)
+        with writing(path):  # a rerun writes the trajectory again, as after a kill
+            path.parent.mkdir(parents=True, exist_ok=True)
+            path.write_bytes(data)
 
     def _journal(self, attempt: Attempt) -> None:
         path = self.root / JOURNAL_FILE
-        path.parent.mkdir(parents=True, exist_ok=True)
         line: dict[str, Any] = {
             "episode_id": attempt.episode_id,
             "episode_index": attempt.episode_index,
             "reason": attempt.reason,
             "row": attempt.row,
         }
-        with path.open("a", encoding="utf-8") as handle:
-            handle.write(json.dumps(line, sort_keys=True) + "\n")
-            handle.flush()
-            os.fsync(handle.fileno())
+        # a line cut short by a full disk is a torn last line, which the rerun cuts
+        with writing(path):
+            path.parent.mkdir(parents=True, exist_ok=True)
+            with path.open("a", encoding="utf-8") as handle:
+                handle.write(json.dumps(line, sort_keys=True) + "\n")
+                handle.flush()
+                os.fsync(handle.fileno())
         self.attempts[attempt.episode_id] = attempt
 
 
@@ -144,11 +154,11 @@ def read_journal(path: Path) -> dict[str, Attempt]:
     attempts: dict[str, Attempt] = {}
     if not path.exists():
         return attempts
-    text = path.read_text(encoding="utf-8")
+    text = HOUSE_LINES_CAP.read(path)
     lines = text.splitlines()
     for number, line in enumerate(lines, 1):
         try:
-            data = json.loads(line)
+            data = parse_json(line)
             attempt = Attempt(
                 data["episode_id"], data["episode_index"], data["reason"], data["row"]
             )
@@ -158,9 +168,9 @@ def read_journal(path: Path) -> dict[str, Attempt]:
                     f"{path}:{number}: unreadable journal line ({error}); the file was edited "
                     "or damaged: delete the house folder to rebuild it"
                 ) from error
-            write_text_atomic(path, "".join(f"{kept}\n" for kept in lines[:-1]))
+            write_bytes_atomic(path, b"".join(kept + b"\n" for kept in lines[:-1]))
             return attempts
         attempts[attempt.episode_id] = attempt
-    if text and not text.endswith("\n"):
-        write_text_atomic(path, text + "\n")  # a whole last line that lost its newline
+    if text and not text.endswith(b"\n"):
+        write_bytes_atomic(path, text + b"\n")  # a whole last line that lost its newline
     return attempts

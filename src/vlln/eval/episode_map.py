@@ -23,6 +23,7 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 from matplotlib.patches import Rectangle
 
+from vlln.files import writing
 from vlln.sim.agent import Action
 from vlln.tasks.record import EpisodeRecord
 from vlln.viz.topdown import (
@@ -107,7 +108,8 @@ def draw_episode_map(
         fontsize=7,
     )
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    with writing(path):
+        fig.savefig(path, dpi=110)
 
 
 def _draw_storey(

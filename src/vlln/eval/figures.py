@@ -14,6 +14,7 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import MaxNLocator
 
 from vlln.errors import ConfigError
+from vlln.files import writing
 from vlln.tasks.aggregate import BudgetSweep, MetricSummary
 from vlln.tasks.taxonomy import CLASS_ABBREVIATIONS, FAILURE_CLASSES
 
@@ -46,7 +47,8 @@ def plot_sr_by_budget(sweeps: Mapping[str, BudgetSweep], path: Path) -> None:
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    with writing(path):
+        fig.savefig(path, dpi=120)
 
 
 def plot_failure_taxonomy(rows: Mapping[str, MetricSummary], path: Path) -> None:
@@ -74,4 +76,5 @@ def plot_failure_taxonomy(rows: Mapping[str, MetricSummary], path: Path) -> None
     if len(rows) > 1:
         ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    with writing(path):
+        fig.savefig(path, dpi=120)

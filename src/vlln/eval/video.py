@@ -32,6 +32,7 @@ from pydantic import Field
 from vlln.config import Count, settings_dataclass
 from vlln.errors import ConfigError
 from vlln.extras import install_command
+from vlln.files import writing
 from vlln.sim.agent import Action, AgentState
 from vlln.sim.simulator import Simulator
 from vlln.tasks.record import DialogTurn, EpisodeRecord
@@ -80,21 +81,22 @@ def write_episode_video(
     height = max(camera.height, config.map_size) + config.caption_height
     if width % 2 or height % 2:
         raise ConfigError(f"video size {width}x{height} must be even; use an even camera size")
-    path.parent.mkdir(parents=True, exist_ok=True)
-    partial = path.with_name(f".{path.name}.partial.mp4")  # renamed once complete
-    frames = 0
-    with av.open(str(partial), "w", options={"movflags": "faststart"}) as container:
-        stream: Any = container.add_stream("libx264", rate=config.fps)
-        stream.width, stream.height, stream.pix_fmt = width, height, "yuv420p"
-        stream.options = {"crf": "26", "preset": "veryfast"}
-        for image in _frames(record, sim, bases, to_pixel, (width, height), config):
-            frame = av.VideoFrame.from_ndarray(image, format="rgb24")
-            for packet in stream.encode(frame):
+    with writing(path):  # a video cut short stays partial: a rerun writes it again
+        path.parent.mkdir(parents=True, exist_ok=True)
+        partial = path.with_name(f".{path.name}.partial.mp4")  # renamed once complete
+        frames = 0
+        with av.open(str(partial), "w", options={"movflags": "faststart"}) as container:
+            stream: Any = container.add_stream("libx264", rate=config.fps)
+            stream.width, stream.height, stream.pix_fmt = width, height, "yuv420p"
+            stream.options = {"crf": "26", "preset": "veryfast"}
+            for image in _frames(record, sim, bases, to_pixel, (width, height), config):
+                frame = av.VideoFrame.from_ndarray(image, format="rgb24")
+                for packet in stream.encode(frame):
+                    container.mux(packet)
+                frames += 1
+            for packet in stream.encode():
                 container.mux(packet)
-            frames += 1
-        for packet in stream.encode():
-            container.mux(packet)
-    partial.replace(path)
+        partial.replace(path)
     return frames / config.fps
 
 

@@ -14,7 +14,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from vlln.errors import ConfigError, DataFormatError
-from vlln.eval.results import RunDirectory, load_run_records
+from vlln.eval.results import RESULTS_CAP, RunDirectory, load_run_records
 from vlln.eval.video import VideoConfig, write_episode_video
 from vlln.files import parse_json
 from vlln.sim.simulator import Simulator
@@ -29,7 +29,7 @@ def read_video_source(path: Path) -> list[EpisodeRecord]:
     """The records of a run directory, a JSON Lines results file or a single JSON record."""
     if path.suffix == ".json" and path.is_file():
         try:
-            return [EpisodeRecord.from_json(parse_json(path.read_bytes()))]
+            return [EpisodeRecord.from_json(parse_json(RESULTS_CAP.read(path)))]
         except DataFormatError as error:
             raise DataFormatError(f"{path} is not a JSON episode record: {error}") from None
     if not path.exists():

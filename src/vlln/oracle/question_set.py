@@ -17,7 +17,6 @@ of the installed package: they live in the repository's ``oracle_training/`` fol
 from __future__ import annotations
 
 import importlib.util
-import json
 import sys
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
@@ -25,12 +24,15 @@ from pathlib import Path
 from typing import Any
 
 from vlln.errors import ConfigError, DataFormatError
+from vlln.files import ReadCap, parse_json
 from vlln.oracle.classify import analyse_question, classify_question
 from vlln.oracle.topics import AttributeTopic, OtherTopic, RouteKind, Topic, label_of
 from vlln.tasks.oracle_protocol import QuestionType
 
 # The repository's training folder, as seen from src/vlln/oracle/ of a checkout.
 TRAINING_FOLDER = Path(__file__).resolve().parents[3] / "oracle_training"
+# The repository's sets are about 100 kB each, some 1,000 questions of 100 bytes.
+_QUESTION_SET_CAP = ReadCap("a question set", 16)
 _FIELDS = frozenset({"question", "type", "route_kind", "topic"})
 _TOPICS: dict[QuestionType, type[AttributeTopic] | type[OtherTopic]] = {
     QuestionType.ATTRIBUTE: AttributeTopic,
@@ -86,11 +88,11 @@ def load_question_set(path: str | Path) -> list[LabelledQuestion]:
     """
     path = Path(path)
     try:
-        text = path.read_text(encoding="utf-8")
+        data = _QUESTION_SET_CAP.read(path)
     except OSError as error:
         raise DataFormatError(f"cannot read question set {path}: {error.strerror}") from error
     questions = []
-    for number, line in enumerate(text.splitlines(), 1):
+    for number, line in enumerate(data.splitlines(), 1):
         if line.strip():
             questions.append(_parse_row(line, f"{path}:{number}"))
     if not questions:
@@ -98,11 +100,11 @@ def load_question_set(path: str | Path) -> list[LabelledQuestion]:
     return questions
 
 
-def _parse_row(line: str, where: str) -> LabelledQuestion:
+def _parse_row(line: bytes, where: str) -> LabelledQuestion:
     try:
-        row = json.loads(line)
-    except json.JSONDecodeError as error:
-        raise DataFormatError(f"{where}: not valid JSON ({error.msg})") from error
+        row = parse_json(line)
+    except DataFormatError as error:
+        raise DataFormatError(f"{where}: {error}") from None
     if not isinstance(row, dict):
         raise DataFormatError(f"{where}: expected a JSON object, got {type(row).__name__}")
     unknown = sorted(set(row) - _FIELDS)

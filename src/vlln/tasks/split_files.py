@@ -17,7 +17,7 @@ from tqdm import tqdm
 
 from vlln import __version__
 from vlln.errors import DataFormatError
-from vlln.files import write_text_atomic
+from vlln.files import ReadCap, parse_json, write_text_atomic
 from vlln.tasks.episode import Episode, read_episodes, reference_convention_problems, write_episodes
 from vlln.tasks.generation import (
     EpisodeGenConfig,
@@ -32,6 +32,9 @@ from vlln.tasks.spec import TaskType
 from vlln.tasks.splits import house_seeds
 from vlln.world.catalogue import default_catalogue
 from vlln.world.generator.presets import SMALL
+
+# The stats file holds a few hundred bytes per house; an unreadable one rebuilds the split.
+STATS_CAP = ReadCap("a split's stats file", 16)
 
 
 def episode_path(out_dir: str | Path, split: str, task: TaskType | str) -> Path:
@@ -175,6 +178,6 @@ def _build_settings(
 
 def _recorded_settings(path: Path) -> Any:
     try:
-        return json.loads(path.read_text(encoding="utf-8")).get("build")
+        return parse_json(STATS_CAP.read(path)).get("build")
     except (OSError, ValueError, AttributeError):
         return None

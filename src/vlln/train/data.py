@@ -3,7 +3,6 @@ model's chat template, loss only on the assistant's tokens."""
 
 from __future__ import annotations
 
-import json
 from collections import OrderedDict
 from dataclasses import dataclass
 from pathlib import Path
@@ -14,7 +13,14 @@ from PIL import Image
 from vlln.agents.local.encoding import ChatEncoder, ProcessedImage
 from vlln.datagen.sft.records import SFT_FILE, SUMMARY_FILE, SftRecord
 from vlln.errors import DataFormatError
+from vlln.files import ReadCap, parse_json
 from vlln.prompt import IMAGE_TAG, Turn
+
+# export.json holds the settings, the houses and the counts: a few kB.
+_SUMMARY_CAP = ReadCap("an export summary", 16)
+# A sample is a few kB of text (its images are files apart), while sft.jsonl may hold hundreds
+# of MB of them: it is read a line at a time, each to this cap.
+SFT_LINE_CAP = ReadCap("a line of sft.jsonl", 1)
 
 
 @dataclass(frozen=True)
@@ -39,7 +45,7 @@ def export_facts(data_dir: Path) -> ExportFacts:
     was recorded were of small houses)."""
     path = data_dir / SUMMARY_FILE
     try:
-        document = json.loads(path.read_text(encoding="utf-8"))
+        document = parse_json(_SUMMARY_CAP.read(path))
         history = int(document["settings"]["history_frames"])
         return ExportFacts(history, str(document.get("preset", "small")))
     except (OSError, ValueError, KeyError, TypeError) as error:
@@ -57,9 +63,15 @@ def read_export(data_dir: Path) -> list[SftSample]:
             "write one with: vlln data export-sft DATASET --out DIR"
         )
     samples: list[SftSample] = []
-    with (data_dir / SFT_FILE).open(encoding="utf-8") as lines:
-        for number, line in enumerate(lines, 1):
+    limit = SFT_LINE_CAP.limit()
+    with (data_dir / SFT_FILE).open("rb") as lines:
+        for number, line in enumerate(iter(lambda: lines.readline(limit + 1), b""), 1):
             where = f"{data_dir / SFT_FILE}, line {number}"
+            if len(line) > limit:
+                raise DataFormatError(
+                    f"{where} holds more than {limit >> 20} MiB, the cap on {SFT_LINE_CAP.what}; "
+                    "give the right file"
+                )
             try:
                 samples.append(_sample(SftRecord.from_line(line), data_dir))
             except (ValueError, KeyError, TypeError) as error:

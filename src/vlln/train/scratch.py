@@ -23,6 +23,7 @@ from typing import Any, Literal
 from vlln.agents.local.card import ModelCard, write_card
 from vlln.agents.local.dependencies import require_model_extra
 from vlln.agents.local.encoding import ChatEncoder
+from vlln.files import writing
 from vlln.prompt.text import (
     CONNECTIVES,
     DIALOG_END,
@@ -227,7 +228,8 @@ def write_random_model(
     model.generation_config.eos_token_id = ids["<|im_end|>"]
     model.generation_config.pad_token_id = ids["<|endoftext|>"]
     out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    model.save_pretrained(out)
-    ChatEncoder(tokenizer, image_processor, CHAT_TEMPLATE).save(out)
+    with writing(out):
+        out.mkdir(parents=True, exist_ok=True)
+        model.save_pretrained(out)
+        ChatEncoder(tokenizer, image_processor, CHAT_TEMPLATE).save(out)
     return out

@@ -14,6 +14,7 @@ trains on its share of each batch (see docs/training.md).
 from __future__ import annotations
 
 import json
+import shutil
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -21,13 +22,15 @@ from typing import Any
 
 from vlln.agents.local.card import read_card, write_card
 from vlln.agents.local.dependencies import MODEL_PACKAGES, require_model_extra
-from vlln.errors import ConfigError
-from vlln.files import write_text_atomic
+from vlln.errors import ConfigError, DataFormatError, WriteError
+from vlln.files import ReadCap, parse_json, write_text_atomic, writing
 from vlln.train.config import TrainConfig
 
 SUMMARY_FILE = "training.json"
 _STATE_FILE = "trainer_state.json"
 _WEIGHT_FILES = ("model.safetensors", "model.safetensors.index.json")
+# Both hold one short entry per logged step: 64 MiB is hundreds of thousands of steps.
+_RECORD_CAP = ReadCap("a trainer_state.json or training.json", 64)
 LORA_TARGETS = r".*language_model.*\.(q_proj|k_proj|v_proj|o_proj|gate_proj|up_proj|down_proj)"
 
 
@@ -80,12 +83,24 @@ def train_sft(config: TrainConfig) -> TrainOutcome:
             if resume_from_checkpoint != weights_from or self.is_fsdp_enabled:
                 super()._load_from_checkpoint(resume_from_checkpoint, model)
 
+        def _save_checkpoint(self, model: Any, trial: Any) -> None:
+            # One cut short (a full disk) is removed, so a rerun resumes from the one before.
+            folder = config.out_dir / f"checkpoint-{self.state.global_step}"
+            try:
+                with writing(folder):
+                    super()._save_checkpoint(model, trial)
+            except WriteError:
+                shutil.rmtree(folder, ignore_errors=True)
+                raise
+
     class SaveEncoder(TrainerCallback):
         """Each checkpoint also gets the tokenizer, image processor and template."""
 
         def on_save(self, args: Any, state: Any, control: Any, **kwargs: Any) -> None:
             if state.is_world_process_zero and not config.lora:
-                encoder.save(Path(args.output_dir) / f"checkpoint-{state.global_step}")
+                folder = Path(args.output_dir) / f"checkpoint-{state.global_step}"
+                with writing(folder):
+                    encoder.save(folder)
 
     trainer = SftTrainer(
         model=model,
@@ -115,7 +130,8 @@ def train_sft(config: TrainConfig) -> TrainOutcome:
     if finished and _final_is_saved(config, outcome.steps):
         outcome.unchanged = True
         return outcome
-    _save_final(trainer, encoder, config)
+    with writing(config.out_dir):
+        _save_final(trainer, encoder, config)
     if trainer.is_world_process_zero():
         _write_summary(config, outcome)
         card = read_card(config.model).replace(
@@ -169,8 +185,14 @@ def _load_model(config: TrainConfig, resume: str | None) -> tuple[Any, str]:
 
 
 def _steps_done(checkpoint: str) -> int:
-    document = json.loads((Path(checkpoint) / _STATE_FILE).read_text())
-    return int(document.get("global_step", 0))
+    path = Path(checkpoint) / _STATE_FILE
+    try:
+        return int(parse_json(_RECORD_CAP.read(path)).get("global_step", 0))
+    except (OSError, ValueError, TypeError, AttributeError) as error:
+        raise DataFormatError(
+            f"{path}: not a trainer state ({error}); delete its checkpoint folder or resume "
+            "from another with --resume"
+        ) from None
 
 
 def _final_is_saved(config: TrainConfig, steps: int) -> bool:
@@ -179,7 +201,7 @@ def _final_is_saved(config: TrainConfig, steps: int) -> bool:
     if not summary.is_file() or not any((config.out_dir / n).is_file() for n in _WEIGHT_FILES):
         return False
     try:
-        return int(json.loads(summary.read_text()).get("steps", -1)) == steps
+        return int(parse_json(_RECORD_CAP.read(summary)).get("steps", -1)) == steps
     except (ValueError, TypeError, AttributeError):
         return False
 

@@ -23,7 +23,7 @@ from typing import Any
 from vlln.errors import ConfigError, DataFormatError
 from vlln.eval.results import RecordKey, RecordWriter, RunDirectory, record_key
 from vlln.eval.run_dir import episodes_file
-from vlln.files import parse_json, write_text_atomic
+from vlln.files import ReadCap, parse_json, write_text_atomic
 from vlln.tasks.episode import Episode
 from vlln.tasks.record import EpisodeRecord
 from vlln.web.changes import ChangeSignal
@@ -300,11 +300,15 @@ class SessionStore:
             write_text_atomic(path, json.dumps(wanted, indent=2) + "\n")
 
 
+# web.json holds a study's settings: well under a kB.
+_SETTINGS_CAP = ReadCap("a web.json", 1)
+
+
 def _stored_settings(path: Path) -> dict[str, Any]:
     """``web.json`` as stored; a damaged one is one line (the study's records stay readable
     by ``vlln score`` and ``vlln report``, whatever this file holds)."""
     try:
-        stored = parse_json(path.read_bytes())
+        stored = parse_json(_SETTINGS_CAP.read(path))
         if not isinstance(stored, dict):
             raise DataFormatError(f"a JSON {type(stored).__name__}, not an object")
     except DataFormatError as error:

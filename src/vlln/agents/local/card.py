@@ -20,10 +20,12 @@ from pydantic import Field
 
 from vlln.config import Config
 from vlln.errors import DataFormatError
-from vlln.files import write_text_atomic
+from vlln.files import ReadCap, parse_json, write_text_atomic
 from vlln.prompt import DEFAULT_HISTORY_COUNT
 
 CARD_FILE = "vlln_model.json"
+# A card is five short settings: a few hundred bytes.
+_CARD_CAP = ReadCap("a model card", 1)
 
 
 class ModelCard(Config):
@@ -46,12 +48,11 @@ def read_card(model_dir: str | Path) -> ModelCard:
     path = Path(model_dir) / CARD_FILE
     if not path.is_file():
         return ModelCard()
+    data = _CARD_CAP.read(path)
     try:
-        document = json.loads(path.read_text(encoding="utf-8"))
-    except ValueError as error:
-        raise DataFormatError(
-            f"{path} is not JSON ({error}); delete it or re-save the model"
-        ) from None
+        document = parse_json(data)
+    except DataFormatError as error:
+        raise DataFormatError(f"{path}: {error}; delete it or re-save the model") from None
     return ModelCard.from_json(document, str(path))
 
 

@@ -30,6 +30,7 @@ from vlln.datagen.layout import (
     EPISODES_FILE,
     INFO_FILE,
     SCENE_SUMMARY_DIR,
+    SETTINGS_CAP,
     SETTINGS_FILE,
     TRAJECTORIES_DIR,
     data_path,
@@ -38,7 +39,7 @@ from vlln.datagen.layout import (
 )
 from vlln.datagen.reader import HouseDataset, house_folders
 from vlln.errors import ConfigError, DataFormatError
-from vlln.files import write_text_atomic
+from vlln.files import parse_json, write_text_atomic, writing
 
 REPORT_DIR = "balance"
 
@@ -62,25 +63,26 @@ def balance_dataset(
         raise ConfigError(f"--out {target} is inside the dataset {source}; choose another folder")
     items = [_item(house, row) for house in houses for row in house.episodes]
     selection = select(items, config)
-    target.parent.mkdir(parents=True, exist_ok=True)
-    staging = Path(tempfile.mkdtemp(dir=target.parent, prefix=f".{target.name}."))
-    try:
-        for name in (SCENE_SUMMARY_DIR, EPISODES_DIR):
-            if (source / name).is_dir():
-                shutil.copytree(source / name, staging / name, copy_function=_link)
-        kept: dict[str, set[int]] = {}
-        for item in selection.kept:
-            kept.setdefault(item.house, set()).add(item.episode_index)
-        for house in tqdm(houses, desc="balance", unit="house", disable=not progress):
-            _write_house(house, kept.get(house.root.name, set()), staging)
-        write_text_atomic(staging / SETTINGS_FILE, _settings(source, config, selection))
-        report = write_report(selection, staging / REPORT_DIR, source)
-        if target.exists():
-            target.rmdir()
-        os.replace(staging, target)
-    except BaseException:
-        shutil.rmtree(staging, ignore_errors=True)
-        raise
+    with writing(target):  # a failure removes the staging folder: a rerun starts afresh
+        target.parent.mkdir(parents=True, exist_ok=True)
+        staging = Path(tempfile.mkdtemp(dir=target.parent, prefix=f".{target.name}."))
+        try:
+            for name in (SCENE_SUMMARY_DIR, EPISODES_DIR):
+                if (source / name).is_dir():
+                    shutil.copytree(source / name, staging / name, copy_function=_link)
+            kept: dict[str, set[int]] = {}
+            for item in selection.kept:
+                kept.setdefault(item.house, set()).add(item.episode_index)
+            for house in tqdm(houses, desc="balance", unit="house", disable=not progress):
+                _write_house(house, kept.get(house.root.name, set()), staging)
+            write_text_atomic(staging / SETTINGS_FILE, _settings(source, config, selection))
+            report = write_report(selection, staging / REPORT_DIR, source)
+            if target.exists():
+                target.rmdir()
+            os.replace(staging, target)
+        except BaseException:
+            shutil.rmtree(staging, ignore_errors=True)
+            raise
     return BalanceResult(target, selection, [target / p.relative_to(staging) for p in report])
 
 
@@ -134,10 +136,13 @@ def _settings(source: Path, config: BalanceConfig, selection: Selection) -> str:
     path = source / SETTINGS_FILE
     recorded: dict[str, Any] = {}
     if path.exists():
+        data = SETTINGS_CAP.read(path)
         try:
-            recorded = json.loads(path.read_text(encoding="utf-8"))
-        except ValueError as error:
-            raise DataFormatError(f"{path} is not valid JSON ({error})") from None
+            recorded = parse_json(data)
+        except DataFormatError as error:
+            raise DataFormatError(f"{path}: {error}") from None
+        if not isinstance(recorded, dict):
+            raise DataFormatError(f"{path} is not a JSON object of settings")
     recorded["balance"] = {
         **config.to_json(),
         "caps": {"scene": selection.per_scene, "category": selection.per_category},

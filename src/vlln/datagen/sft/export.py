@@ -38,7 +38,7 @@ import tempfile
 import zlib
 from collections import Counter
 from collections.abc import Iterator, Sequence
-from contextlib import contextmanager
+from contextlib import contextmanager, suppress
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import IO, Any
@@ -56,7 +56,7 @@ from vlln.datagen.sft.sampling import SamplePlan, plan_samples
 from vlln.datagen.sft.source import SourceTrajectory, open_houses, read_trajectories
 from vlln.errors import ConfigError, DataFormatError
 from vlln.eval.play import derive_seed
-from vlln.files import write_text_atomic
+from vlln.files import write_text_atomic, writing
 from vlln.prompt import (
     Conversation,
     ForwardOutput,
@@ -299,7 +299,8 @@ def _export_trajectory(
                 f"{trajectory.house}/episode_{trajectory.episode_index:06d}/"
                 f"frame_{plan.frame:06d}/{plan.kind}/{copy}"
             )
-            sink.write(SftRecord(sample_id, tuple(paths), conversation.turns).line())
+            with writing(store.out / SFT_FILE):
+                sink.write(SftRecord(sample_id, tuple(paths), conversation.turns).line())
             summary.samples += 1
             summary.by_kind[kind] = summary.by_kind.get(kind, 0) + 1
 
@@ -323,15 +324,21 @@ def _prepare_out(out: Path) -> None:
 
 @contextmanager
 def _lines_atomic(path: Path) -> Iterator[IO[str]]:
-    """A text file written through a temporary file renamed into place once complete."""
-    fd, temp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    """A text file written through a temporary file renamed into place once complete; a
+    failed write of it is a WriteError naming ``path``, and the temporary file is removed."""
+    with writing(path):
+        fd, temp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    handle = os.fdopen(fd, "w", encoding="utf-8", newline="\n")
     try:
-        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as handle:
-            yield handle
+        yield handle
+        with writing(path):
             handle.flush()
             os.fsync(handle.fileno())
-        os.chmod(temp, 0o644)
-        os.replace(temp, path)
+            handle.close()
+            os.chmod(temp, 0o644)
+            os.replace(temp, path)
     except BaseException:
+        with suppress(OSError):  # what is left in its buffer may not fit either
+            handle.close()
         Path(temp).unlink(missing_ok=True)
         raise

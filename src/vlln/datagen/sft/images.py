@@ -11,10 +11,13 @@ from __future__ import annotations
 from pathlib import Path
 
 from vlln.datagen.reader import HouseDataset
+from vlln.files import ReadCap, writing
 from vlln.prompt import ImageRef
 from vlln.prompt.images import shown_image
 
 IMAGES_DIR = "images"
+# A stored frame is a JPEG of some tens of kB.
+_FRAME_CAP = ReadCap("a stored frame", 16)
 
 
 def image_name(house: str, episode_index: int, ref: ImageRef) -> str:
@@ -35,8 +38,10 @@ class ImageStore:
         name = image_name(prefix + house.root.name, episode_index, ref)
         if name not in self.written:
             source = house.image_file(ref.camera, episode_index, ref.frame)
+            data = shown_image(_FRAME_CAP.read(source), ref.camera)
             path = self.out / name
-            path.parent.mkdir(parents=True, exist_ok=True)
-            path.write_bytes(shown_image(source.read_bytes(), ref.camera))
+            with writing(path):
+                path.parent.mkdir(parents=True, exist_ok=True)
+                path.write_bytes(data)
             self.written.add(name)
         return name

@@ -19,6 +19,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any, get_args
 
+from vlln.files import parse_json
 from vlln.prompt import Turn
 from vlln.prompt.conversation import Role
 
@@ -45,9 +46,10 @@ class SftRecord:
         return json.dumps(data, ensure_ascii=False) + "\n"
 
     @staticmethod
-    def from_line(line: str) -> SftRecord:
-        """A line read back; ValueError, KeyError or TypeError name what is wrong with it."""
-        data: Any = json.loads(line)
+    def from_line(line: bytes | str) -> SftRecord:
+        """A line read back; ValueError (:class:`~vlln.errors.DataFormatError` for one that is
+        not JSON), KeyError or TypeError name what is wrong with it."""
+        data: Any = parse_json(line)
         turns = tuple(Turn(turn["from"], turn["value"]) for turn in data["conversations"])
         if any(turn.role not in _ROLES for turn in turns):
             raise ValueError(f"a turn's 'from' must be {' or '.join(map(repr, _ROLES))}")

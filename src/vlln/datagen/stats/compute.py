@@ -9,7 +9,6 @@ to it; words are whitespace-separated tokens.
 
 from __future__ import annotations
 
-import json
 import statistics
 from collections import Counter
 from dataclasses import asdict, dataclass, field
@@ -18,6 +17,7 @@ from typing import Any
 
 from vlln.datagen.layout import (
     EPISODES_DIR,
+    HOUSE_LINES_CAP,
     INFO_FILE,
     JOURNAL_FILE,
     TRAJECTORIES_DIR,
@@ -26,6 +26,7 @@ from vlln.datagen.layout import (
 from vlln.datagen.reader import HouseDataset, house_folders
 from vlln.datagen.stats.episodes import EpisodeStageStats, read_episode_stage
 from vlln.errors import DataFormatError
+from vlln.files import parse_json
 
 
 @dataclass(frozen=True)
@@ -290,9 +291,9 @@ def _progress(folder: Path) -> HouseProgress:
     journal = folder / JOURNAL_FILE
     attempts: dict[str, bool] = {}
     if journal.exists():
-        for line in journal.read_text(encoding="utf-8").splitlines():
+        for line in HOUSE_LINES_CAP.read(journal).splitlines():
             try:
-                data = json.loads(line)
+                data = parse_json(line)
                 attempts[str(data["episode_id"])] = data["episode_index"] is not None
             except (ValueError, KeyError, TypeError):
                 continue

@@ -7,13 +7,14 @@ report: episodes per house and per target category, skipped targets and distract
 
 from __future__ import annotations
 
-import json
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 from vlln.datagen.layout import house_dir_name
 from vlln.errors import DataFormatError
+from vlln.files import parse_json
+from vlln.tasks.split_files import STATS_CAP
 
 STATS_SUFFIX = "_stats.json"
 
@@ -69,7 +70,7 @@ def read_episode_stage(episodes_dir: Path) -> list[EpisodeStageStats]:
 
 def _read(path: Path) -> EpisodeStageStats:
     try:
-        document = json.loads(path.read_text(encoding="utf-8"))
+        document = parse_json(STATS_CAP.read(path))
         totals = document["totals"]
         return EpisodeStageStats(
             split=path.name[: -len(STATS_SUFFIX)],

@@ -19,6 +19,7 @@ from matplotlib.ticker import MaxNLocator
 from numpy.typing import NDArray
 
 from vlln.datagen.stats.compute import DatasetStats, IntDistribution
+from vlln.files import writing
 
 FIGURE_SIZE = (15.0, 8.6)  # inches
 FIGURE_DPI = 100
@@ -54,7 +55,8 @@ def plot_dataset_stats(stats: DatasetStats, path: Path) -> None:
         title += f" ({_plural(len(stats.in_progress), 'house', 'houses')} in progress)"
     fig.suptitle(title, fontsize=14)
     fig.tight_layout()
-    fig.savefig(path, dpi=FIGURE_DPI)
+    with writing(path):
+        fig.savefig(path, dpi=FIGURE_DPI)
 
 
 def _step_counts(ax: Axes, steps: IntDistribution) -> None:

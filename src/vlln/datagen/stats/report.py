@@ -15,7 +15,7 @@ from vlln.datagen.stats.compute import DatasetStats, dataset_stats
 from vlln.datagen.stats.episodes import EpisodeStageStats
 from vlln.datagen.stats.figure import PAPER_TURNS_PER_TRAJECTORY, plot_dataset_stats
 from vlln.eval.document import Block, Heading, Image, Paragraph, Table, to_markdown
-from vlln.files import write_text_atomic
+from vlln.files import write_text_atomic, writing
 
 STATS_JSON = "stats.json"
 STATS_MD = "stats.md"
@@ -31,7 +31,8 @@ def write_stats(root: str | Path, out_dir: str | Path | None = None) -> list[Pat
     (default ``<root>/stats``); returns the paths written."""
     stats = dataset_stats(root)
     out = Path(out_dir) if out_dir is not None else Path(root) / "stats"
-    out.mkdir(parents=True, exist_ok=True)
+    with writing(out):
+        out.mkdir(parents=True, exist_ok=True)
     json_path, png_path, md_path = out / STATS_JSON, out / STATS_PNG, out / STATS_MD
     write_text_atomic(json_path, json.dumps(stats.to_json(), indent=2) + "\n")
     plot_dataset_stats(stats, png_path)

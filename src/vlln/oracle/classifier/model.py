@@ -31,6 +31,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from vlln.errors import DataFormatError
+from vlln.files import ReadCap, parse_json
 from vlln.oracle.classifier.roles import with_roles
 from vlln.oracle.topics import LABELS
 
@@ -40,6 +41,9 @@ if TYPE_CHECKING:
 FORMAT = 4  # bump when the artefact's layout or features change; older files are then refused
 ARTEFACT_NAME = "question_classifier.json"
 RETRAIN = "rebuild it with `vlln oracle train-classifier`"
+# The shipped artefact is under 1 MB; its arrays unpack to under 3 MB each.
+_ARTEFACT_CAP = ReadCap("a question classifier", 16)
+_UNPACKED_CAP = 64 << 20  # bytes of one unpacked array: what keeps an xz bomb out of memory
 _WORDS = r"(?u)\b\w+\b"
 # The feature sets (scikit-learn TfidfVectorizer settings), in the order they are joined.
 FEATURE_SETS: dict[str, dict[str, Any]] = {
@@ -142,7 +146,7 @@ def load_classifier(path: Path) -> QuestionClassifier:
     """Read an artefact; raises :class:`DataFormatError` (one line, naming the fix) when it is
     missing, damaged or of another format."""
     try:
-        data = path.read_bytes()
+        data = _ARTEFACT_CAP.read(path)
     except FileNotFoundError as error:
         raise DataFormatError(f"the question classifier {path} is missing; {RETRAIN}") from error
     except OSError as error:
@@ -157,8 +161,14 @@ def packed(value: str | NDArray[Any]) -> str:
 
 
 def unpacked(text: str) -> bytes:
-    """The bytes :func:`packed` packed."""
-    return lzma.decompress(base64.b85decode(text))
+    """The bytes :func:`packed` packed; more than 64 MiB of them is a ValueError."""
+    decompressor = lzma.LZMADecompressor()
+    data = decompressor.decompress(base64.b85decode(text), max_length=_UNPACKED_CAP + 1)
+    if len(data) > _UNPACKED_CAP:
+        raise ValueError(f"an array of more than {_UNPACKED_CAP >> 20} MiB")
+    if not decompressor.eof:
+        raise lzma.LZMAError("Compressed data ended before the end-of-stream marker was reached")
+    return data
 
 
 def artefact_text(artefact: dict[str, Any]) -> str:
@@ -170,8 +180,8 @@ def artefact_text(artefact: dict[str, Any]) -> str:
 def classifier_from_bytes(data: bytes, path: Path | str = "in memory") -> QuestionClassifier:
     """An artefact's classifier from its bytes (``path`` names it in errors)."""
     try:
-        raw = json.loads(data)
-    except ValueError as error:
+        raw = parse_json(data)
+    except DataFormatError as error:
         raise DataFormatError(
             f"the question classifier {path} is damaged ({error}); {RETRAIN}"
         ) from error

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 import math
 import re
 from dataclasses import replace
@@ -12,6 +11,7 @@ from typing import Any
 import numpy as np
 
 from vlln.errors import DataFormatError
+from vlln.files import ReadCap, parse_json
 from vlln.world.catalogue.aliases import canonical_category
 from vlln.world.model import (
     Attributes,
@@ -31,6 +31,9 @@ from vlln.world.scene_summary.format import (
     REGION_DICT_FILE,
     UNKNOWN_ROOM_ID,
 )
+
+# A released house's object_dict.json is at most a few MB; a bigger scan may raise the cap.
+SCENE_SUMMARY_CAP = ReadCap("a scene-summary file", 64, "VLLN_MAX_SCENE_SUMMARY_MB")
 
 
 def import_scene_summary(scene_dir: str | Path) -> House:
@@ -64,9 +67,10 @@ def _load_json(path: Path) -> Any:
             f"{path} does not exist; a scene-summary directory holds {OBJECT_DICT_FILE} and "
             f"{REGION_DICT_FILE}"
         )
+    data = SCENE_SUMMARY_CAP.read(path)
     try:
-        return json.loads(path.read_text(encoding="utf-8"))
-    except (UnicodeDecodeError, json.JSONDecodeError) as err:
+        return parse_json(data)
+    except DataFormatError as err:
         raise DataFormatError(f"{path} is not UTF-8 JSON: {err}") from None
 
 
