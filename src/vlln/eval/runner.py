@@ -13,7 +13,10 @@ geodesic field of its goals is reused). An executor hands results back in that o
 episode lines are in plan order whoever played them; how each line is played and why it does
 not depend on what ran before is :mod:`vlln.eval.play`.
 
-Robustness: an episode the environment refuses (:mod:`vlln.tasks.refusal`) is named with the
+Robustness: the servers of a model agent and of the llm oracle must answer before the first
+episode, and a server that fails its client's limit of requests in a row
+(:class:`~vlln.errors.ServerDownError`) stops the run, the episode in play unwritten. An
+episode the environment refuses (:mod:`vlln.tasks.refusal`) is named with the
 reason in one line on stderr, kept in ``episodes.refused.jsonl`` (:mod:`vlln.eval.refusals`)
 and counted by the run's health; the run goes on with the others. Finished episodes are on
 disk before the next result is taken (see :mod:`vlln.eval.results`), and a restart skips them.
@@ -34,7 +37,7 @@ from tqdm import tqdm
 
 from vlln.agents.local.batching import BatchingModel
 from vlln.agents.registry import make_agent
-from vlln.errors import ConfigError, EpisodeRefusedError
+from vlln.errors import ConfigError, EpisodeRefusedError, ServerDownError
 from vlln.eval.config import EvalConfig
 from vlln.eval.cost import eval_cost_line
 from vlln.eval.health import RunHealth, run_health
@@ -289,6 +292,8 @@ def evaluate(
     run_dir = RunDirectory(out)
     run_dir.check_is_directory()
     executor.check(config)
+    if executor.oracle_factory is None and any(budget > 0 for budget in config.budgets):
+        config.oracle_settings().check_server()
     episodes = load_episodes(config, cache_dir, progress)
     items = plan_work(episodes, config)
     plan = plan_of(items, episodes, config)
@@ -335,11 +340,18 @@ def evaluate(
                 bar.update(1)
             bar.set_postfix(sr=f"{_success_rate(writer.records):.1f}%")
 
+        stopped: ServerDownError | None = None
         with bar:
-            executor.play(config, todo, commit)
+            try:
+                executor.play(config, todo, commit)
+            except ServerDownError as error:
+                stopped = error
         records = list(writer.records)
     seconds = time.perf_counter() - started
-    return finish_run(out, len(items), played, seconds, records, repaired)
+    outcome = finish_run(out, len(items), played, seconds, records, repaired)
+    if stopped is not None:  # raised once the summary tells what the finished lines hold
+        raise stopped
+    return outcome
 
 
 def finish_run(
