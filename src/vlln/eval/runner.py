@@ -56,7 +56,7 @@ from vlln.eval.summary import GroupSummary, summarize_run, summary_json, summary
 from vlln.oracle.rule_oracle import RuleOracle
 from vlln.tasks.episode import Episode, read_episodes
 from vlln.tasks.metrics import success
-from vlln.tasks.record import EpisodeRecord, agent_label
+from vlln.tasks.record import EpisodeRecord
 from vlln.tasks.scenes import SceneCache
 from vlln.tasks.split_files import load_or_build_split
 from vlln.tasks.splits import source_split
@@ -302,7 +302,6 @@ def evaluate(
     played = 0
     started = time.perf_counter()
     with run_dir.writing(plan) as writer:
-        _check_same_agent(writer.records, config, out)
         repaired = list(writer.skipped)
         done = {record_key(record) for record in writer.records}
         done |= {refusal.key() for refusal in read_refusals(out)}
@@ -395,18 +394,6 @@ def default_provenance(
 
 def _key(result: Played) -> tuple[str, str, int, str, str]:
     return result.key() if isinstance(result, Refusal) else record_key(result)
-
-
-def _check_same_agent(records: Sequence[EpisodeRecord], config: EvalConfig, out: Path) -> None:
-    """Episode lines of another agent label (one recorded before detectors were named) would
-    be played again beside the new ones; refuse instead."""
-    wanted = agent_label(config.agent, config.detector)
-    other = next((r.agent_label for r in records if r.agent_label != wanted), None)
-    if other is not None:
-        raise ConfigError(
-            f"{out} holds episodes of {other!r}, not {wanted!r} (written by an older vlln?); "
-            "use another --out"
-        )
 
 
 def _success_rate(records: Sequence[EpisodeRecord]) -> float:
