@@ -15,7 +15,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from importlib import import_module
 from pathlib import Path
-from typing import Any, TypeVar
+from typing import Any, TypeVar, get_args, get_origin
 
 from pydantic_settings import CliSettingsSource
 
@@ -137,12 +137,24 @@ def config_from_args(
 ) -> C:
     """The config the parsed ``args`` give, over a ``--config`` file's settings if named."""
     given = {key: value for key, value in vars(args).items() if key != CONFIG_FLAG}
-    flags = source(parsed_args=argparse.Namespace(**given))()
+    paths = {name: given.pop(name) for name in _path_lists(config) if given.get(name) is not None}
+    flags = source(parsed_args=argparse.Namespace(**given))() | paths
     stored_path = getattr(args, CONFIG_FLAG, None)
     if stored_path is None:
         return config.build(flags)
     stored = _read_settings(Path(stored_path))
     return config.build(config.replay(stored, stored_path, _by_field_name(config, flags)))
+
+
+def _path_lists(config: type[Config]) -> list[str]:
+    """Fields holding a list of paths: their words are taken as argparse split them, since
+    pydantic-settings reads list items as JSON (``nan``, ``123``, ``true`` or ``null`` are no
+    paths to it, and a comma splits one path in two)."""
+    return [
+        name
+        for name, field in config.model_fields.items()
+        if get_origin(field.annotation) is list and get_args(field.annotation) == (Path,)
+    ]
 
 
 def _argument_adder(config: type[Config]) -> Callable[..., argparse.Action]:
