@@ -102,7 +102,8 @@ def add_config_command(
     parser_class = commands._parser_class
     commands._parser_class = _LazyParser
     try:
-        parser = commands.add_parser(name, help=help, description=help)
+        # argparse %-formats a command's help in the list of commands, not its description
+        parser = commands.add_parser(name, help=help.replace("%", "%%"), description=help)
     finally:
         commands._parser_class = parser_class
     assert isinstance(parser, _LazyParser)
@@ -159,7 +160,9 @@ def _path_lists(config: type[Config]) -> list[str]:
 
 def _argument_adder(config: type[Config]) -> Callable[..., argparse.Action]:
     """``parser.add_argument`` that lets the flag of a :class:`BareFlag` field go without a
-    value (argparse's ``nargs="?"``, which pydantic-settings does not generate)."""
+    value (argparse's ``nargs="?"``, which pydantic-settings does not generate), and gives a
+    boolean its first name alone: ``--json/--no-json``, not also ``--as-json/--no-as-json``
+    for a field whose name is only there for Python."""
     bare = {
         name: marker.value
         for name, field in config.model_fields.items()
@@ -170,6 +173,8 @@ def _argument_adder(config: type[Config]) -> Callable[..., argparse.Action]:
     def add(parser: Any, *names: str, **kwargs: Any) -> argparse.Action:
         if kwargs.get("dest") in bare:
             kwargs.update(nargs="?", const=bare[kwargs["dest"]])
+        if kwargs.get("action") is argparse.BooleanOptionalAction:
+            names = names[:1]
         action: argparse.Action = parser.add_argument(*names, **kwargs)
         return action
 
