@@ -23,7 +23,6 @@ from vlln.tasks.episode import write_episodes
 from vlln.tasks.scenes import SceneCache
 from vlln.tasks.split_files import load_or_build_split
 
-FAILING = [mode for mode in MISBEHAVING if mode != "empty"]  # "empty" answers, with no text
 MODEL_FLAGS = ["--model-timeout", "0.3", "--model-retries", "0", "--model-max-failures", "2"]
 ORACLE_FLAGS = ["--oracle-timeout", "0.3", "--oracle-retries", "0", "--oracle-max-failures", "2"]
 
@@ -59,7 +58,7 @@ def episode_lines(out: Path) -> list[dict[str, Any]]:
     return [json.loads(line) for line in path.open()] if path.exists() else []
 
 
-@pytest.mark.parametrize("mode", FAILING)
+@pytest.mark.parametrize("mode", MISBEHAVING)
 def test_a_failing_model_server_stops_the_run_and_keeps_the_finished_lines(
     mode: str, two_episodes: str, scenes: SceneCache, tmp_path: Path
 ) -> None:
@@ -74,7 +73,7 @@ def test_a_failing_model_server_stops_the_run_and_keeps_the_finished_lines(
     assert (health["complete"], health["finished"], health["planned"]) == (False, 1, 2)
 
 
-@pytest.mark.parametrize("mode", FAILING)
+@pytest.mark.parametrize("mode", MISBEHAVING)
 def test_a_failing_oracle_server_stops_the_run(
     mode: str, two_episodes: str, scenes: SceneCache, tmp_path: Path
 ) -> None:
@@ -88,7 +87,7 @@ def test_a_failing_oracle_server_stops_the_run(
 def test_a_model_that_never_gives_a_readable_reply_measures_nothing(
     two_episodes: str, scenes: SceneCache, tmp_path: Path
 ) -> None:
-    with chat_server([misbehaving("empty")]) as server:
+    with chat_server([completion("I see a hallway.")]) as server:
         outcome = play_model(server.base_url, two_episodes, tmp_path / "run", scenes)
     assert outcome.complete and len(outcome.records) == 2
     calls = sum(len(record.model_calls) for record in outcome.records)
@@ -102,7 +101,7 @@ def test_a_run_whose_oracle_never_answered_exits_non_zero(
 ) -> None:
     args = ["eval", "--agent", "tests.eval.runs:TalkingAgent", "--task", "iign", "--quiet"]
     args += ["--episode-file", two_episodes, "--max-steps", "6", "--out", str(tmp_path / "run")]
-    with chat_server([misbehaving("empty")]) as server:
+    with chat_server([completion("a question, I think")]) as server:  # names no type
         oracle = ["--oracle", "llm", "--oracle-model", "m", "--oracle-base-url", server.base_url]
         assert main([*args, *oracle, *ORACLE_FLAGS]) == 1
     error = capsys.readouterr().err

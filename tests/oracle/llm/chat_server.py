@@ -54,7 +54,7 @@ def misbehaving(mode: str) -> Scripted:
         "garbage": Scripted(200, "<html>502 Bad Gateway</html>"),
         "deep": Scripted(200, "[" * 100_000),  # JSON nested past the parser's recursion limit
         "long": Scripted(200, "x" * (MAX_REPLY_BYTES + 1)),
-        "empty": completion(""),  # a completion whose text is empty
+        "empty": completion(""),  # a completion without a word
     }[mode]
 
 

@@ -376,7 +376,7 @@ def _parse_completion(response: httpx.Response, backend: str) -> tuple[str, Usag
     first = choices[0]
     message = first.get("message") if isinstance(first, dict) else None
     text = message.get("content") if isinstance(message, dict) else None
-    if not isinstance(text, str):
+    if not isinstance(text, str) or not text.strip():
         raise LanguageModelReplyError(
             f"{backend} answered a choice without text in message.content: {str(first)[:200]}"
         )
