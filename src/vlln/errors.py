@@ -10,6 +10,7 @@ fix it, so command-line entry points can print the message instead of a tracebac
     ├── DataFormatError             a file does not follow the expected format
     ├── WriteError                  a file cannot be written (a full disk, a read-only folder)
     ├── RendererUnavailableError    no headless OpenGL (EGL) context could be created
+    ├── ServerDownError             a model or oracle server failed too many requests in a row
     └── NavigationError             a point or goal is off the navigable area or unreachable
         └── EpisodeRefusedError     an episode that cannot be played honestly in its scene
 """
@@ -47,6 +48,11 @@ class WriteError(VllnError, OSError):
 
 class RendererUnavailableError(VllnError, RuntimeError):
     """No headless OpenGL context could be created."""
+
+
+class ServerDownError(VllnError, RuntimeError):
+    """A model or oracle server failed its client's limit of requests in a row: a run stops
+    (keeping its finished episodes) rather than play on against a server that is down."""
 
 
 class NavigationError(VllnError, ValueError):

@@ -12,7 +12,7 @@ from enum import Enum
 from pathlib import Path
 
 import pytest
-from pydantic import BaseModel
+from pydantic import AliasChoices, BaseModel
 
 from vlln.cli import build_parser, main
 from vlln.cli.eval_configs import EvalCommand
@@ -97,7 +97,9 @@ def test_every_flag_is_a_field_and_every_default_the_fields(
         if name in positionals:  # CliPositionalArg: required, so no default
             assert field.description and positionals[name].help == field.description
             continue
-        flag = "--" + name.replace("_", "-")
+        alias = field.validation_alias
+        first = alias.choices[0] if isinstance(alias, AliasChoices) else alias or name
+        flag = "--" + str(first).replace("_", "-")
         assert flag in flags, f"{' '.join(words)}: field {name} has no flag {flag}"
         help_text = (flags[flag].help or "").replace("\n", " ")
         assert field.description or field.is_required(), f"{name} has no docstring"
@@ -114,6 +116,16 @@ def test_every_flag_is_a_field_and_every_default_the_fields(
         assert flags[flag].default in (None, argparse.SUPPRESS, False), (
             f"{' '.join(words)} {flag} has its own default {flags[flag].default!r}"
         )
+
+
+@pytest.mark.parametrize("words, parser, config", _generated(), ids=lambda v: str(v))
+def test_help_names_each_flag_once_and_shows_percent_signs_as_written(
+    words: tuple[str, ...], parser: argparse.ArgumentParser, config: type[Config]
+) -> None:
+    text = parser.format_help()
+    assert "%%" not in text and "--as-json" not in text
+    booleans = [a for a in parser._actions if isinstance(a, argparse.BooleanOptionalAction)]
+    assert all(len(action.option_strings) == 2 for action in booleans)  # --x and --no-x
 
 
 def test_train_flags_build_the_config_and_bad_values_are_one_line(

@@ -1,4 +1,4 @@
-"""Shared pieces of the evaluation tests: a tiny built split, a scene cache, misbehaving agents.
+"""Shared pieces of the evaluation tests: a tiny built split, a scene cache, test agents.
 
 The split is the first house of the test split, built once per test session; runs play a few
 of its episodes with a low step cap so that every test stays fast.
@@ -17,7 +17,7 @@ from vlln.eval.runner import RunOutcome, run_evaluation
 from vlln.sim.agent import Action
 from vlln.tasks.env import EpisodeInfo, Observation
 from vlln.tasks.scenes import SceneCache
-from vlln.tasks.spec import AgentOutput
+from vlln.tasks.spec import AgentOutput, Talk
 
 
 class RaisingAgent:
@@ -57,12 +57,31 @@ class GarbageAgent:
         return garbage[self.calls % len(garbage)]
 
 
+class TalkingAgent:
+    """Asks where the target is at every step, then stops: every turn goes to the oracle."""
+
+    name = "talking"
+    privileged = False
+
+    def __init__(self, seed: int) -> None:
+        self.calls = 0
+
+    def reset(self, episode: EpisodeInfo) -> None:
+        self.calls = 0
+
+    def act(self, observation: Observation) -> AgentOutput:
+        self.calls += 1
+        return Talk("Where is it?") if self.calls <= 3 else Action.STOP
+
+
 def agent_factory(name: str, seed: int, detector: str | None = None) -> Agent:
     """The registry's agents plus the two misbehaving ones above."""
     if name == "raising":
         return RaisingAgent(seed)
     if name == "garbage":
         return GarbageAgent(seed)
+    if name == "talking":
+        return TalkingAgent(seed)
     return make_agent(name, seed, detector)
 
 

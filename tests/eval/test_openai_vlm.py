@@ -255,7 +255,12 @@ def test_server_trouble_is_retried_then_recorded_as_failed_steps(
     ]
     with chat_server(script) as server:
         outcome = run(
-            server, episode_file(tmp_path, episode), tmp_path / "run", scenes, max_retries="4"
+            server,
+            episode_file(tmp_path, episode),
+            tmp_path / "run",
+            scenes,
+            max_retries="4",
+            max_failures="10",  # below, the run would stop at the fourth failure in a row
         )
         first_call = [request["json"] for request in server.requests[:5]]
     (record,) = outcome.records
@@ -427,7 +432,7 @@ def test_a_run_whose_every_model_call_failed_ends_non_zero(
     source = episode_file(tmp_path, split_episodes(split_cache)[0])
     args = ["eval", "--agent", "openai-vlm", "--task", "iign", "--budget", "0", "--quiet"]
     args += ["--episode-file", source, "--model", "m", "--out", str(tmp_path / "run")]
-    args += ["--model-retries", "0", "--max-steps", "6"]
+    args += ["--model-retries", "0", "--model-max-failures", "10", "--max-steps", "6"]
     refusal = Scripted(404, {"error": {"message": "The model `m` does not exist."}})
     with chat_server([refusal]) as server:
         assert main([*args, "--base-url", server.base_url]) == 1

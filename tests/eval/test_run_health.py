@@ -86,6 +86,33 @@ def test_lines_outside_the_plan_do_not_stand_in_for_planned_episodes(
     assert "complete, 8 of 8" in capsys.readouterr().err
 
 
+@pytest.mark.slow
+def test_lines_of_another_run_are_named_not_counted_and_set_aside(
+    full_run: Path, tmp_path: Path, split_cache: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Three planned lines replaced by the same episodes played by another agent, on another
+    task and with a detector: 5 of 8, no table of the strangers; a resume plays the three."""
+    run = copy_run(full_run, tmp_path / "run")
+    original = lines(run)
+    changes = [{"agent": "expert"}, {"task": "ign"}, {"detector": "noisy"}]
+    strangers = [
+        json.dumps(json.loads(line) | change)
+        for line, change in zip(original[:3], changes, strict=True)
+    ]
+    (run / "episodes.jsonl").write_text("\n".join([*strangers, *original[3:]]) + "\n")
+    assert main(["score", str(run), "--json"]) == 0
+    captured = capsys.readouterr()
+    assert "INCOMPLETE, 5 of 8" in captured.err and "another run 3" in captured.err
+    assert "was played by expert on iign, not by this run's random on iign" in captured.err
+    (group,) = json.loads(captured.out)["groups"]
+    assert (group["agent"], group["detector"], group["task"]) == ("random", None, "iign")
+    assert main(eval_args(run, split_cache)) == 0
+    err = capsys.readouterr().err
+    assert "played 3" in err and "complete, 8 of 8" in err
+    assert sorted(lines(run)) == sorted(original)
+    assert (run / SKIPPED_FILE).read_text().splitlines() == strangers
+
+
 def test_torn_last_line_is_stated_and_a_line_missing_its_newline_is_kept(
     full_run: Path, tmp_path: Path, split_cache: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

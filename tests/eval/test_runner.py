@@ -14,7 +14,7 @@ from vlln.errors import ConfigError
 from vlln.eval.config import EvalConfig
 from vlln.eval.health import run_health
 from vlln.eval.play import derive_seed
-from vlln.eval.results import load_runs
+from vlln.eval.results import SKIPPED_FILE, load_runs
 from vlln.eval.runner import (
     load_episodes,
     order_by_scene,
@@ -177,19 +177,20 @@ def test_other_arguments_in_an_existing_run_are_refused(
     assert lines(full_run) == before
 
 
-def test_lines_without_the_detector_are_not_played_again_beside_new_ones(
+def test_lines_without_the_detector_are_set_aside_and_played_again(
     tmp_path: Path, split_cache: Path, scenes: SceneCache
 ) -> None:
     common: dict[str, Any] = {"agent": "frontier", "budgets": (0,), "episodes": 1, "max_steps": 5}
     evaluate(tmp_path, split_cache, scenes, **common)
-    old = json.loads(lines(tmp_path)[0])
+    (line,) = lines(tmp_path)
+    old = json.loads(line)
     del old["detector"]  # as written before detectors were recorded
     (tmp_path / "episodes.jsonl").write_text(json.dumps(old) + "\n")
-    with pytest.raises(
-        ConfigError, match=r"episodes of 'frontier', not 'frontier \(truth detector\)'"
-    ):
-        evaluate(tmp_path, split_cache, scenes, **common)
-    assert len(lines(tmp_path)) == 1
+    outcome = evaluate(tmp_path, split_cache, scenes, **common)
+    (repaired,) = outcome.repaired
+    assert repaired.kind == "another run" and "played by frontier on iign" in repaired.reason
+    assert outcome.played == 1 and lines(tmp_path) == [line]
+    assert (tmp_path / SKIPPED_FILE).read_text() == json.dumps(old) + "\n"
 
 
 def test_tasks_without_dialog_run_at_budget_zero_and_resume(

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import shutil
 from pathlib import Path
 
 import pytest
@@ -78,3 +79,17 @@ def test_score_of_an_empty_directory_says_what_to_pass(
 ) -> None:
     assert main(["score", str(tmp_path)]) == 2
     assert "holds no episodes.jsonl" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("name", ["nan", "inf", "123", "1e5", "true", "null", "a,b"])
+def test_a_folder_name_that_reads_as_json_is_a_path(
+    name: str,
+    run_dir: Path,
+    tmp_path: Path,
+    monkeypatch: pytest.MonkeyPatch,
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    shutil.copytree(run_dir, tmp_path / name)
+    monkeypatch.chdir(tmp_path)
+    scored = score_json(capsys, name)
+    assert scored["groups"][0]["agent"] == "expert"  # type: ignore[index]

@@ -135,6 +135,25 @@ def test_an_idle_episode_is_recorded_as_abandoned(study: Study, tmp_path: Path) 
     assert record.error.startswith("abandoned: no action for")
 
 
+@pytest.mark.slow
+def test_a_navigator_who_leaves_frees_the_slot_at_once(study: Study, tmp_path: Path) -> None:
+    config = WebConfig(episodes=tuple(study.episodes), out=tmp_path / "a", max_live_sessions=1)
+    with TestClient(create_app(config)) as client:
+        body = {"navigator": "human", "participant": "p31", "oracle": "rules"}
+        code = client.post("/api/sessions", json=body).json()["navigator_code"]
+        full = client.post("/api/sessions", json=body | {"participant": "p32"})
+        assert full.status_code >= 400 and "the limit is 1" in full.text
+        view = client.post("/api/navigator/end", headers={"X-Session-Code": code}).json()
+        assert view["status"] == "abandoned" and view["result"]["success"] is False
+        again = client.post("/api/navigator/end", headers={"X-Session-Code": code})
+        assert again.json()["status"] == "abandoned"  # ending twice changes nothing
+        assert client.post("/api/sessions", json=body | {"participant": "p32"}).status_code == 201
+    (record, *_) = load_run_records([config.out])
+    assert (
+        record.agent == "human:p31" and record.error == "abandoned: the navigator ended the session"
+    )
+
+
 def test_a_person_asks_the_language_model_oracle(study: Study, tmp_path: Path) -> None:
     script = [completion("attribute"), completion("The bin is silver and stands by the door.")]
     with chat_server(script) as chat:

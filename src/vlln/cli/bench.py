@@ -71,14 +71,14 @@ COMMANDS = (
         "recipe-figures",
         "RecipeFigures",
         ("recipe:print_recipe_figures",),
-        "held-out SR and SPL with 95%% intervals, dialog gains and the learning curve of "
+        "held-out SR and SPL with 95% intervals, dialog gains and the learning curve of "
         "scripts/cpu-recipe.sh",
     ),
     (
         "fidelity",
         "FidelityBench",
         ("fidelity:run_fidelity_benchmark",),
-        "SR/SPL with 95%% intervals and the failure taxonomy of frontier (noisy detector) "
+        "SR/SPL with 95% intervals and the failure taxonomy of frontier (noisy detector) "
         "and expert on the paper's test protocol, beside the paper's Table 1",
     ),
     (

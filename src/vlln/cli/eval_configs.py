@@ -26,6 +26,7 @@ MODEL_FLAGS = (
     "api_key_env",
     "model_timeout",
     "model_retries",
+    "model_max_failures",
     "model_cache",
     "device",
     "max_tokens",
@@ -65,6 +66,9 @@ class EvalCommand(EvalConfig, RayChunkOptions, ServingOptions):
     """openai-vlm, aiuta: deadline of each whole request in s (none: the agent's default)"""
     model_retries: int | None = None
     """openai-vlm, aiuta: retries per request (none: the agent's default)"""
+    model_max_failures: int | None = None
+    """openai-vlm, aiuta: failed requests in a row that stop the run (none: the agent's
+    default, 4)"""
     model_cache: str | None = None
     """openai-vlm, aiuta: folder caching model replies (none: no cache)"""
     device: str | None = None

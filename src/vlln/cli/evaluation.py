@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from vlln.cli.eval_configs import (
     DemoCommand,
@@ -16,6 +17,9 @@ from vlln.cli.generated import add_config_command
 from vlln.cli.options import Commands
 from vlln.errors import ConfigError
 from vlln.eval.config import EvalConfig
+
+if TYPE_CHECKING:
+    from vlln.eval.runner import RunOutcome
 
 
 def _demo(config: DemoCommand) -> int:
@@ -92,17 +96,25 @@ def _eval(command: EvalCommand) -> int:
     print(outcome.health.line(), file=sys.stderr)
     if outcome.summary is not None:
         print(summary_md_file(out).read_text(encoding="utf-8"), end="")
-    calls = [call for record in outcome.records for call in record.model_calls]
-    if calls and all(call.text is None for call in calls):
-        first = " ".join(str(calls[0].error).split())[:200]
+    problem = _unmeasured(outcome)
+    if problem:
         print(
-            f"error: all {len(calls)} model calls failed (the first: {first}); the "
-            f"episodes in {out} measure the server, not the model: fix the server and "
-            "rerun with a new --out",
+            f"error: {problem}; the episodes in {out} measure the servers, not the agent: fix "
+            "them and rerun with a new --out",
             file=sys.stderr,
         )
         return 1
     return 0
+
+
+def _unmeasured(outcome: RunOutcome) -> str:
+    """Why the run measured nothing ("" when it did), the first server error quoted when every
+    model call failed."""
+    calls = [call for record in outcome.records for call in record.model_calls]
+    if calls and all(call.text is None for call in calls):
+        first = " ".join(str(calls[0].error).split())[:200]
+        return f"all {len(calls)} model calls failed (the first: {first})"
+    return ", and ".join(outcome.health.unmeasured)
 
 
 def _warn_of_other_houses(config: EvalConfig) -> None:

@@ -15,7 +15,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from importlib import import_module
 from pathlib import Path
-from typing import Any, TypeVar
+from typing import Any, TypeVar, get_args, get_origin
 
 from pydantic_settings import CliSettingsSource
 
@@ -102,7 +102,8 @@ def add_config_command(
     parser_class = commands._parser_class
     commands._parser_class = _LazyParser
     try:
-        parser = commands.add_parser(name, help=help, description=help)
+        # argparse %-formats a command's help in the list of commands, not its description
+        parser = commands.add_parser(name, help=help.replace("%", "%%"), description=help)
     finally:
         commands._parser_class = parser_class
     assert isinstance(parser, _LazyParser)
@@ -137,7 +138,8 @@ def config_from_args(
 ) -> C:
     """The config the parsed ``args`` give, over a ``--config`` file's settings if named."""
     given = {key: value for key, value in vars(args).items() if key != CONFIG_FLAG}
-    flags = source(parsed_args=argparse.Namespace(**given))()
+    paths = {name: given.pop(name) for name in _path_lists(config) if given.get(name) is not None}
+    flags = source(parsed_args=argparse.Namespace(**given))() | paths
     stored_path = getattr(args, CONFIG_FLAG, None)
     if stored_path is None:
         return config.build(flags)
@@ -145,9 +147,22 @@ def config_from_args(
     return config.build(config.replay(stored, stored_path, _by_field_name(config, flags)))
 
 
+def _path_lists(config: type[Config]) -> list[str]:
+    """Fields holding a list of paths: their words are taken as argparse split them, since
+    pydantic-settings reads list items as JSON (``nan``, ``123``, ``true`` or ``null`` are no
+    paths to it, and a comma splits one path in two)."""
+    return [
+        name
+        for name, field in config.model_fields.items()
+        if get_origin(field.annotation) is list and get_args(field.annotation) == (Path,)
+    ]
+
+
 def _argument_adder(config: type[Config]) -> Callable[..., argparse.Action]:
     """``parser.add_argument`` that lets the flag of a :class:`BareFlag` field go without a
-    value (argparse's ``nargs="?"``, which pydantic-settings does not generate)."""
+    value (argparse's ``nargs="?"``, which pydantic-settings does not generate), and gives a
+    boolean its first name alone: ``--json/--no-json``, not also ``--as-json/--no-as-json``
+    for a field whose name is only there for Python."""
     bare = {
         name: marker.value
         for name, field in config.model_fields.items()
@@ -158,6 +173,8 @@ def _argument_adder(config: type[Config]) -> Callable[..., argparse.Action]:
     def add(parser: Any, *names: str, **kwargs: Any) -> argparse.Action:
         if kwargs.get("dest") in bare:
             kwargs.update(nargs="?", const=bare[kwargs["dest"]])
+        if kwargs.get("action") is argparse.BooleanOptionalAction:
+            names = names[:1]
         action: argparse.Action = parser.add_argument(*names, **kwargs)
         return action
 

@@ -54,6 +54,21 @@ DEFAULT_DIALOG_BUDGET = TaskType.IIGN.default_budget
 
 _BUDGET_RANGE = re.compile(r"^(\d+)-(\d+)$")
 
+DEFAULT_MAX_FAILURES = 4
+"""Failed requests in a row to the oracle's server that stop a run: four hanging requests
+take about 2 minutes at the default 30 s deadline, where retrying every question for ever
+would play the whole run on fallback answers."""
+
+_ORACLE_FLAGS = {
+    "oracle_model": "model",
+    "oracle_base_url": "base_url",
+    "oracle_api_key_env": "api_key_env",
+    "oracle_timeout": "timeout_s",
+    "oracle_retries": "max_retries",
+    "oracle_max_failures": "max_failures",
+}
+"""The ``--oracle llm`` settings: EvalConfig field -> OpenAISettings field."""
+
 
 def _budgets(value: Any) -> Any:
     """Budgets as given: ``"0-5"``, ``"0,5"``, ``"3"``, a number, or a list of those."""
@@ -170,6 +185,12 @@ class EvalConfig(Config):
     """--oracle llm: the server, e.g. http://localhost:8000/v1 (none: OpenAI's)"""
     oracle_api_key_env: str | None = None
     """--oracle llm: the variable holding the API key, never stored (none: OPENAI_API_KEY)"""
+    oracle_timeout: Annotated[float, Field(gt=0, allow_inf_nan=False)] | None = None
+    """--oracle llm: deadline of each whole request in s (none: 30)"""
+    oracle_retries: Annotated[int, Field(ge=0)] | None = None
+    """--oracle llm: retries per request (none: 4)"""
+    oracle_max_failures: Annotated[int, Field(ge=1)] | None = None
+    """--oracle llm: failed requests in a row that stop the run (none: 4)"""
     question_types: QuestionTypes = tuple(kind.value for kind in ALL_QUESTION_TYPES)
     """question types the oracle answers, e.g. attribute,route (others get the refusal and
     cost their turn)"""
@@ -237,18 +258,15 @@ class EvalConfig(Config):
         if self.oracle == OracleBackend.LLM.value:
             if not self.oracle_model:
                 raise ConfigError("--oracle llm needs --oracle-model, the served model's name")
-            defaults = OpenAISettings(model=self.oracle_model)
-            llm = dataclasses.replace(
-                defaults,
-                base_url=self.oracle_base_url or defaults.base_url,
-                api_key_env=self.oracle_api_key_env or defaults.api_key_env,
-            )
-        else:
-            extra = [
-                name
-                for name in ("oracle_model", "oracle_base_url", "oracle_api_key_env")
+            llm = OpenAISettings(model=self.oracle_model, max_failures=DEFAULT_MAX_FAILURES)
+            given = {
+                setting: getattr(self, name)
+                for name, setting in _ORACLE_FLAGS.items()
                 if getattr(self, name) is not None
-            ]
+            }
+            llm = dataclasses.replace(llm, **given)
+        else:
+            extra = [name for name in _ORACLE_FLAGS if getattr(self, name) is not None]
             if extra:
                 flag = "--" + extra[0].replace("_", "-")
                 raise ConfigError(f"{flag} applies to --oracle llm; add --oracle llm or drop it")

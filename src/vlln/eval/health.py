@@ -34,6 +34,7 @@ FAILURE_KINDS: dict[str, FailureCounter] = {
 """Failure kind -> how many times one episode record shows it."""
 
 _EXAMPLES = 3  # skipped lines named in the one-line statement
+_NOT_A_MODEL = ("rules", "offline", "none")  # dialog-turn backends that never fall back
 
 
 @dataclass(frozen=True)
@@ -52,6 +53,8 @@ class RunHealth:
     # Questions answered with the refusal because the run does not allow their type
     # (--question-types): by design, not a failure, but every reader should see it.
     refused_questions: int = 0
+    model_calls: int = 0  # calls of a model agent's model
+    model_turns: int = 0  # dialog turns a language-model oracle was asked to answer
 
     @property
     def complete(self) -> bool:
@@ -73,6 +76,23 @@ class RunHealth:
             and not any(self.failures.values())
         )
 
+    @property
+    def unmeasured(self) -> list[str]:
+        """What never answered in the whole run, so that its numbers measure a server's
+        failures (a model that gave no readable reply, an oracle answered by fallbacks alone)
+        and not the agent: each is said in words, as a reason the run is no result."""
+        found = []
+        failed_calls = self.failures["unreadable model replies"]
+        failed_calls += self.failures["model server failures"]
+        if self.model_calls and failed_calls >= self.model_calls:
+            found.append(f"none of {self.model_calls} model calls gave a readable reply")
+        if self.model_turns and self.failures["oracle fallback turns"] >= self.model_turns:
+            found.append(
+                f"the oracle's model answered none of {self.model_turns} questions (every "
+                "answer a rule fallback)"
+            )
+        return found
+
     def line(self) -> str:
         """The health in one line, e.g. ``run health: INCOMPLETE, 11 of 12 episode lines;
         skipped lines: torn 1 (runs/f/episodes.jsonl:12: ...); failures: none``."""
@@ -87,6 +107,8 @@ class RunHealth:
         if self.missing_shards:
             state += f" (shards {', '.join(self.missing_shards)} not given)"
         parts = [f"run health: {state}"]
+        if self.unmeasured:
+            parts.append("NOTHING MEASURED: " + ", and ".join(self.unmeasured))
         if self.refused:
             named = "; ".join(self.refused_episodes[:_EXAMPLES])
             more = len(self.refused_episodes) - _EXAMPLES
@@ -119,6 +141,7 @@ class RunHealth:
             "refused_lines": self.refused,
             "refused_episodes": list(self.refused_episodes),
             "refused_questions": self.refused_questions,
+            "unmeasured": self.unmeasured,
         }
 
 
@@ -160,4 +183,8 @@ def health_of(
         refused_episodes=list(dict.fromkeys(refusal.describe() for refusal in refused)),
         missing_shards=tuple(missing_shards),
         refused_questions=sum(turn.type_refused for record in records for turn in record.dialog),
+        model_calls=sum(len(record.model_calls) for record in records),
+        model_turns=sum(
+            turn.backend not in _NOT_A_MODEL for record in records for turn in record.dialog
+        ),
     )

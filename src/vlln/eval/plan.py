@@ -18,7 +18,7 @@ from typing import Any
 
 from vlln.eval.config import EvalConfig
 from vlln.eval.run_dir import PLAN_ALL_SHARDS, PLAN_EPISODES
-from vlln.tasks.record import EpisodeRecord
+from vlln.tasks.record import EpisodeRecord, agent_label
 
 
 @dataclass(frozen=True)
@@ -28,20 +28,29 @@ class RunPlan:
     episodes: frozenset[tuple[str, str]]  # (scene_id, episode_id)
     budgets: frozenset[int]
     all_shards: int  # episode lines planned by every shard of the run together
+    agent: str  # the agent label (agent and detector) its lines carry
+    task: str
 
     @staticmethod
     def of(episodes: Iterable[tuple[str, str]], config: EvalConfig, all_shards: int) -> RunPlan:
-        return RunPlan(frozenset(episodes), frozenset(config.budgets), all_shards)
+        return RunPlan(frozenset(episodes), frozenset(config.budgets), all_shards, *_run_of(config))
 
     @property
     def lines(self) -> int:
         return len(self.episodes) * len(self.budgets)
 
     def holds(self, record: EpisodeRecord) -> bool:
-        """Whether ``record`` is one of the planned (episode, budget) pairs."""
+        """Whether ``record`` is one of the planned (episode, budget) pairs of this run."""
         return (
-            record.budget in self.budgets and (record.scene_id, record.episode_id) in self.episodes
+            self.is_own(record)
+            and record.budget in self.budgets
+            and (record.scene_id, record.episode_id) in self.episodes
         )
+
+    def is_own(self, record: EpisodeRecord) -> bool:
+        """Whether ``record`` was played by this run's agent (and detector) on its task: a
+        line of another run must not stand in for a planned one, nor be scored beside them."""
+        return (record.agent_label, record.task) == (self.agent, self.task)
 
     def to_json(self) -> dict[str, Any]:
         return {
@@ -67,7 +76,13 @@ class RunPlan:
             frozenset((str(scene), str(episode)) for scene, episode in pairs),
             frozenset(config.budgets),
             all_shards,
+            *_run_of(config),
         )
+
+
+def _run_of(config: EvalConfig) -> tuple[str, str]:
+    """The agent label and task that every line of the run carries."""
+    return agent_label(config.agent, config.detector), config.task
 
 
 def missing_shards(

@@ -70,7 +70,8 @@ class SkippedLine:
 
     ``kind``: ``invalid`` (not JSON, or a field of the wrong type or range), ``duplicate``
     (an episode already read from an earlier line), ``unplanned`` (an episode or budget the
-    run does not plan) or ``torn`` (a last line cut off by a kill).
+    run does not plan), ``another run`` (a line of another agent, detector or task) or
+    ``torn`` (a last line cut off by a kill).
     """
 
     file: Path
@@ -138,15 +139,21 @@ def scan_records(path: Path, max_steps: int | None = None) -> RecordScan:
 
 
 def drop_unplanned(scan: RecordScan, plan: RunPlan, path: Path) -> None:
-    """Move ``scan``'s records outside ``plan`` to its skipped lines (kind ``unplanned``)."""
+    """Move ``scan``'s records outside ``plan`` to its skipped lines: kind ``another run``
+    for a line of another agent, detector or task, else ``unplanned``."""
     kept = [i for i, record in enumerate(scan.records) if plan.holds(record)]
     for index in sorted(set(range(len(scan.records))) - set(kept)):
         record = scan.records[index]
-        reason = (
-            f"episode {record.episode_id} ({record.scene_id}, budget {record.budget}) is not "
-            "in the run's plan; not counted"
-        )
-        scan.skipped.append(SkippedLine(path, scan.numbers[index], "unplanned", reason))
+        where = f"episode {record.episode_id} ({record.scene_id}, budget {record.budget})"
+        if plan.is_own(record):
+            kind, reason = "unplanned", f"{where} is not in the run's plan; not counted"
+        else:
+            kind = "another run"
+            reason = (
+                f"{where} was played by {record.agent_label} on {record.task}, not by this "
+                f"run's {plan.agent} on {plan.task}; not counted"
+            )
+        scan.skipped.append(SkippedLine(path, scan.numbers[index], kind, reason))
         scan.skipped_lines.append(scan.lines[index])
     scan.records = [scan.records[i] for i in kept]
     scan.lines = [scan.lines[i] for i in kept]

@@ -11,7 +11,7 @@ Layout::
     DIR/summary.md      the same as Markdown tables
     DIR/.lock           held while a process writes here, so two runs cannot interleave
 
-    DIR/episodes.skipped.jsonl  lines a resume set aside: invalid, repeated or unplanned
+    DIR/episodes.skipped.jsonl  lines set aside: invalid, repeated, unplanned or of another run
     DIR/episodes.refused.jsonl  episodes refused as unplayable in their scene (vlln.eval.refusals)
 
 The layout is the one docs/reference-formats.md describes; the readers and writers of each

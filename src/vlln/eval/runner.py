@@ -13,7 +13,10 @@ geodesic field of its goals is reused). An executor hands results back in that o
 episode lines are in plan order whoever played them; how each line is played and why it does
 not depend on what ran before is :mod:`vlln.eval.play`.
 
-Robustness: an episode the environment refuses (:mod:`vlln.tasks.refusal`) is named with the
+Robustness: the servers of a model agent and of the llm oracle must answer before the first
+episode, and a server that fails its client's limit of requests in a row
+(:class:`~vlln.errors.ServerDownError`) stops the run, the episode in play unwritten. An
+episode the environment refuses (:mod:`vlln.tasks.refusal`) is named with the
 reason in one line on stderr, kept in ``episodes.refused.jsonl`` (:mod:`vlln.eval.refusals`)
 and counted by the run's health; the run goes on with the others. Finished episodes are on
 disk before the next result is taken (see :mod:`vlln.eval.results`), and a restart skips them.
@@ -34,7 +37,7 @@ from tqdm import tqdm
 
 from vlln.agents.local.batching import BatchingModel
 from vlln.agents.registry import make_agent
-from vlln.errors import ConfigError, EpisodeRefusedError
+from vlln.errors import ConfigError, EpisodeRefusedError, ServerDownError
 from vlln.eval.config import EvalConfig
 from vlln.eval.cost import eval_cost_line
 from vlln.eval.health import RunHealth, run_health
@@ -53,7 +56,7 @@ from vlln.eval.summary import GroupSummary, summarize_run, summary_json, summary
 from vlln.oracle.rule_oracle import RuleOracle
 from vlln.tasks.episode import Episode, read_episodes
 from vlln.tasks.metrics import success
-from vlln.tasks.record import EpisodeRecord, agent_label
+from vlln.tasks.record import EpisodeRecord
 from vlln.tasks.scenes import SceneCache
 from vlln.tasks.split_files import load_or_build_split
 from vlln.tasks.splits import source_split
@@ -289,6 +292,8 @@ def evaluate(
     run_dir = RunDirectory(out)
     run_dir.check_is_directory()
     executor.check(config)
+    if executor.oracle_factory is None and any(budget > 0 for budget in config.budgets):
+        config.oracle_settings().check_server()
     episodes = load_episodes(config, cache_dir, progress)
     items = plan_work(episodes, config)
     plan = plan_of(items, episodes, config)
@@ -297,7 +302,6 @@ def evaluate(
     played = 0
     started = time.perf_counter()
     with run_dir.writing(plan) as writer:
-        _check_same_agent(writer.records, config, out)
         repaired = list(writer.skipped)
         done = {record_key(record) for record in writer.records}
         done |= {refusal.key() for refusal in read_refusals(out)}
@@ -335,11 +339,18 @@ def evaluate(
                 bar.update(1)
             bar.set_postfix(sr=f"{_success_rate(writer.records):.1f}%")
 
+        stopped: ServerDownError | None = None
         with bar:
-            executor.play(config, todo, commit)
+            try:
+                executor.play(config, todo, commit)
+            except ServerDownError as error:
+                stopped = error
         records = list(writer.records)
     seconds = time.perf_counter() - started
-    return finish_run(out, len(items), played, seconds, records, repaired)
+    outcome = finish_run(out, len(items), played, seconds, records, repaired)
+    if stopped is not None:  # raised once the summary tells what the finished lines hold
+        raise stopped
+    return outcome
 
 
 def finish_run(
@@ -383,18 +394,6 @@ def default_provenance(
 
 def _key(result: Played) -> tuple[str, str, int, str, str]:
     return result.key() if isinstance(result, Refusal) else record_key(result)
-
-
-def _check_same_agent(records: Sequence[EpisodeRecord], config: EvalConfig, out: Path) -> None:
-    """Episode lines of another agent label (one recorded before detectors were named) would
-    be played again beside the new ones; refuse instead."""
-    wanted = agent_label(config.agent, config.detector)
-    other = next((r.agent_label for r in records if r.agent_label != wanted), None)
-    if other is not None:
-        raise ConfigError(
-            f"{out} holds episodes of {other!r}, not {wanted!r} (written by an older vlln?); "
-            "use another --out"
-        )
 
 
 def _success_rate(records: Sequence[EpisodeRecord]) -> float:

@@ -24,6 +24,7 @@ from collections.abc import Sequence
 from typing import Any
 
 from vlln.agents.protocol import Agent, reported_stop_reason
+from vlln.errors import ServerDownError
 from vlln.oracle.knowledge import HouseIndex
 from vlln.sim.agent import AgentState
 from vlln.sim.follower import GreedyFollower
@@ -42,7 +43,11 @@ _SEARCH_DEPTH = 4
 
 
 def describe_error(error: Exception, where: str) -> str:
-    """The ``error`` field of a record that the agent's ``reset`` or ``act`` ended."""
+    """The ``error`` field of a record that the agent's ``reset`` or ``act`` ended; a server
+    given up on (:class:`ServerDownError`) is no fault of the agent's and is raised again, to
+    stop the run with the episode unwritten (a rerun plays it)."""
+    if isinstance(error, ServerDownError):
+        raise error
     return f"{type(error).__name__} in agent.{where}(): {error}"[:2000]
 
 

@@ -14,6 +14,7 @@ The API key is never part of the settings: only the name of the variable that ho
 from __future__ import annotations
 
 from enum import StrEnum
+from functools import lru_cache
 from typing import Self
 
 import httpx
@@ -22,7 +23,11 @@ from pydantic import model_validator
 
 from vlln.config import settings_dataclass
 from vlln.errors import ConfigError
-from vlln.oracle.llm.openai_client import OpenAIChatClient, OpenAISettings
+from vlln.oracle.llm.openai_client import (
+    OpenAIChatClient,
+    OpenAISettings,
+    check_server_answers,
+)
 from vlln.oracle.llm_oracle import LLMOracle
 from vlln.oracle.rule_oracle import ALL_QUESTION_TYPES, RuleOracle
 from vlln.tasks.oracle_protocol import Oracle, QuestionType
@@ -87,16 +92,26 @@ class OracleSettings:
         return llm_backend_name(self.llm)
 
     def make(self, seed: int) -> Oracle:
-        """A fresh oracle for one episode, seeded (paraphrases, the client's back-off)."""
+        """A fresh oracle for one episode, seeded (paraphrases), over the client that every
+        episode of the process shares (its pool, and its count of failed requests in a row)."""
         rules = RuleOracle(seed, question_types=self.question_types, cues=self.cues)
         if self.llm is None:
             return rules
-        client = OpenAIChatClient(self.llm, rng=np.random.default_rng(seed))
-        return LLMOracle(client, seed, rules)
+        return LLMOracle(_shared_client(self.llm), seed, rules)
+
+    def check_server(self) -> None:
+        """:class:`ConfigError` unless the llm oracle's server answers (nothing for rules)."""
+        if self.llm is not None:
+            check_server_answers(self.llm, "--oracle-base-url")
 
     @property
     def cues(self) -> bool:
         return self.disambiguation == Disambiguation.CUES
+
+
+@lru_cache(maxsize=8)
+def _shared_client(settings: OpenAISettings) -> OpenAIChatClient:
+    return OpenAIChatClient(settings, rng=np.random.default_rng(0))
 
 
 def llm_backend_name(settings: OpenAISettings) -> str:

@@ -8,6 +8,8 @@
 * ``GET /api/navigator`` and ``GET /api/oracle`` a role's view; with ``?after=VERSION`` they
   wait (up to 20 s) for something newer. ``POST /api/navigator/act``, ``/api/navigator/ask``,
   ``/api/oracle/answer``; ``GET /api/oracle/map`` the house map with the target.
+  ``POST /api/navigator/end``: a person leaves the episode, recorded as abandoned, and its
+  slot among the live sessions is free at once.
 
 Bodies are bounded (:class:`vlln.http.gate.RequestGate`), errors are JSON error bodies
 (:mod:`vlln.http.responses`), requests are rate-limited per client and every response carries
@@ -18,7 +20,8 @@ from __future__ import annotations
 
 import asyncio
 import queue
-from collections.abc import AsyncIterator
+from collections.abc import AsyncIterator, Callable
+from concurrent.futures import Future
 from contextlib import asynccontextmanager, suppress
 from importlib import resources
 from pathlib import Path
@@ -189,6 +192,13 @@ def create_app(config: WebConfig, source: str = "", opened: SessionStore | None 
         await _play(session, Talk(text), QUESTION_WAIT_S)
         return navigator_view(session)
 
+    @app.post("/api/navigator/end")
+    async def end(x_session_code: str | None = Header(default=None)) -> dict[str, Any]:
+        session = role(x_session_code, NAVIGATOR)
+        if not session.done:
+            await _hand(session, session.leave, ACTION_WAIT_S)
+        return navigator_view(session)
+
     @app.get("/api/oracle")
     async def oracle(
         request: Request, after: int = 0, x_session_code: str | None = Header(default=None)
@@ -246,8 +256,15 @@ async def _play(session: EpisodeSession, output: Any, wait_s: float) -> None:
     status = session.view.status
     if status != Status.PLAYING:
         raise WebError(409, "not your turn", f"the episode is {status}")
+    await _hand(session, lambda: session.submit(output), wait_s)
+
+
+async def _hand(
+    session: EpisodeSession, command: Callable[[], Future[None]], wait_s: float
+) -> None:
+    """Queue a navigator's command and wait (up to ``wait_s``) until the session played it."""
     try:
-        done = session.submit(output)
+        done = command()
     except queue.Full:
         raise WebError(429, "too many actions", "wait for the last action to be played") from None
     with suppress(TimeoutError):

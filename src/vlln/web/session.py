@@ -41,6 +41,8 @@ from vlln.world.model import House, ObjectInstance
 OracleFactory = Callable[[OracleKind, int, AnswerBoard], Oracle]
 Finish = Callable[["EpisodeSession", EpisodeRecord], None]
 _SHUTDOWN = object()
+_LEAVE = object()  # the navigator ends the session
+LEFT = "the navigator ended the session"
 
 
 class Status:
@@ -153,6 +155,14 @@ class EpisodeSession:
         self._commands.put_nowait((output, done))
         return done
 
+    def leave(self) -> Future[None]:
+        """Queue the human navigator's end of the session: it is recorded as abandoned and
+        frees its slot at once, instead of after the idle limit. Raises ``queue.Full`` like
+        :meth:`submit`."""
+        done: Future[None] = Future()
+        self._commands.put_nowait((_LEAVE, done))
+        return done
+
     def oracle_joined(self) -> None:
         """The oracle page is open: an agent navigator may begin."""
         self._oracle_joined.set()
@@ -219,6 +229,10 @@ class EpisodeSession:
                 self._abandon(f"no action for {self.config.idle_limit_s:.0f} s")
                 return
             if command is _SHUTDOWN:
+                return
+            if command is _LEAVE:
+                self._abandon(LEFT)
+                done.set_result(None)
                 return
             assert isinstance(command, (Action, Talk))
             try:

@@ -11,6 +11,8 @@ from dataclasses import dataclass, field
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from typing import Any
 
+from vlln.oracle.llm.openai_client import MAX_REPLY_BYTES
+
 LIFETIME_S = 30.0  # the server shuts itself down after this, whatever the test does
 
 
@@ -39,6 +41,24 @@ def completion(text: str, prompt_tokens: int = 7, completion_tokens: int = 3) ->
         },
     }
     return Scripted(200, body)
+
+
+def misbehaving(mode: str) -> Scripted:
+    """A server failing one way of :data:`MISBEHAVING`, with delays short enough for tests
+    whose clients wait well under a second."""
+    return {
+        "500": Scripted(500, {"error": {"message": "internal error"}}),
+        "429": Scripted(429, {"error": {"message": "slow down"}}, {"Retry-After": "0"}),
+        "hang": Scripted(200, completion("attribute").body, delay_s=5.0),
+        "trickle": Scripted(200, completion("attribute").body, trickle_s=0.05),
+        "garbage": Scripted(200, "<html>502 Bad Gateway</html>"),
+        "deep": Scripted(200, "[" * 100_000),  # JSON nested past the parser's recursion limit
+        "long": Scripted(200, "x" * (MAX_REPLY_BYTES + 1)),
+        "empty": completion(""),  # a completion without a word
+    }[mode]
+
+
+MISBEHAVING = ("500", "429", "hang", "trickle", "garbage", "deep", "long", "empty")
 
 
 @dataclass

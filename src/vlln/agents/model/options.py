@@ -3,8 +3,9 @@
 :class:`OpenAIVLMOptions` holds the options and their defaults. The API key itself is never an
 option: only the name of the environment variable that holds it. One client per distinct set of
 options serves every episode of a process, so its connection pool, cache and usage ledger are
-shared. The server must answer before any episode is played: an unreachable one would otherwise
-turn every step into a failed call and the run into a complete one with SR 0.
+shared, and so is its count of failed requests in a row, which stops the run at
+``max_failures``. The server must answer before any episode is played: an unreachable one
+would otherwise turn every step into a failed call and the run into a complete one with SR 0.
 """
 
 from __future__ import annotations
@@ -13,17 +14,13 @@ from functools import lru_cache
 from pathlib import Path
 from typing import Annotated
 
-import httpx
 import numpy as np
 from pydantic import AfterValidator, AliasChoices, Field
 
 from vlln.agents.model.agent import ModelAgent
 from vlln.agents.model.openai_vlm import DEFAULT_MAX_TOKENS, OpenAIVisionModel
 from vlln.agents.options import AgentOptions
-from vlln.errors import ConfigError
-from vlln.oracle.llm.openai_client import OpenAIChatClient, OpenAISettings
-
-PROBE_TIMEOUT_S = 10.0  # the most the up-front check waits for the server's first answer
+from vlln.oracle.llm.openai_client import OpenAIChatClient, OpenAISettings, check_server_answers
 
 
 def _absolute(path: str | None) -> str | None:
@@ -45,11 +42,13 @@ class OpenAIVLMOptions(AgentOptions):
     api_key_env: str = "OPENAI_API_KEY"
     """environment variable holding the API key"""
     timeout_s: float = Field(
-        60.0, gt=0, validation_alias=AliasChoices("timeout_s", "model_timeout")
+        30.0, gt=0, validation_alias=AliasChoices("timeout_s", "model_timeout")
     )
     """deadline of each request, from connect to last byte, in seconds"""
     max_retries: int = Field(4, ge=0, validation_alias=_flag("model_retries", "max_retries"))
     """retries after a failed request"""
+    max_failures: int = Field(4, ge=1, validation_alias=_flag("model_max_failures", "max_failures"))
+    """failed requests in a row that stop the run (4 hanging ones: about 2 minutes)"""
     backoff_s: float = Field(0.5, ge=0)
     """first back-off in seconds, doubling per retry"""
     max_tokens: int = Field(DEFAULT_MAX_TOKENS, ge=1)
@@ -86,20 +85,7 @@ def shared_client(options: OpenAIVLMOptions) -> OpenAIChatClient:
         backoff_base_s=options.backoff_s,
         cache_dir=None if options.cache_dir is None else Path(options.cache_dir),
         retry_bad_replies=True,
+        max_failures=options.max_failures,
     )
-    check_server_answers(settings)
+    check_server_answers(settings, "--base-url")
     return OpenAIChatClient(settings, rng=np.random.default_rng(0))
-
-
-def check_server_answers(settings: OpenAISettings) -> None:
-    """Raise :class:`ConfigError` unless something answers HTTP at ``settings.base_url``
-    (any status will do: a server without ``GET /models`` still answers)."""
-    url = settings.base_url.rstrip("/") + "/models"
-    try:
-        httpx.get(url, timeout=min(settings.timeout_s, PROBE_TIMEOUT_S))
-    except httpx.HTTPError as error:
-        raise ConfigError(
-            f"the model server at {settings.base_url} does not answer "
-            f"({type(error).__name__}: {str(error)[:120] or 'no reply'}); start it, or fix "
-            "--base-url"
-        ) from None

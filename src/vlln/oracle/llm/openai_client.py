@@ -15,6 +15,12 @@ back-off cap, so a server cannot stall a run). Other 4xx answers are not retried
 that are not chat completions raise :class:`LanguageModelReplyError`, or are retried like a
 5xx with ``retry_bad_replies``. Messages may hold images (data URLs). Completions are cached
 on disk when a cache folder is set, and every request is added to a :class:`UsageLedger`.
+
+With ``max_failures`` set, that many failed requests in a row (any success resets the count)
+raise :class:`~vlln.errors.ServerDownError` instead of a language-model error, which callers
+do not fall back from: a run stops in minutes instead of waiting out every retry of every
+step against a server that is down. Unset, a caller may fall back for ever (a web study's
+oracle, which answers from rules meanwhile).
 """
 
 from __future__ import annotations
@@ -35,7 +41,7 @@ import numpy as np
 from pydantic import AfterValidator, Field, field_validator, model_validator
 
 from vlln.config import settings_dataclass
-from vlln.errors import ConfigError, DataFormatError
+from vlln.errors import ConfigError, DataFormatError, ServerDownError
 from vlln.files import parse_json
 from vlln.http.addresses import is_loopback
 from vlln.oracle.llm.accounting import Pricing, UsageLedger
@@ -56,6 +62,7 @@ logger = logging.getLogger(__name__)
 _ERROR_EXCERPT = 300  # characters of a server's error body quoted in an exception
 MAX_REPLY_BYTES = 1 << 20  # a completion of a few hundred tokens is a few kilobytes
 _TRANSPORT_ERRORS = (httpcore.TimeoutException, httpcore.NetworkError, httpcore.RemoteProtocolError)
+PROBE_TIMEOUT_S = 10.0  # the most the up-front check waits for the server's first answer
 
 
 def check_base_url(base_url: str) -> str:
@@ -94,6 +101,8 @@ class OpenAISettings:
     # Retry replies that are not chat completions (a body that is not JSON, no choices), as a
     # proxy or an overloaded server sometimes sends; off for the oracle, which falls back.
     retry_bad_replies: bool = False
+    # failed requests in a row that raise ServerDownError (None: never, callers fall back)
+    max_failures: int | None = Field(default=None, ge=1, strict=True)
 
     @field_validator("model")
     @classmethod
@@ -143,6 +152,7 @@ class OpenAIChatClient:
         if self._api_key:
             headers["Authorization"] = f"Bearer {self._api_key}"
         self._headers = list(headers.items())
+        self._failures_in_row = 0
         self._http = httpcore.ConnectionPool(
             ssl_context=httpx.create_ssl_context(), network_backend=DeadlineBackend()
         )
@@ -190,7 +200,7 @@ class OpenAIChatClient:
         return Completion(text, usage, self.backend, cached=False, latency_ms=latency_ms)
 
     def _request(self, body: dict[str, Any]) -> tuple[str, Usage]:
-        """One request with its retries."""
+        """One request with its retries, each failed attempt counted toward ``max_failures``."""
         attempts = self.settings.max_retries + 1
         problem = ""
         retry_after: float | None = None
@@ -198,46 +208,65 @@ class OpenAIChatClient:
             if attempt:
                 self._wait(attempt - 1, retry_after, problem)
             try:
-                response = self._post(body)
-            except httpcore.TimeoutException as error:
-                problem = (
-                    f"no complete reply within the {self.settings.timeout_s:g} s deadline "
-                    f"({type(error).__name__}: {self._masked(str(error))})"
-                )
-                retry_after = None
+                reply = self._attempt(body)
+            except _Retryable as retry:
+                problem, retry_after = retry.problem, retry.retry_after
+                self._count_failure(problem)
                 continue
-            except _TRANSPORT_ERRORS as error:  # connection errors
-                problem = f"{type(error).__name__}: {self._masked(str(error))}"
-                retry_after = None
-                continue
-            except LanguageModelReplyError as error:  # a reply too long to read
-                if not self.settings.retry_bad_replies:
-                    raise
-                problem, retry_after = str(error), None
-                continue
-            status = response.status_code
-            if status == 429 or status >= 500:
-                problem = f"HTTP {status}: {self._excerpt(response)}"
-                retry_after = _retry_after_s(response) if status == 429 else None
-                continue
-            if status >= 400:
-                key_env = self.settings.api_key_env
-                hint = f"; check the key in ${key_env}" if status in (401, 403) else ""
-                raise LanguageModelRequestError(
-                    f"{self.backend} refused the request with HTTP {status}{hint}: "
-                    f"{self._excerpt(response)}",
-                    status,
-                )
-            try:
-                return _parse_completion(response, self.backend)
-            except LanguageModelReplyError as error:
-                if not self.settings.retry_bad_replies:
-                    raise
-                problem, retry_after = str(error), None
+            except LanguageModelError as error:
+                self._count_failure(str(error))
+                raise
+            self._failures_in_row = 0
+            return reply
         raise LanguageModelUnavailableError(
             f"{self.backend} gave no completion in {attempts} attempts (last: {problem}); check "
             "that the server is up and base_url is right, or raise timeout_s or max_retries"
         )
+
+    def _attempt(self, body: dict[str, Any]) -> tuple[str, Usage]:
+        """One attempt's completion; :class:`_Retryable` for what a retry may cure."""
+        try:
+            response = self._post(body)
+        except httpcore.TimeoutException as error:
+            raise _Retryable(
+                f"no complete reply within the {self.settings.timeout_s:g} s deadline "
+                f"({type(error).__name__}: {self._masked(str(error))})"
+            ) from None
+        except _TRANSPORT_ERRORS as error:  # connection errors
+            raise _Retryable(f"{type(error).__name__}: {self._masked(str(error))}") from None
+        except LanguageModelReplyError as error:  # a reply too long to read
+            raise self._bad_reply(error) from None
+        status = response.status_code
+        if status == 429 or status >= 500:
+            retry_after = _retry_after_s(response) if status == 429 else None
+            raise _Retryable(f"HTTP {status}: {self._excerpt(response)}", retry_after)
+        if status >= 400:
+            key_env = self.settings.api_key_env
+            hint = f"; check the key in ${key_env}" if status in (401, 403) else ""
+            raise LanguageModelRequestError(
+                f"{self.backend} refused the request with HTTP {status}{hint}: "
+                f"{self._excerpt(response)}",
+                status,
+            )
+        try:
+            return _parse_completion(response, self.backend)
+        except LanguageModelReplyError as error:
+            raise self._bad_reply(error) from None
+
+    def _bad_reply(self, error: LanguageModelReplyError) -> Exception:
+        """A reply that is no completion: retried with ``retry_bad_replies``, else raised."""
+        return _Retryable(str(error)) if self.settings.retry_bad_replies else error
+
+    def _count_failure(self, problem: str) -> None:
+        """One more failed request in a row; at ``max_failures`` the server is given up on."""
+        self._failures_in_row += 1
+        limit = self.settings.max_failures
+        if limit is not None and self._failures_in_row >= limit:
+            raise ServerDownError(
+                f"{self.backend} failed {self._failures_in_row} requests in a row (last: "
+                f"{' '.join(problem.split())[:300]}); the run stops, its finished episodes "
+                "kept: fix the server and rerun the same command"
+            )
 
     def _post(self, body: dict[str, Any]) -> httpx.Response:
         """One attempt: POST ``body``, the whole exchange bounded by the deadline
@@ -289,6 +318,30 @@ class OpenAIChatClient:
         return self._masked(response.text[:_ERROR_EXCERPT]) or "(empty body)"
 
 
+class _Retryable(Exception):
+    """An attempt that failed in a way a later attempt may not: why, and the server's wait."""
+
+    def __init__(self, problem: str, retry_after: float | None = None) -> None:
+        super().__init__(problem)
+        self.problem = problem
+        self.retry_after = retry_after
+
+
+def check_server_answers(settings: OpenAISettings, flag: str) -> None:
+    """Raise :class:`ConfigError` unless something answers HTTP at ``settings.base_url``
+    (any status will do: a server without ``GET /models`` still answers), so a run does not
+    play every episode against a server that is not there; ``flag`` sets the URL."""
+    url = settings.base_url.rstrip("/") + "/models"
+    try:
+        httpx.get(url, timeout=min(settings.timeout_s, PROBE_TIMEOUT_S))
+    except httpx.HTTPError as error:
+        raise ConfigError(
+            f"the model server at {settings.base_url} does not answer "
+            f"({type(error).__name__}: {str(error)[:120] or 'no reply'}); start it, or fix "
+            f"{flag}"
+        ) from None
+
+
 def _retry_after_s(response: httpx.Response) -> float | None:
     """Seconds from a ``Retry-After`` header (delta-seconds or an HTTP date), if any."""
     value = response.headers.get("Retry-After")
@@ -324,7 +377,7 @@ def _parse_completion(response: httpx.Response, backend: str) -> tuple[str, Usag
     first = choices[0]
     message = first.get("message") if isinstance(first, dict) else None
     text = message.get("content") if isinstance(message, dict) else None
-    if not isinstance(text, str):
+    if not isinstance(text, str) or not text.strip():
         raise LanguageModelReplyError(
             f"{backend} answered a choice without text in message.content: {str(first)[:200]}"
         )

@@ -9,6 +9,7 @@ const page = {
   ask: document.getElementById("ask"),
   askError: document.getElementById("ask-error"),
   stop: document.getElementById("stop"),
+  leave: document.getElementById("leave"),
   shownFrame: -1,
   state: null,
   busy: false,
@@ -46,6 +47,7 @@ async function show(state) {
   const playing = canAct(state);
   document.querySelectorAll(".controls button").forEach((b) => (b.disabled = !playing));
   page.ask.disabled = !playing;
+  page.leave.disabled = Boolean(state.result);
   page.question.disabled = !playing;
   if (state.result) {
     const box = document.getElementById("result");
@@ -103,6 +105,15 @@ function armStop() {
   }, 4000);
 }
 
+async function leave() {
+  if (!window.confirm("Leave this episode? It is recorded as abandoned.")) return;
+  try {
+    await show(await vlln.withCode("POST", "/api/navigator/end"));
+  } catch (error) {
+    page.status.textContent = error.message;
+  }
+}
+
 const KEYS = { ArrowUp: "forward", ArrowLeft: "left", ArrowRight: "right", u: "up", d: "down" };
 
 document.addEventListener("keydown", (event) => {
@@ -126,6 +137,7 @@ document.querySelectorAll("[data-action]").forEach((button) => {
 });
 page.stop.addEventListener("click", armStop);
 page.ask.addEventListener("click", ask);
+page.leave.addEventListener("click", leave);
 
 vlln.follow("/api/navigator", show, (message) => {
   page.status.textContent = `${message}. Open the link you were given, or ask the host.`;
