@@ -149,7 +149,9 @@ def test_garbage_outputs_are_failed_actions(
     outcome = evaluate(tmp_path, split_cache, scenes, agent="garbage", episodes=1, budgets=(0,))
     (record,) = outcome.records
     assert record.failed_actions == 20  # the task's cap on failed actions
-    assert record.end_reason == EndReason.ERROR.value and record.error is None
+    assert record.end_reason == EndReason.ERROR.value and record.error == (
+        "20 failed actions (invalid 20), the cap max_failed_actions"
+    )
     assert all(action.startswith("INVALID:") for action in record.actions)
     assert record.steps == 20 and record.path_length == 0.0
 

@@ -165,7 +165,7 @@ def test_without_the_model_extra_the_command_says_what_to_install(command: list[
     assert result.returncode == 2
     assert result.stderr.splitlines() == [
         "error: the local model needs torch, which is not installed; install the model "
-        "extra with: pip install 'vlln[model]'"
+        f"extra with: pip install -e '{Path(__file__).resolve().parents[2]}[model]'"
     ]
 
 

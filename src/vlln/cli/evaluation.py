@@ -108,13 +108,15 @@ def _eval(command: EvalCommand) -> int:
 
 
 def _unmeasured(outcome: RunOutcome) -> str:
-    """Why the run measured nothing ("" when it did), the first server error quoted when every
-    model call failed."""
+    """Why the run measured the servers, not the agent ("" when it did not): every model call
+    failed (the first server error quoted) or the oracle's model answered nothing. Replies
+    that all were unreadable are the model's own answers (an untrained model gives them):
+    the health line says so, and the run is its result."""
     calls = [call for record in outcome.records for call in record.model_calls]
     if calls and all(call.text is None for call in calls):
         first = " ".join(str(calls[0].error).split())[:200]
         return f"all {len(calls)} model calls failed (the first: {first})"
-    return ", and ".join(outcome.health.unmeasured)
+    return outcome.health.oracle_silent
 
 
 def _warn_of_other_houses(config: EvalConfig) -> None:

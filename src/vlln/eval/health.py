@@ -86,12 +86,19 @@ class RunHealth:
         failed_calls += self.failures["model server failures"]
         if self.model_calls and failed_calls >= self.model_calls:
             found.append(f"none of {self.model_calls} model calls gave a readable reply")
+        if self.oracle_silent:
+            found.append(self.oracle_silent)
+        return found
+
+    @property
+    def oracle_silent(self) -> str:
+        """Why the oracle's model answered no question of the run ("" when it answered one)."""
         if self.model_turns and self.failures["oracle fallback turns"] >= self.model_turns:
-            found.append(
+            return (
                 f"the oracle's model answered none of {self.model_turns} questions (every "
                 "answer a rule fallback)"
             )
-        return found
+        return ""
 
     def line(self) -> str:
         """The health in one line, e.g. ``run health: INCOMPLETE, 11 of 12 episode lines;
