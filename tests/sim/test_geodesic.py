@@ -8,7 +8,7 @@ import pytest
 
 from tests.sim import scenes
 from vlln.errors import NavigationError
-from vlln.sim.geodesic import GeodesicField
+from vlln.sim.geodesic import ROUND_UP, GeodesicField
 from vlln.sim.navgrid import NavGrid
 
 
@@ -171,3 +171,27 @@ def test_cell_graph_joins_only_navigable_cells_with_euclidean_weights(l_rooms: N
         (1, 2),
         (2, 1),
     }
+
+
+@pytest.mark.parametrize("scene", ["furnished_room", "l_shaped_rooms", "divided_room"])
+def test_a_bounded_field_is_the_whole_field_within_its_limit_and_inf_beyond(scene: str) -> None:
+    grid = NavGrid.from_mesh(getattr(scenes, scene)())
+    rng = np.random.default_rng(5)
+    component = grid.largest_component()
+    limit = 1.5
+    for _ in range(4):
+        goal = grid.sample_navigable_point(rng, component)
+        whole = GeodesicField(grid, [goal])
+        bounded = GeodesicField(grid, [goal], limit)
+        inside = whole.values <= limit
+        beyond = whole.values > limit * ROUND_UP  # rounding up keeps a thin band undecided
+        assert inside.sum() > 100 and (beyond & np.isfinite(whole.values)).sum() > 100
+        np.testing.assert_array_equal(bounded.values[inside], whole.values[inside])
+        assert np.isinf(bounded.values[beyond]).all()
+        for _ in range(50):
+            x, z = _jitter(rng, grid.sample_navigable_point(rng, component))
+            d = whole.distance(x, z)
+            if d <= limit:
+                assert bounded.distance(x, z) == d
+            elif d > limit * ROUND_UP + grid.cell_size:  # its cell is beyond the limit too
+                assert bounded.distance(x, z) == math.inf

@@ -12,6 +12,7 @@ import pytest
 from vlln.errors import HouseParametersError, NavigationError
 from vlln.sim.agent import Action, AgentState
 from vlln.sim.follower import GreedyFollower
+from vlln.sim.geodesic import ROUND_UP
 from vlln.sim.simulator import Simulator
 from vlln.sim.storey_field import StoreyField
 from vlln.world.generator import HouseParameters, generate_house
@@ -120,3 +121,16 @@ def test_the_follower_walks_up_and_down_the_stairs(sim: Simulator, start_level: 
     assert y == pytest.approx(goal[1])
     assert len({round(h, 3) for h in heights}) > 10  # it passed the steps one by one
     assert all(abs(b - a) < 0.45 for a, b in pairwise(heights))
+
+
+def test_a_bounded_storey_field_is_the_whole_field_within_its_limit(sim: Simulator) -> None:
+    goal = _point_on(sim, 1, 0)
+    limit = 2.0
+    whole_field, bounded_field = sim.distance_field([goal]), sim.distance_field([goal], limit=limit)
+    assert isinstance(whole_field, StoreyField) and isinstance(bounded_field, StoreyField)
+    whole, bounded = np.concatenate(whole_field.values), np.concatenate(bounded_field.values)
+    inside = whole <= limit
+    beyond = whole > limit * ROUND_UP
+    assert inside.sum() > 100 and (beyond & np.isfinite(whole)).sum() > 100
+    np.testing.assert_array_equal(bounded[inside], whole[inside])
+    assert np.isinf(bounded[beyond]).all()

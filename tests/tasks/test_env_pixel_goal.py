@@ -12,11 +12,13 @@ from tests.agents.world import RED_CHAIR, episode, two_room_house
 from tests.agents.world import make_env as make_world_env
 from tests.tasks.test_env import ambiguous_target, episode_for, far_start
 from vlln.sim.agent import Action
+from vlln.sim.follower import GreedyFollower
 from vlln.sim.simulator import Simulator
 from vlln.tasks.env import NavigationEnv
 from vlln.tasks.record import EndReason, EpisodeRecord
 from vlln.tasks.scenes import SceneCache
 from vlln.tasks.spec import FailedOutput, PixelGoal, TaskConfig, TaskType
+from vlln.tasks.waypoint import WAYPOINT_RADIUS, WAYPOINT_REACH, waypoint_field
 from vlln.world.frame import heading_vector
 
 
@@ -170,3 +172,36 @@ def test_a_pixel_goal_the_agent_already_stands_on_is_a_failed_goal() -> None:
         record = env.record("test")
         assert record.actions[-1] == f"FAILED:goal:{col},{row}"
         assert record.failures == {"goal": 1}
+
+
+def test_a_waypoint_field_is_bounded_only_where_that_leaves_the_walk_unchanged(
+    scenes: SceneCache,
+) -> None:
+    env = make_env(scenes)
+    env.reset(options={"episode_index": 0})
+    sim, state = env.sim, env.sim.state
+    x, _, z = state.position
+    rng = np.random.default_rng(3)
+    near = far = None
+    while near is None or far is None:
+        point = sim.grid.sample_navigable_point(rng, sim.grid.largest_component())
+        d = sim.distance_field([point]).distance(x, z)
+        if 1.0 < d < WAYPOINT_REACH - 0.5:
+            near = point
+        elif d > WAYPOINT_REACH + 1.0:
+            far = point
+    whole = sim.distance_field([far])
+    assert waypoint_field(sim, far, state) is whole  # beyond reach: the whole house's field
+    bounded = waypoint_field(sim, near, state)
+    whole = sim.distance_field([near])
+    assert bounded is not whole and np.isinf(bounded.values).sum() > np.isinf(whole.values).sum()
+    walks = []
+    for field in (bounded, whole):
+        follower = GreedyFollower(sim.grid, field, WAYPOINT_RADIUS, sim.config.motion)
+        sim.reset(state)
+        actions = [follower.next_action(sim.state)]
+        while actions[-1] != Action.STOP and len(actions) < 60:
+            sim.step(actions[-1])
+            actions.append(follower.next_action(sim.state))
+        walks.append(actions)
+    assert walks[0] == walks[1] and walks[0][-1] == Action.STOP

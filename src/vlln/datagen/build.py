@@ -43,7 +43,6 @@ from tqdm import tqdm
 
 from vlln import __version__
 from vlln.datagen.collector.collect import CollectorConfig, collect_trajectory
-from vlln.datagen.collector.visibility import DOWN_TILT
 from vlln.datagen.filtering import FilterConfig, rejection_reason
 from vlln.datagen.goals import FollowerWalks
 from vlln.datagen.house_locks import lock_houses
@@ -59,14 +58,13 @@ from vlln.datagen.layout import (
     is_finished,
 )
 from vlln.datagen.reader import HouseDataset, house_folders
-from vlln.datagen.views import LevelViews, down_views
+from vlln.datagen.views import LevelViews, down_views, final_down_view
 from vlln.datagen.writer import HouseWriter
 from vlln.errors import ConfigError, DataFormatError
 from vlln.eval.play import episode_seed
 from vlln.eval.sharding import Shard
 from vlln.files import parse_json, write_text_atomic
 from vlln.oracle.settings import OracleSettings
-from vlln.sim.agent import AgentState
 from vlln.sim.simulator import Simulator
 from vlln.tasks.episode import Episode, read_episodes
 from vlln.tasks.generation import EpisodeGenConfig, episode_config
@@ -323,11 +321,10 @@ def build_house(
             config.policy == "shortest",
             on_frame=level.keep,
         )
-        last = trajectory.steps[-1].state
-        finals = (level.last, sim.render(AgentState(last.position, last.yaw, DOWN_TILT)))
-        reason = rejection_reason(trajectory, finals, config.filter)
+        final_down = final_down_view(sim, trajectory)
+        reason = rejection_reason(trajectory, (level.last, final_down), config.filter)
         if reason is None:
-            down = down_views(sim, trajectory)
+            down = down_views(sim, trajectory, final_down)
             writer.write_kept(trajectory, level.stored, down, FollowerWalks(sim, trajectory))
         else:
             writer.write_rejected(episode.episode_id, reason)

@@ -57,6 +57,7 @@ def rejection_reason(
     if longest_turn_run(after_scan) > config.max_consecutive_turns:
         return TOO_MANY_TURNS
     target_id = int(trajectory.target_key)
-    if best_central_pixels(final_frames, target_id) < config.min_target_pixels:
+    final_ids = tuple(frame.instance_ids for frame in final_frames)
+    if best_central_pixels(final_ids, target_id) < config.min_target_pixels:
         return TARGET_NOT_CENTRED
     return None

@@ -41,8 +41,16 @@ class LevelViews:
         return self._last
 
 
-def down_views(sim: Simulator, trajectory: Trajectory) -> Iterator[Frame]:
-    """The 30°-down view of every step, rendered from the recorded states."""
-    for step in trajectory.steps:
+def down_views(sim: Simulator, trajectory: Trajectory, last: Frame) -> Iterator[Frame]:
+    """The 30°-down view of every step, rendered from the recorded states; the last step's is
+    ``last``, which the final-view filter has had rendered already (:func:`final_down_view`)."""
+    for step in trajectory.steps[:-1]:
         state = step.state
         yield sim.render(AgentState(state.position, state.yaw, DOWN_TILT))
+    yield last
+
+
+def final_down_view(sim: Simulator, trajectory: Trajectory) -> Frame:
+    """The 30°-down view of the trajectory's last step."""
+    state = trajectory.steps[-1].state
+    return sim.render(AgentState(state.position, state.yaw, DOWN_TILT))

@@ -9,6 +9,10 @@ Edge weights are the Euclidean lengths between cell centres and an edge exists o
 segment between the centres crosses navigable cells, so every field value is the length of a
 real path on the navigable area and is never shorter than the straight line. A point inside a
 cell adds its straight distance to the cell centre, which keeps that guarantee for any point.
+
+A field may stop at a ``limit`` (metres): Dijkstra then settles only the cells within it, whose
+values are exactly those of the whole field, and every other cell reads ``inf``. A goal a few
+metres away (a pixel goal) costs a fraction of a whole-house field that way.
 """
 
 from __future__ import annotations
@@ -35,10 +39,11 @@ class GeodesicField:
     """Shortest-path distance from every cell of a grid to the nearest of a set of goals.
 
     Goals are snapped to the nearest navigable cell centre (:meth:`NavGrid.snap_point`);
-    goals outside the grid are ignored. Distances are to the snapped goals.
+    goals outside the grid are ignored. Distances are to the snapped goals. Cells farther than
+    ``limit`` metres from every goal read ``inf``, as if unreachable (module doc).
     """
 
-    def __init__(self, grid: NavGrid, goals: Sequence[Point2]) -> None:
+    def __init__(self, grid: NavGrid, goals: Sequence[Point2], limit: float = math.inf) -> None:
         if len(goals) == 0:
             raise NavigationError("the goal set is empty; pass at least one (x, z) goal")
         rows, cols = grid.shape
@@ -57,10 +62,11 @@ class GeodesicField:
         self.grid = grid
         self.goals: list[Point2] = list(dict.fromkeys(snapped))
         sources = sorted({_node(grid, x, z) for x, z in self.goals})
-        dist, predecessors = goal_distances(grid.cell_graph(), sources)
+        dist, predecessors = goal_distances(grid.cell_graph(), sources, limit)
+        dist.flags.writeable = False
         self.values: NDArray[np.float64] = dist.reshape(rows, cols)
-        self.values.flags.writeable = False
-        self._flat: list[float] = dist.tolist()
+        # Read by index, not as a list: a list costs more to make than most fields are read.
+        self._flat = dist
         self._predecessors = predecessors
         self._ox, self._oz = grid.origin
         self._size = grid.cell_size
@@ -77,7 +83,7 @@ class GeodesicField:
         row = math.floor((z - self._oz) / s)
         if not (0 <= row < self._rows and 0 <= col < self._cols):
             return math.inf
-        d = self._flat[row * self._cols + col]
+        d = float(self._flat[row * self._cols + col])
         if d == math.inf:
             return d
         cx = self._ox + (col + 0.5) * s
@@ -122,13 +128,18 @@ class GeodesicField:
 
 
 def goal_distances(
-    graph: sparse.csr_matrix, sources: list[int]
+    graph: sparse.csr_matrix, sources: list[int], limit: float = math.inf
 ) -> tuple[NDArray[np.float64], NDArray[np.int32]]:
     """One multi-source Dijkstra over a cell graph: each node's distance to the nearest source
     (rounded up, :data:`ROUND_UP`) and its next node on the way there (-9999 at a source or
-    where no source can be reached)."""
+    where no source can be reached). Nodes farther than ``limit`` are not settled: ``inf``."""
     dist, predecessors, _ = csgraph.dijkstra(
-        graph, directed=True, indices=sources, min_only=True, return_predecessors=True
+        graph,
+        directed=True,
+        indices=sources,
+        min_only=True,
+        return_predecessors=True,
+        limit=limit,
     )
     return dist * ROUND_UP, predecessors
 

@@ -8,6 +8,7 @@ the same goals at every step.
 
 from __future__ import annotations
 
+import math
 from collections import OrderedDict
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -94,7 +95,9 @@ class Simulator:
                 step_height=nav.step_height,
             )
         self.renderer = Renderer(house.geometry.mesh, self.config.camera)
-        self._fields: OrderedDict[tuple[tuple[float, ...], ...], Field] = OrderedDict()
+        self._fields: OrderedDict[tuple[tuple[tuple[float, ...], ...], float], Field] = (
+            OrderedDict()
+        )
         self._state = AgentState(position=(0.0, floor_y, 0.0), yaw=0.0, tilt=0.0)
 
     @property
@@ -164,21 +167,25 @@ class Simulator:
             raise NavigationError("geodesic_field works on one storey; use distance_field")
         return built
 
-    def distance_field(self, goals: Sequence[Sequence[float]], one_storey: bool = False) -> Field:
+    def distance_field(
+        self, goals: Sequence[Sequence[float]], one_storey: bool = False, limit: float = math.inf
+    ) -> Field:
         """The distance field to a goal set, built once and then cached. Goals are ``(x, z)``
-        on one storey and ``(x, y, z)`` in a house with several."""
+        on one storey and ``(x, y, z)`` in a house with several. Cells farther than ``limit``
+        metres from every goal read ``inf`` (:class:`GeodesicField`)."""
         if one_storey:
             self.grid  # noqa: B018 - refuses a house with several storeys
-        key = tuple(tuple(float(v) for v in goal) for goal in goals)
+        points = tuple(tuple(float(v) for v in goal) for goal in goals)
+        key = (points, float(limit))
         cached = self._fields.get(key)
         if cached is not None:
             self._fields.move_to_end(key)
             return cached
         built: Field
         if self.storeys is not None:
-            built = StoreyField(self.storeys, list(key))
+            built = StoreyField(self.storeys, list(points), limit)
         else:
-            built = GeodesicField(self.grid, [(goal[0], goal[-1]) for goal in key])
+            built = GeodesicField(self.grid, [(goal[0], goal[-1]) for goal in points], limit)
         self._fields[key] = built
         if len(self._fields) > self.config.field_cache_size:
             self._fields.popitem(last=False)

@@ -24,10 +24,13 @@ _CLIMB = 0.3
 class StoreyField:
     """Shortest-path distance from every cell of every storey to the nearest goal.
 
-    Goals are ``(x, y, z)``, snapped to the nearest navigable cell of their storey.
+    Goals are ``(x, y, z)``, snapped to the nearest navigable cell of their storey. Cells
+    farther than ``limit`` metres from every goal read ``inf`` (see :mod:`vlln.sim.geodesic`).
     """
 
-    def __init__(self, storeys: Storeys, goals: Sequence[Sequence[float]]) -> None:
+    def __init__(
+        self, storeys: Storeys, goals: Sequence[Sequence[float]], limit: float = math.inf
+    ) -> None:
         if len(goals) == 0:
             raise NavigationError("the goal set is empty; pass at least one (x, y, z) goal")
         if any(len(goal) != 3 for goal in goals):
@@ -38,8 +41,9 @@ class StoreyField:
         snapped = [storeys.snap_point(float(x), float(y), float(z)) for x, y, z in goals]
         self.goals: list[Point3] = list(dict.fromkeys(snapped))
         sources = sorted({storeys.node(*goal) for goal in self.goals})
-        dist, predecessors = goal_distances(storeys.cell_graph(), sources)
-        self._flat: list[float] = dist.tolist()
+        dist, predecessors = goal_distances(storeys.cell_graph(), sources, limit)
+        dist.flags.writeable = False
+        self._flat = dist  # read by index: see GeodesicField
         self._predecessors: NDArray[np.int32] = predecessors
         self.values: tuple[NDArray[np.float64], ...] = tuple(
             part.reshape(storeys.shape) for part in np.split(dist, len(storeys.grids))
@@ -58,7 +62,7 @@ class StoreyField:
         if not grid.in_bounds(row, col):
             return math.inf
         node = storeys.node(x, y, z)
-        d = self._flat[node]
+        d = float(self._flat[node])
         if d == math.inf:
             return d
         cx, cy, cz = storeys.node_point(node)

@@ -10,6 +10,12 @@ no waypoint: the goal would not move the agent, and a model that names it again 
 frame would loop.
 In a house with several storeys the point is ``(x, y, z)`` on the agent's storey and the
 follower walks the storeys' graph, up or down a flight when the point is on it.
+
+The follower's field is first built only :data:`WAYPOINT_REACH` deep around the point, and
+over the whole house only when the agent stands farther (:func:`waypoint_field`). The walk is
+the same either way: the follower only compares places nearer to the point than the agent
+(a move must gain distance), the agent only comes nearer while it follows, and a bounded
+field is exact at every place within its bound.
 """
 
 from __future__ import annotations
@@ -21,10 +27,13 @@ from vlln.sim.agent import Action, AgentState
 from vlln.sim.follower import GreedyFollower
 from vlln.sim.pixel_goal import pixel_floor_goal
 from vlln.sim.renderer import Frame
-from vlln.sim.simulator import Simulator
+from vlln.sim.simulator import Field, Simulator
 from vlln.sim.viewpoints import GoalPoint
 
 WAYPOINT_RADIUS = 0.25
+# Metres of the first, bounded field: the data's pixel goals are at most 8 forward steps
+# (2 m) ahead, and a field's cost grows with the area it covers.
+WAYPOINT_REACH = 3.0
 
 
 @dataclass(frozen=True)
@@ -54,7 +63,7 @@ def waypoint_for_pixel(
     point = pixel_floor_goal(spec, sim.nav, frame.depth, col, row, state)
     if point is None:
         return f"pixel ({col}, {row}) shows nothing"
-    field = sim.distance_field([point])
+    field = waypoint_field(sim, point, state)
     x, y, z = state.position
     if not field.is_reachable(x, z, y):
         return f"pixel ({col}, {row}) shows floor that cannot be reached"
@@ -62,3 +71,14 @@ def waypoint_for_pixel(
     if waypoint.next_action(state) is None:
         return f"pixel ({col}, {row}) shows floor the agent stands on or cannot step toward"
     return waypoint
+
+
+def waypoint_field(sim: Simulator, point: GoalPoint, state: AgentState) -> Field:
+    """The distance field to ``point``, exact wherever it is nearer than the agent at
+    ``state``: :data:`WAYPOINT_REACH` deep when the agent is within that, else the whole
+    house's (module doc)."""
+    x, y, z = state.position
+    near = sim.distance_field([point], limit=WAYPOINT_REACH)
+    if near.distance(x, z, y) <= WAYPOINT_REACH:
+        return near
+    return sim.distance_field([point])

@@ -134,7 +134,7 @@ def test_disambiguation_answers_agree_with_the_target(
             ]
             assert same, "asked about a view with no instance of the category in the centre"
             says_yes = turn.answer.lower().startswith("yes")
-            shows_target = central_pixels(frame, target) > 0
+            shows_target = central_pixels(frame.instance_ids, target) > 0
             assert not says_yes or shows_target
 
 

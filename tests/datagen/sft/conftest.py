@@ -23,7 +23,7 @@ import pytest
 from vlln.datagen.layout import house_dir_name
 from vlln.datagen.sft import export_sft
 from vlln.datagen.trajectory import Exchange, Step, Trajectory
-from vlln.datagen.views import down_views
+from vlln.datagen.views import down_views, final_down_view
 from vlln.datagen.writer import HouseWriter
 from vlln.prompt.images import stored_frame
 from vlln.sim.agent import Action, AgentState
@@ -88,7 +88,9 @@ def hand_dataset(sim: Simulator, tmp_path_factory: pytest.TempPathFactory) -> Ha
     for name, start, actions, dialog in plans:
         trajectory = walk(sim, name, start, actions, dialog)
         index = writer.write_kept(
-            trajectory, level_views(sim, trajectory), down_views(sim, trajectory)
+            trajectory,
+            level_views(sim, trajectory),
+            down_views(sim, trajectory, final_down_view(sim, trajectory)),
         )
         states[index] = [step.state for step in trajectory.steps]
         actions_of[index] = list(actions)

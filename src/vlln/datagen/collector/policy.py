@@ -168,8 +168,8 @@ class CollectorPolicy:
         if turn is not None:
             return turn
         cfg = self.config
-        down = self.sim.render(AgentState(state.position, state.yaw, DOWN_TILT))
-        if best_central_pixels((frame, down), self.target.id) >= cfg.final_pixels:
+        down = self.sim.render_instance_ids(AgentState(state.position, state.yaw, DOWN_TILT))
+        if best_central_pixels((frame.instance_ids, down), self.target.id) >= cfg.final_pixels:
             return Action.STOP
         if self._relocations >= cfg.relocations:
             return Action.STOP
@@ -210,7 +210,9 @@ class CollectorPolicy:
             position = (point[0] + dx, point[1], point[2] + dz)
             yaw = state.yaw
             yaw += self.turn * round(self._facing_error(position, yaw) / self.turn)
-            views = tuple(self.sim.render(AgentState(position, yaw, t)) for t in (0.0, DOWN_TILT))
+            views = tuple(
+                self.sim.render_instance_ids(AgentState(position, yaw, t)) for t in (0.0, DOWN_TILT)
+            )
             if best_central_pixels(views, self.target.id) < self.config.final_pixels:
                 return False
         return True
