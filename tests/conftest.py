@@ -3,6 +3,10 @@ the tests that use it."""
 
 from __future__ import annotations
 
+import fcntl
+import os
+import shutil
+from collections.abc import Callable
 from pathlib import Path
 
 import pytest
@@ -13,11 +17,33 @@ ONE_HOUSE = BuildConfig(houses=1, per_house=1, preset="small")
 """``vlln data build --houses 1 --per-house 1``: the train split's first house, one trajectory."""
 
 
+def built_once(
+    tmp_path_factory: pytest.TempPathFactory, name: str, build: Callable[[Path], object]
+) -> Path:
+    """The folder ``name``, built by ``build`` for the whole run: by the first pytest-xdist
+    worker that asks (the workers' temporary folders share a parent), the others waiting on a
+    lock and then reading it. Its users only read it."""
+    root = tmp_path_factory.getbasetemp()
+    if os.environ.get("PYTEST_XDIST_WORKER"):
+        root = root.parent
+    folder, done = root / name, root / f"{name}.built"
+    with open(root / f"{name}.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if not done.exists():
+            shutil.rmtree(folder, ignore_errors=True)  # a build that a failure cut short
+            folder.mkdir()
+            build(folder)
+            done.touch()
+    return folder
+
+
 @pytest.fixture(scope="session")
 def one_house_dataset(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """A real dataset of :data:`ONE_HOUSE` (the training export's source, and what a build on
     Ray must equal)."""
-    return build_dataset(tmp_path_factory.mktemp("one_house"), ONE_HOUSE, progress=False)
+    return built_once(
+        tmp_path_factory, "one_house", lambda out: build_dataset(out, ONE_HOUSE, progress=False)
+    )
 
 
 @pytest.fixture(scope="session")
@@ -26,9 +52,11 @@ def split_cache(tmp_path_factory: pytest.TempPathFactory) -> Path:
     built once for every evaluation, gym and cluster test."""
     from vlln.tasks.split_files import load_or_build_split
 
-    cache = tmp_path_factory.mktemp("episodes")
-    load_or_build_split("test", "iign", 1, cache, progress=False)
-    return cache
+    return built_once(
+        tmp_path_factory,
+        "episodes",
+        lambda cache: load_or_build_split("test", "iign", 1, cache, progress=False),
+    )
 
 
 @pytest.fixture(scope="session")
@@ -36,4 +64,4 @@ def tiny_model(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """A tiny Qwen2.5-VL-style model built from a small config."""
     from vlln.train.scratch import build_tiny_model  # the model extra: only where a test asks
 
-    return build_tiny_model(tmp_path_factory.mktemp("tiny_model"))
+    return built_once(tmp_path_factory, "tiny_model", build_tiny_model)
