@@ -125,17 +125,6 @@ def test_sft_jsonl_is_capped_per_line_not_per_file(tmp_path: Path) -> None:
     )
 
 
-def test_an_over_long_sft_line_is_one_line_naming_it(tmp_path: Path) -> None:
-    (tmp_path / "export.json").write_text("{}")
-    (tmp_path / "sft.jsonl").write_bytes(b" " * (2 << 20) + b"\n")
-    with pytest.raises(DataFormatError) as info:
-        read_export(tmp_path)
-    assert str(info.value) == (
-        f"{tmp_path / 'sft.jsonl'}, line 1 holds more than 1 MiB, the cap on a line of "
-        "sft.jsonl; give the right file"
-    )
-
-
 def test_a_classifier_array_that_unpacks_past_its_cap_is_refused(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:

@@ -20,10 +20,10 @@ from vlln.tasks.scenes import SceneCache
 from vlln.tasks.spec import AgentOutput, Talk
 
 
-class RaisingAgent:
-    """Raises inside act() on its third call."""
+class CountingAgent:
+    """A test agent that counts its calls in the episode; subclasses say what it does."""
 
-    name = "raising"
+    name = "counting"
     privileged = False
 
     def __init__(self, seed: int) -> None:
@@ -31,6 +31,12 @@ class RaisingAgent:
 
     def reset(self, episode: EpisodeInfo) -> None:
         self.calls = 0
+
+
+class RaisingAgent(CountingAgent):
+    """Raises inside act() on its third call."""
+
+    name = "raising"
 
     def act(self, observation: Observation) -> AgentOutput:
         self.calls += 1
@@ -39,17 +45,10 @@ class RaisingAgent:
         return Action.TURN_LEFT
 
 
-class GarbageAgent:
+class GarbageAgent(CountingAgent):
     """Returns things that are not actions."""
 
     name = "garbage"
-    privileged = False
-
-    def __init__(self, seed: int) -> None:
-        self.calls = 0
-
-    def reset(self, episode: EpisodeInfo) -> None:
-        self.calls = 0
 
     def act(self, observation: Observation) -> AgentOutput:
         self.calls += 1
@@ -57,31 +56,25 @@ class GarbageAgent:
         return garbage[self.calls % len(garbage)]
 
 
-class TalkingAgent:
+class TalkingAgent(CountingAgent):
     """Asks where the target is at every step, then stops: every turn goes to the oracle."""
 
     name = "talking"
-    privileged = False
-
-    def __init__(self, seed: int) -> None:
-        self.calls = 0
-
-    def reset(self, episode: EpisodeInfo) -> None:
-        self.calls = 0
 
     def act(self, observation: Observation) -> AgentOutput:
         self.calls += 1
         return Talk("Where is it?") if self.calls <= 3 else Action.STOP
 
 
+TEST_AGENTS: dict[str, type[CountingAgent]] = {
+    agent.name: agent for agent in (RaisingAgent, GarbageAgent, TalkingAgent)
+}
+
+
 def agent_factory(name: str, seed: int, detector: str | None = None) -> Agent:
-    """The registry's agents plus the two misbehaving ones above."""
-    if name == "raising":
-        return RaisingAgent(seed)
-    if name == "garbage":
-        return GarbageAgent(seed)
-    if name == "talking":
-        return TalkingAgent(seed)
+    """The registry's agents plus the test agents above."""
+    if name in TEST_AGENTS:
+        return TEST_AGENTS[name](seed)
     return make_agent(name, seed, detector)
 
 
