@@ -18,9 +18,15 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from vlln.cluster.scheduler import DEFAULT_MAX_RETRIES, collect_in_order, connect, remote_function
-from vlln.datagen.build import BuildConfig, HouseWork, build_dataset, build_house
-from vlln.datagen.layout import LAST_FILES, TRAJECTORIES_DIR
-from vlln.files import write_bytes_atomic
+from vlln.datagen.build import (
+    BuildConfig,
+    BuildJob,
+    BuiltHouse,
+    HouseWork,
+    build_dataset,
+    build_house,
+)
+from vlln.datagen.layout import TRAJECTORIES_DIR
 from vlln.tasks.episode import Episode
 from vlln.tasks.scenes import SceneCache
 
@@ -41,44 +47,27 @@ def build_house_files(config: BuildConfig, seed: int, episodes: list[Episode]) -
         }
 
 
-def write_house_files(root: Path, files: dict[str, bytes]) -> None:
-    """Write a house's files into the dataset, the journal and ``meta/info.json`` last."""
-    last = [name for name in files if _in_house(name) in LAST_FILES]
-    for name in [n for n in files if n not in last] + sorted(last, key=_last_order):
-        write_bytes_atomic(root / name, files[name])
-
-
 @dataclass
 class RayBuilder:
-    """Builds houses on a Ray cluster (module doc): ``address`` as for
-    :func:`vlln.cluster.scheduler.connect`, each house's task retried ``max_retries`` times
-    when its worker dies."""
+    """A :data:`~vlln.datagen.build.HouseBuilder` that builds on a Ray cluster (module doc):
+    ``address`` as for :func:`vlln.cluster.scheduler.connect`, each house's task retried
+    ``max_retries`` times when its worker dies."""
 
     address: str | None = None
     max_retries: int = DEFAULT_MAX_RETRIES
     label: str = "on Ray"
 
-    def check(self) -> None:
+    def check(self, job: BuildJob) -> None:
         connect(self.address)  # an unreachable cluster fails before any work
 
-    def build(
-        self,
-        root: Path,
-        config: BuildConfig,
-        houses: list[HouseWork],
-        scenes: SceneCache,
-        finished: Callable[[], None],
+    def play(
+        self, job: BuildJob, items: list[HouseWork], commit: Callable[[list[BuiltHouse]], None]
     ) -> None:
         ray = connect(self.address)
         task = remote_function(build_house_files, self.max_retries)
-        config_ref = ray.put(config)
-        refs = [task.remote(config_ref, house.seed, house.episodes) for house in houses]
-
-        def commit(_: int, files: dict[str, bytes]) -> None:
-            write_house_files(root, files)
-            finished()
-
-        collect_in_order(refs, commit)
+        config_ref = ray.put(job.config)
+        refs = [task.remote(config_ref, house.seed, house.episodes) for house in items]
+        collect_in_order(refs, lambda index, files: commit([BuiltHouse(items[index].seed, files)]))
 
 
 def build_dataset_ray(
@@ -91,12 +80,3 @@ def build_dataset_ray(
 ) -> Path:
     """Build (or resume) the dataset into ``out`` on a Ray cluster with the build runner."""
     return build_dataset(out, config, progress=progress, builder=RayBuilder(address, max_retries))
-
-
-def _in_house(name: str) -> str:
-    """``trajectories/<house>/meta/info.json`` -> ``meta/info.json``."""
-    return name.split("/", 2)[-1]
-
-
-def _last_order(name: str) -> int:
-    return LAST_FILES.index(_in_house(name))

@@ -33,7 +33,7 @@ from vlln.cluster.options import ServingOptions
 from vlln.cluster.scheduler import DEFAULT_MAX_RETRIES, collect_in_order, connect, remote_function
 from vlln.errors import ConfigError
 from vlln.eval.config import EvalConfig
-from vlln.eval.play import OracleFactory, Played, WorkItem, by_episode, play_in_order
+from vlln.eval.play import Played, WorkItem, by_episode, play_in_order
 from vlln.eval.runner import Commit, RunOutcome, evaluate
 from vlln.tasks.scenes import SceneCache
 
@@ -80,10 +80,11 @@ def chunk_work(items: list[WorkItem], episodes_per_chunk: int) -> list[list[Work
 
 @dataclass
 class RayExecutor:
-    """Plays the runner's work on a Ray cluster (module doc): ``address`` as for
-    :func:`vlln.cluster.scheduler.connect`, ``episodes_per_chunk`` whole episodes per task,
-    each retried ``max_retries`` times when its worker dies; a model agent's model is served
-    once per node (``serving``), and ``on_model_stats`` hears what the servers did."""
+    """An :data:`~vlln.eval.runner.EvalExecutor` that plays on a Ray cluster (module doc):
+    ``address`` as for :func:`vlln.cluster.scheduler.connect`, ``episodes_per_chunk`` whole
+    episodes per task, each retried ``max_retries`` times when its worker dies; a model
+    agent's model is served once per node (``serving``), and ``on_model_stats`` hears what
+    the servers did."""
 
     address: str | None = None
     episodes_per_chunk: int = 4
@@ -92,7 +93,6 @@ class RayExecutor:
     serving: ServingOptions | None = None
     on_model_stats: Callable[[list[ServerStats]], None] | None = None
     label: str = "on Ray"
-    oracle_factory: OracleFactory | None = None  # None: the run's oracle settings
 
     def check(self, config: EvalConfig) -> None:
         if served_model(config) is None:  # checks a served model's options without loading it

@@ -1,5 +1,6 @@
 """``vlln data build``: every stage of the pipeline for the first N houses of a split, with a
-builder that makes the houses' trajectories: :class:`LocalBuilder` in this process, or
+builder that makes the houses' trajectories (an executor, :mod:`vlln.eval.executor`, the
+protocol ``vlln eval`` shares): :class:`LocalBuilder` in this process, or
 :class:`vlln.cluster.data.RayBuilder` on a cluster. The runner (:func:`build_dataset`) alone
 owns the rest, so both write the same dataset: the settings, the sharding, the house locks,
 stages 1-2, which houses are left to build, and progress.
@@ -33,9 +34,9 @@ from __future__ import annotations
 
 import json
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Annotated, Any, Literal, Protocol, Self
+from typing import Annotated, Any, Literal, Self
 
 import numpy as np
 from pydantic import Field, field_validator, model_validator
@@ -49,6 +50,7 @@ from vlln.datagen.house_locks import lock_houses
 from vlln.datagen.layout import (
     EPISODES_DIR,
     FORMAT_VERSION,
+    LAST_FILES,
     SCENE_SUMMARY_DIR,
     SETTINGS_CAP,
     SETTINGS_FILE,
@@ -61,9 +63,10 @@ from vlln.datagen.reader import HouseDataset, house_folders
 from vlln.datagen.views import LevelViews, down_views, final_down_view
 from vlln.datagen.writer import HouseWriter
 from vlln.errors import ConfigError, DataFormatError
+from vlln.eval.executor import Executor
 from vlln.eval.play import episode_seed
 from vlln.eval.sharding import Shard
-from vlln.files import parse_json, write_text_atomic
+from vlln.files import parse_json, write_bytes_atomic, write_text_atomic
 from vlln.oracle.settings import OracleSettings
 from vlln.sim.simulator import Simulator
 from vlln.tasks.episode import Episode, read_episodes
@@ -168,51 +171,66 @@ class HouseWork:
     episodes: list[Episode]
 
 
-class HouseBuilder(Protocol):
-    """Makes houses' trajectory folders somewhere (stages 3-5)."""
+@dataclass(frozen=True)
+class BuildJob:
+    """What every house of a build shares: the dataset folder, the settings, and the
+    simulators stages 1-2 used."""
 
-    @property
-    def label(self) -> str:
-        """How the progress bar names where it builds ("" for this process)."""
+    root: Path
+    config: BuildConfig
+    scenes: SceneCache
 
-    def check(self) -> None:
-        """Fail in one line before any work (no cluster)."""
 
-    def build(
-        self,
-        root: Path,
-        config: BuildConfig,
-        houses: list[HouseWork],
-        scenes: SceneCache,
-        finished: Callable[[], None],
-    ) -> None:
-        """Build ``houses`` into ``root``'s trajectory folders, each complete on disk (its
-        ``meta/info.json`` last) before ``finished`` is called for it. ``scenes`` holds the
-        simulators stages 1-2 used."""
+@dataclass(frozen=True)
+class BuiltHouse:
+    """A house's trajectories (stages 3-5), complete: ``files`` ({path under the dataset:
+    bytes}) for the runner to write, or none when they were written in place."""
+
+    seed: int
+    files: dict[str, bytes] = field(default_factory=dict)
+
+
+HouseBuilder = Executor[BuildJob, HouseWork, BuiltHouse]
+"""An executor of houses' trajectories (:mod:`vlln.eval.executor`, the protocol ``vlln eval``
+shares)."""
 
 
 @dataclass
 class LocalBuilder:
-    """Builds one house after the other in this process; ``progress`` shows a bar per house."""
+    """A :data:`HouseBuilder` that builds one house after the other in this process, into the
+    dataset itself (a killed build resumes inside a house); ``progress`` shows a bar per
+    house."""
 
     progress: bool = True
     label: str = ""
 
-    def check(self) -> None:
+    def check(self, job: BuildJob) -> None:
         return None
 
-    def build(
-        self,
-        root: Path,
-        config: BuildConfig,
-        houses: list[HouseWork],
-        scenes: SceneCache,
-        finished: Callable[[], None],
+    def play(
+        self, job: BuildJob, items: list[HouseWork], commit: Callable[[list[BuiltHouse]], None]
     ) -> None:
-        for house in houses:
-            sim = scenes.get(config.scene_id(house.seed))
-            build_house(root, sim, house.episodes, config, self.progress)
-            finished()
+        for house in items:
+            sim = job.scenes.get(job.config.scene_id(house.seed))
+            build_house(job.root, sim, house.episodes, job.config, self.progress)
+            commit([BuiltHouse(house.seed)])
+
+
+def write_house_files(root: Path, files: dict[str, bytes]) -> None:
+    """Write a house's files into the dataset, the journal and ``meta/info.json`` last, so
+    the house counts as finished only when all of it is on disk."""
+    last = [name for name in files if _in_house(name) in LAST_FILES]
+    for name in [n for n in files if n not in last] + sorted(last, key=_last_order):
+        write_bytes_atomic(root / name, files[name])
+
+
+def _in_house(name: str) -> str:
+    """``trajectories/<house>/meta/info.json`` -> ``meta/info.json``."""
+    return name.split("/", 2)[-1]
+
+
+def _last_order(name: str) -> int:
+    return LAST_FILES.index(_in_house(name))
 
 
 def build_dataset(
@@ -226,14 +244,15 @@ def build_dataset(
     process); returns ``out``."""
     root = Path(out)
     builder = builder if builder is not None else LocalBuilder(progress)
-    builder.check()
-    check_settings(root, config)
-    mine = (shard or Shard(0, 1)).take(house_seeds(config.split, config.houses))
-    with lock_houses(root, mine, config.scene_id):
-        # Two simulators, SceneCache's default: a build or shard of two houses makes each
-        # once, not once per stage (summaries, episodes, trajectories).
-        cache = SceneCache(capacity=2)
-        try:
+    # Two simulators, SceneCache's default: a build or shard of two houses makes each once,
+    # not once per stage (summaries, episodes, trajectories).
+    cache = SceneCache(capacity=2)
+    try:
+        job = BuildJob(root, config, cache)
+        builder.check(job)
+        check_settings(root, config)
+        mine = (shard or Shard(0, 1)).take(house_seeds(config.split, config.houses))
+        with lock_houses(root, mine, config.scene_id):
             by_house = prepare_episodes(root, config, mine, cache, progress)
             todo = [
                 HouseWork(
@@ -250,9 +269,15 @@ def build_dataset(
                 unit="house",
                 disable=not progress,
             ) as bar:
-                builder.build(root, config, todo, cache, lambda: bar.update(1))
-        finally:
-            cache.close()
+
+                def commit(built: list[BuiltHouse]) -> None:
+                    for house in built:
+                        write_house_files(root, house.files)
+                        bar.update(1)
+
+                builder.play(job, todo, commit)
+    finally:
+        cache.close()
     return root
 
 

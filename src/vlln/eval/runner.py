@@ -1,5 +1,6 @@
 """The evaluation runner: plays an agent over a fixed list of episodes, one line per episode,
-with an executor that plays the work: :class:`LocalExecutor` in this process, or
+with an executor that plays the work (:mod:`vlln.eval.executor`, the protocol ``vlln data
+build`` shares): :class:`LocalExecutor` in this process, or
 :class:`vlln.cluster.evaluation.RayExecutor` on a cluster. The runner alone owns the rest, so
 both write the same folder: the plan and its storage in ``run.json``, the check that a resumed
 folder holds the same agent and arguments, the done-set, the writer, refusals, progress, and
@@ -31,7 +32,6 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from functools import partial
 from pathlib import Path
-from typing import Protocol
 
 from tqdm import tqdm
 
@@ -40,6 +40,7 @@ from vlln.agents.registry import make_agent
 from vlln.errors import ConfigError, EpisodeRefusedError, ServerDownError
 from vlln.eval.config import EvalConfig
 from vlln.eval.cost import eval_cost_line
+from vlln.eval.executor import Executor
 from vlln.eval.health import RunHealth, run_health
 from vlln.eval.plan import RunPlan
 from vlln.eval.play import (
@@ -64,35 +65,19 @@ from vlln.tasks.splits import source_split
 Commit = Callable[[list[Played]], None]
 
 
-class Executor(Protocol):
-    """Plays the runner's work somewhere and hands every result back, in plan order."""
-
-    @property
-    def label(self) -> str:
-        """How the progress bar names where it plays ("" for this process)."""
-
-    @property
-    def oracle_factory(self) -> OracleFactory | None:
-        """Who answers the agent's questions (named in run.json's provenance); None: the
-        run's oracle settings (:meth:`EvalConfig.oracle_settings`)."""
-
-    def check(self, config: EvalConfig) -> None:
-        """Fail in one line before any work (the agent cannot be made, no cluster)."""
-
-    def play(self, config: EvalConfig, items: list[WorkItem], commit: Commit) -> None:
-        """Play ``items`` and call ``commit`` with their results in order, each once, as soon
-        as they and every earlier one are in."""
+EvalExecutor = Executor[EvalConfig, WorkItem, Played]
+"""An executor of evaluation work (:mod:`vlln.eval.executor`)."""
 
 
 @dataclass
 class LocalExecutor:
-    """Plays in this process, one episode after the other, or ``concurrent`` side by side
-    with their model calls batched (:mod:`vlln.eval.side_by_side`; the same records).
-    ``scenes`` shares simulators between calls (it is then not closed here); ``sweep`` plays
-    an episode's budgets together by prefix sharing where the agent allows it (the same
-    records, in less time); ``agent_factory`` defaults to the registry with the run's agent
-    options (side by side, to the ``vlln`` agent on the batched model), ``oracle_factory`` to
-    the run's oracle settings."""
+    """An :data:`EvalExecutor` that plays in this process, one episode after the other, or
+    ``concurrent`` side by side with their model calls batched (:mod:`vlln.eval.side_by_side`;
+    the same records). ``scenes`` shares simulators between calls (it is then not closed
+    here); ``sweep`` plays an episode's budgets together by prefix sharing where the agent
+    allows it (the same records, in less time); ``agent_factory`` defaults to the registry
+    with the run's agent options (side by side, to the ``vlln`` agent on the batched model),
+    ``oracle_factory`` to the run's oracle settings."""
 
     scenes: SceneCache | None = None
     agent_factory: AgentFactory | None = None
@@ -263,6 +248,7 @@ def run_evaluation(
         config,
         out,
         executor,
+        oracle_factory=oracle_factory,
         cache_dir=cache_dir,
         stop_after=stop_after,
         progress=progress,
@@ -273,8 +259,9 @@ def run_evaluation(
 def evaluate(
     config: EvalConfig,
     out: Path,
-    executor: Executor,
+    executor: EvalExecutor,
     *,
+    oracle_factory: OracleFactory | None = None,
     cache_dir: Path | None = None,
     stop_after: int | None = None,
     progress: bool = True,
@@ -283,21 +270,23 @@ def evaluate(
     """Play ``config`` with ``executor`` into the run directory ``out``, resuming what is
     already there.
 
-    ``stop_after`` plays at most that many episode lines in this call (a later call
-    continues); ``provenance`` (agent, oracle, backend, model) goes into run.json, by default
-    that of the executor's oracle.
+    ``oracle_factory`` is who answers the agent's questions, when the executor was given one
+    (None: the run's oracle settings, :meth:`EvalConfig.oracle_settings`); ``stop_after``
+    plays at most that many episode lines in this call (a later call continues);
+    ``provenance`` (agent, oracle, backend, model) goes into run.json, by default that of the
+    oracle.
     """
     if stop_after is not None and stop_after < 0:
         raise ConfigError(f"stop_after must be >= 0, got {stop_after}")
     run_dir = RunDirectory(out)
     run_dir.check_is_directory()
     executor.check(config)
-    if executor.oracle_factory is None and any(budget > 0 for budget in config.budgets):
+    if oracle_factory is None and any(budget > 0 for budget in config.budgets):
         config.oracle_settings().check_server()
     episodes = load_episodes(config, cache_dir, progress)
     items = plan_work(episodes, config)
     plan = plan_of(items, episodes, config)
-    provenance = provenance or default_provenance(config, executor.oracle_factory)
+    provenance = provenance or default_provenance(config, oracle_factory)
     run_dir.prepare(config, provenance=provenance, plan=plan)
     played = 0
     started = time.perf_counter()
