@@ -10,7 +10,7 @@ import os
 import re
 import shutil
 import tempfile
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
@@ -122,6 +122,33 @@ def check_output_folder(out: Path, option: str = "--out") -> None:
             f"{option} {out}: cannot write in {existing} ({error.strerror}); "
             "give a folder you can write to"
         ) from None
+
+
+def refuse_other_settings(
+    folder: Path, recorded: Mapping[str, Any], wanted: Mapping[str, Any], what: str
+) -> None:
+    """The one guard of a resumable folder (an evaluation run, a dataset, a web study): going
+    on with other settings than the folder was started with would mix two experiments in it,
+    so each setting that differs is named and the work refused."""
+    changed = [
+        name
+        for name in sorted(recorded.keys() | wanted.keys())
+        if recorded.get(name) != wanted.get(name)
+    ]
+    if changed:
+        values = "; ".join(
+            f"{name}: {_short(recorded.get(name))} there, {_short(wanted.get(name))} now"
+            for name in changed
+        )
+        raise ConfigError(
+            f"{folder} holds {what} with other settings (differing: {', '.join(changed)}; "
+            f"{values}); resume with the same settings, or use another --out"
+        )
+
+
+def _short(value: Any) -> str:
+    text = repr(value)
+    return text if len(text) <= 80 else text[:77] + "..."
 
 
 @dataclass(frozen=True)

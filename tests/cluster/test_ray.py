@@ -95,7 +95,7 @@ def test_one_plan_on_both_executors_writes_the_same_folder_refusals_included(
         assert (tmp_path / "ray" / name).read_bytes() == (tmp_path / "local" / name).read_bytes()
     again = run_ray_evaluation(config, tmp_path / "ray", progress=False)
     assert again.played == 0 and again.complete  # refusals are not played again
-    with pytest.raises(ConfigError, match="other arguments"):
+    with pytest.raises(ConfigError, match="other settings"):
         run_ray_evaluation(config.replace(max_steps=61), tmp_path / "ray", progress=False)
 
 

@@ -186,4 +186,4 @@ def test_a_balanced_dataset_is_exported_like_a_built_one(
     rebuild = ["data", "build", "--houses", "1", "--per-house", "3", "--preset", "small"]
     rebuild += ["--task", "objectnav"]
     assert main([*rebuild, "--out", str(balanced), "--quiet"]) != 0
-    assert "other settings (differing: balance)" in capsys.readouterr().err
+    assert "other settings (differing: balance;" in capsys.readouterr().err

@@ -10,7 +10,7 @@ import pytest
 
 from tests.tasks.test_metrics import make_record
 from vlln.errors import ConfigError, DataFormatError
-from vlln.eval.config import EvalConfig, default_budgets, describe_differences, parse_budgets
+from vlln.eval.config import EvalConfig, default_budgets, parse_budgets
 from vlln.eval.results import (
     RunDirectory,
     load_run_records,
@@ -111,12 +111,17 @@ def test_second_writer_is_refused(tmp_path: Path) -> None:
         pass
 
 
-def test_config_round_trips_and_diffs() -> None:
+def test_config_round_trips_and_a_resume_names_what_differs(tmp_path: Path) -> None:
     config = EvalConfig(agent="expert", task="IIGN", budgets=(0, 1, 2), shard=Shard(1, 3))
     assert config.task == "iign"
     assert EvalConfig.from_json(json.loads(json.dumps(config.to_json())), "x") == config
     other = EvalConfig(agent="expert", task="iign", budgets=(5,), shard=Shard(1, 3))
-    assert describe_differences(config, other) == ["budgets: [0, 1, 2] there, [5] now"]
+    run = RunDirectory(tmp_path)
+    run.prepare(config)
+    with pytest.raises(
+        ConfigError, match=r"differing: budgets; budgets: \[0, 1, 2\] there, \[5\] now"
+    ):
+        run.prepare(other)
     with pytest.raises(DataFormatError, match=r"run\.json"):
         EvalConfig.from_json({"agent": "expert"}, "run.json")
 

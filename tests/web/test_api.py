@@ -194,4 +194,4 @@ def test_the_command_line_names_bad_settings_in_one_line(
     (tmp_path / "b").mkdir()
     (tmp_path / "b" / "web.json").write_text('{"source": "split val, 3 houses"}')
     assert main(["serve", "web", *source, "--out", str(tmp_path / "b")]) == 2
-    assert "holds a study served with other settings" in capsys.readouterr().err
+    assert "holds a study with other settings" in capsys.readouterr().err

@@ -66,7 +66,12 @@ from vlln.errors import ConfigError, DataFormatError
 from vlln.eval.executor import Executor
 from vlln.eval.play import episode_seed
 from vlln.eval.sharding import Shard
-from vlln.files import parse_json, write_bytes_atomic, write_text_atomic
+from vlln.files import (
+    parse_json,
+    refuse_other_settings,
+    write_bytes_atomic,
+    write_text_atomic,
+)
 from vlln.oracle.settings import OracleSettings
 from vlln.sim.simulator import Simulator
 from vlln.tasks.episode import Episode, read_episodes
@@ -445,13 +450,7 @@ def check_settings(root: Path, config: BuildConfig) -> None:
             raise ConfigError(f"{path}: {error}; delete it to rebuild") from None
         if not isinstance(recorded, dict):
             raise ConfigError(f"{path} is not a JSON object of settings; delete it to rebuild")
-        if recorded != wanted:
-            keys = wanted.keys() | recorded.keys()
-            changed = sorted(k for k in keys if recorded.get(k) != wanted.get(k))
-            raise ConfigError(
-                f"{root} was built with other settings (differing: {', '.join(changed)}); "
-                "resume with the same options, or build into a new folder"
-            )
+        refuse_other_settings(root, recorded, wanted, "a dataset")
         return
     root.mkdir(parents=True, exist_ok=True)
     write_text_atomic(path, json.dumps(wanted, indent=2) + "\n")

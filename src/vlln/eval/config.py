@@ -1,10 +1,10 @@
 """What an evaluation run is: the arguments that decide its episode lines.
 
 A run directory stores these as ``run.json``; a restart with other arguments would mix two
-different experiments in one results file, so :func:`describe_differences` names what changed
-and the runner refuses. Settings that do not change a single episode line (where built splits
-are cached, whether a progress bar is shown, how many episodes one invocation plays) are not
-part of the run.
+different experiments in one results file, so the runner names what changed and refuses
+(:func:`vlln.files.refuse_other_settings`). Settings that do not change a single episode line
+(where built splits are cached, whether a progress bar is shown, how many episodes one
+invocation plays) are not part of the run.
 """
 
 from __future__ import annotations
@@ -324,13 +324,3 @@ def parse_budgets(text: str) -> tuple[int, ...]:
         raise ConfigError(
             f"cannot read dialog budgets {text!r}; write a range (0-5) or a list (0,2,5)"
         ) from None
-
-
-def describe_differences(stored: EvalConfig, wanted: EvalConfig) -> list[str]:
-    """One ``name: stored there, wanted now`` line per argument that differs."""
-    before, after = stored.to_json(), wanted.to_json()
-    return [
-        f"{name}: {before[name]!r} there, {after[name]!r} now"
-        for name in before
-        if before[name] != after[name]
-    ]

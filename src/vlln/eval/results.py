@@ -25,7 +25,7 @@ from pathlib import Path
 from typing import IO, Any
 
 from vlln.errors import ConfigError, DataFormatError
-from vlln.eval.config import EvalConfig, describe_differences
+from vlln.eval.config import EvalConfig
 from vlln.eval.plan import RunPlan, missing_shards
 from vlln.eval.refusals import Refusal, read_refusals
 from vlln.eval.run_dir import (
@@ -43,6 +43,7 @@ from vlln.files import (
     ReadCap,
     check_output_folder,
     parse_json,
+    refuse_other_settings,
     write_bytes_atomic,
     write_text_atomic,
     writing,
@@ -328,16 +329,11 @@ class RunDirectory:
         }
         stored = self.stored_config()
         if stored is not None:
-            differences = describe_differences(stored, config)
+            recorded, wanted = stored.to_json(), config.to_json()
             stored_provenance = (self.stored_run() or {}).get(PROVENANCE_FACT)
-            if stored_provenance not in (None, provenance) and provenance is not None:
-                differences.append(f"provenance: {stored_provenance} there, {provenance} now")
-            if differences:
-                raise ConfigError(
-                    f"{self.path} holds a run with other arguments ("
-                    + "; ".join(differences)
-                    + "). Use another --out, or the same arguments to resume it"
-                )
+            if stored_provenance is not None and provenance is not None:
+                recorded[PROVENANCE_FACT], wanted[PROVENANCE_FACT] = stored_provenance, provenance
+            refuse_other_settings(self.path, recorded, wanted, "a run")
             if any((self.stored_run() or {}).get(name) != value for name, value in facts.items()):
                 self._write_run(config, facts)
             return

@@ -23,7 +23,7 @@ from typing import Any
 from vlln.errors import ConfigError, DataFormatError
 from vlln.eval.results import RecordKey, RecordWriter, RunDirectory, record_key
 from vlln.eval.run_dir import episodes_file
-from vlln.files import ReadCap, parse_json, write_text_atomic
+from vlln.files import ReadCap, parse_json, refuse_other_settings, write_text_atomic
 from vlln.tasks.episode import Episode
 from vlln.tasks.record import EpisodeRecord
 from vlln.web.changes import ChangeSignal
@@ -280,18 +280,7 @@ class SessionStore:
         }
         path = config.out / SETTINGS_FILE
         if path.exists():
-            stored = _stored_settings(path)
-            changed = [
-                f"{k}: {stored.get(k)!r} there, {v!r} now"
-                for k, v in wanted.items()
-                if stored.get(k) != v
-            ]
-            if changed:
-                raise ConfigError(
-                    f"{config.out} holds a study served with other settings ("
-                    + "; ".join(changed)
-                    + "); use another --out, or the same settings"
-                )
+            refuse_other_settings(config.out, _stored_settings(path), wanted, "a study")
         elif episodes_file(config.out).exists():
             raise ConfigError(
                 f"{config.out} holds episode records from another command; use another --out"
