@@ -438,7 +438,10 @@ def test_a_run_whose_every_model_call_failed_ends_non_zero(
         assert main([*args, "--base-url", server.base_url]) == 1
         calls = len(server.requests)
     error = capsys.readouterr().err.splitlines()[-1]
-    assert error.startswith(f"error: all {calls} model calls failed (the first: ")
-    assert "404" in error and "rerun with a new --out" in error
+    assert error.startswith(f"error: none of {calls} model calls got a reply from the model's")
+    assert "(the first: " in error and "404" in error and "rerun with a new --out" in error
     (record,) = (json.loads(line) for line in (tmp_path / "run" / "episodes.jsonl").open())
     assert record["failures"] == {"server": calls} and calls == 6
+    # Scoring the folder later says the same, and fails too.
+    assert main(["score", str(tmp_path / "run")]) == 1
+    assert "error: none of 6 model calls got a reply" in capsys.readouterr().err

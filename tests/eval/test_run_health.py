@@ -137,7 +137,7 @@ def test_torn_last_line_is_stated_and_a_line_missing_its_newline_is_kept(
 def test_fallback_turns_are_counted_and_run_json_names_who_played(
     full_run: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    """Reproduction 4: an LLM oracle that fell back to rules on some turns."""
+    """Reproduction 4: an LLM oracle that fell back to rules on every turn."""
     run = copy_run(full_run, tmp_path / "run")
     provenance = json.loads((run / "run.json").read_text())["provenance"]
     assert provenance == {
@@ -154,8 +154,11 @@ def test_fallback_turns_are_counted_and_run_json_names_who_played(
             record["dialog"] = [asdict(turn)]
             turns += 1
     (run / "episodes.jsonl").write_text("".join(json.dumps(r) + "\n" for r in records))
-    assert main(["score", str(run)]) == 0
-    assert f"oracle fallback turns {turns}" in capsys.readouterr().err
+    # Every turn fell back, so the scores measure the oracle's server: said, and exit 1.
+    assert main(["score", str(run)]) == 1
+    error = capsys.readouterr().err
+    assert f"oracle fallback turns {turns}" in error
+    assert f"error: the oracle's model answered none of {turns} questions" in error
     assert main(["report", str(run), "--out", str(tmp_path / "report")]) == 0
     report = (tmp_path / "report" / "report.md").read_text()
     assert "## Run health" in report and f"oracle fallback turns {turns}" in report

@@ -108,15 +108,15 @@ def _eval(command: EvalCommand) -> int:
 
 
 def _unmeasured(outcome: RunOutcome) -> str:
-    """Why the run measured the servers, not the agent ("" when it did not): every model call
-    failed (the first server error quoted) or the oracle's model answered nothing. Replies
-    that all were unreadable are the model's own answers (an untrained model gives them):
-    the health line says so, and the run is its result."""
-    calls = [call for record in outcome.records for call in record.model_calls]
-    if calls and all(call.text is None for call in calls):
-        first = " ".join(str(calls[0].error).split())[:200]
-        return f"all {len(calls)} model calls failed (the first: {first})"
-    return outcome.health.oracle_silent
+    """Why the run measured the servers, not the agent ("" when it did not,
+    :attr:`RunHealth.servers_silent`), with the first server error quoted. Replies that all
+    were unreadable are the model's own answers (an untrained model gives them): the health
+    line says so, and the run is its result."""
+    problem = outcome.health.servers_silent
+    errors = [c.error for r in outcome.records for c in r.model_calls if c.text is None]
+    if problem and errors and not outcome.health.oracle_silent:
+        problem += f" (the first: {' '.join(str(errors[0]).split())[:200]})"
+    return problem
 
 
 def _warn_of_other_houses(config: EvalConfig) -> None:
@@ -155,6 +155,9 @@ def _score(config: ScoreCommand) -> int:
     else:
         markdown = summary_markdown(groups, "Scores of " + ", ".join(map(str, config.dirs)))
         print(markdown + f"\n{health.line()}\n", end="")
+    if health.servers_silent:
+        print(f"error: {health.servers_silent}: these runs measure the servers", file=sys.stderr)
+        return 1
     return 0
 
 

@@ -91,6 +91,15 @@ class RunHealth:
         return found
 
     @property
+    def servers_silent(self) -> str:
+        """Why the run's numbers measure its servers and not the agent ("" when they do not):
+        no model call got a reply from its server, or the oracle's model answered nothing.
+        ``vlln eval`` and ``vlln score`` exit with status 1 on it."""
+        if self.model_calls and self.failures["model server failures"] >= self.model_calls:
+            return f"none of {self.model_calls} model calls got a reply from the model's server"
+        return self.oracle_silent
+
+    @property
     def oracle_silent(self) -> str:
         """Why the oracle's model answered no question of the run ("" when it answered one)."""
         if self.model_turns and self.failures["oracle fallback turns"] >= self.model_turns:
