@@ -61,8 +61,14 @@ def test_ctrl_c_says_a_rerun_resumes_and_it_does(
 ) -> None:
     out = tmp_path / "interrupted"
     command = [sys.executable, "-m", "vlln.cli", *eval_args(out, split_cache)]
+    # A shell runs background jobs with SIGINT ignored, and Python keeps it so; the child
+    # gets the default back, so Ctrl-C reaches it wherever this suite runs.
     process = subprocess.Popen(
-        command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True
+        command,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+        text=True,
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
     )
     deadline = time.monotonic() + 60.0
     while process.poll() is None and time.monotonic() < deadline:
