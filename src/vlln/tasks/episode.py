@@ -84,7 +84,7 @@ IGNORED_GOAL_KEYS = (
 )
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)
 class ViewPoint:
     """A navigable position from which the goal counts as reached."""
 
@@ -213,7 +213,10 @@ class _GoalSharing:
     def __init__(self) -> None:
         self._seen: dict[tuple[Any, ...], list[dict[str, Any]]] = {}
 
-    def __call__(self, obj: dict[str, Any]) -> dict[str, Any]:
+    def __call__(self, obj: dict[str, Any]) -> dict[str, Any] | ViewPoint:
+        view_point = _written_view_point(obj)
+        if view_point is not None:  # decoded at once: a split holds hundreds of thousands
+            return view_point
         points = obj.get("view_points")
         if not isinstance(points, list) or "position" not in obj:
             return obj
@@ -401,13 +404,13 @@ def _parse_goal(data: Any, name: str) -> Goal:
         raise FieldError(f"{name}.view_points", "a list of view points", view_points)
     points = []
     for i, view_point in enumerate(view_points):
-        position = _written_view_point(view_point)
-        if position is None:  # another shape: the checks accept it or name what is wrong
-            vp_name = f"{name}.view_points[{i}]"
-            state = check_keys(view_point, vp_name, ("agent_state",))["agent_state"]
-            state = check_keys(state, f"{vp_name}.agent_state", ("position",), (), ("rotation",))
-            position = point_of(state["position"], f"{vp_name}.agent_state.position")
-        points.append(ViewPoint(position))
+        if isinstance(view_point, ViewPoint):  # the written shape, decoded by the reader
+            points.append(view_point)
+            continue
+        vp_name = f"{name}.view_points[{i}]"  # another shape: checked, or what is wrong named
+        state = check_keys(view_point, vp_name, ("agent_state",))["agent_state"]
+        state = check_keys(state, f"{vp_name}.agent_state", ("position",), (), ("rotation",))
+        points.append(ViewPoint(point_of(state["position"], f"{vp_name}.agent_state.position")))
     return Goal(
         position=point_of(data["position"], f"{name}.position"),
         radius=radius,
@@ -416,12 +419,21 @@ def _parse_goal(data: Any, name: str) -> Goal:
     )
 
 
-def _written_view_point(data: Any) -> Point3 | None:
-    """The position of a view point in the shape :func:`write_episodes` gives it (a split
-    holds hundreds of thousands), checked without the general path's per-field names; None
-    for any other shape."""
-    if type(data) is not dict or len(data) != 1:
+def _written_view_point(data: Any) -> ViewPoint | None:
+    """The view point of a JSON object in the shape :func:`write_episodes` gives it, checked
+    without the general path's per-field names; None for any other shape."""
+    if len(data) != 1:
         return None
+    state = data.get("agent_state")
+    if type(state) is not dict or len(state) != 1:
+        return None
+    position = state.get("position")
+    if type(position) is not list or len(position) != 3:
+        return None
+    x, y, z = position
+    if type(x) is float and type(y) is float and type(z) is float and math.isfinite(x + y + z):
+        return ViewPoint((x, y, z))  # a finite sum: each is finite
+    return None
     state = data.get("agent_state")
     if type(state) is not dict or len(state) != 1:
         return None
