@@ -1,6 +1,7 @@
-"""A full disk while writing a dataset or a training export is one WriteError line naming the
-file and the cause (files linked to /dev/full, where every write fails with ENOSPC), and
-what was written before stays for the rerun."""
+"""A full disk while writing a dataset, a training export, a scene export or a picture is one
+WriteError line naming the file and the cause (files linked to /dev/full, where every write
+fails with ENOSPC, or an fsync that fails so), and what was written before stays for the
+rerun; the commands print that line alone, with no traceback."""
 
 from __future__ import annotations
 
@@ -13,6 +14,7 @@ from typing import Any
 import numpy as np
 import pytest
 
+from vlln.cli import main
 from vlln.datagen.layout import JOURNAL_FILE
 from vlln.datagen.sft import export
 from vlln.datagen.sft.images import ImageStore, image_name
@@ -21,6 +23,7 @@ from vlln.errors import WriteError
 from vlln.prompt import ImageRef
 from vlln.prompt.images import stored_frame
 from vlln.sim.camera import CameraSpec
+from vlln.world.catalogue import default_catalogue
 
 
 def _full(path: Path) -> Path:
@@ -29,11 +32,19 @@ def _full(path: Path) -> Path:
     return path
 
 
-def _is_one_line_for(error: pytest.ExceptionInfo[WriteError], path: Path) -> None:
-    assert str(error.value) == (
+def _full_disk_line(path: Path) -> str:
+    return (
         f"cannot write {path}: No space left on device; free some space or make the folder "
         "writable, then run the same command again"
     )
+
+
+def _is_one_line_for(error: pytest.ExceptionInfo[WriteError], path: Path) -> None:
+    assert str(error.value) == _full_disk_line(path)
+
+
+def _no_space(fd: int) -> None:
+    raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
 
 
 def test_a_full_disk_at_a_journal_line_keeps_the_attempts_before(tmp_path: Path) -> None:
@@ -76,12 +87,30 @@ def test_a_full_disk_at_an_exported_image_is_one_line(tmp_path: Path) -> None:
 def test_a_failed_sft_jsonl_is_one_line_and_leaves_no_temporary_file(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    def full(fd: int) -> None:
-        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
-
-    monkeypatch.setattr(export.os, "fsync", full)
+    monkeypatch.setattr(export.os, "fsync", _no_space)
     path = tmp_path / "sft.jsonl"
     with pytest.raises(WriteError) as error, export._lines_atomic(path) as sink:
         sink.write("{}\n")
     _is_one_line_for(error, path)
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_full_disk_at_a_world_export_is_one_line_and_leaves_no_file(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    monkeypatch.setattr(os, "fsync", _no_space)
+    out = tmp_path / "scenes"
+    assert main(["world", "export", "--style", "mp3d", "--out", str(out)]) == 2
+    glb = out / "mp3d" / "house_00000" / "house_00000.glb"
+    assert capsys.readouterr().err == f"error: {_full_disk_line(glb)}\n"
+    assert [path for path in out.rglob("*") if path.is_file()] == []
+
+
+def test_a_full_disk_at_a_catalogue_picture_stops_the_command_with_one_line(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    first = next(iter(default_catalogue())).name.replace(" ", "_")
+    picture = _full(tmp_path / "catalogue" / f"{first}.png")
+    assert main(["world", "catalogue", "--out", str(picture.parent)]) == 2
+    assert capsys.readouterr().err == f"error: {_full_disk_line(picture)}\n"
+    assert list(picture.parent.iterdir()) == [picture]  # stopped at the first picture

@@ -1,5 +1,6 @@
 """An --out that cannot be written (under a regular file, or on a read-only file system) is one
-line naming the path and the fix, before any work, for eval, data build, data balance and report.
+line naming the path and the fix, before any work, for eval, data build, data balance, report,
+world export and world catalogue.
 
 The read-only place is /sys: sysfs refuses new entries to every user, root included (root
 ignores permission bits, so a chmod-ed folder would not fail under the tests' root)."""
@@ -24,6 +25,8 @@ COMMANDS = {
     "data build": ["data", "build", "--houses", "1", "--yes", "--out"],
     "data balance": ["data", "balance", "DATASET", "--out"],
     "report": ["report", "RUN", "--out"],
+    "world export": ["world", "export", "--style", "mp3d", "--out"],
+    "world catalogue": ["world", "catalogue", "--out"],
 }
 
 

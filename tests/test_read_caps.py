@@ -1,5 +1,6 @@
-"""Bounded reads: a gzip bomb, an endless ``--config`` and a file past its cap are one line that
-names the cap and how to raise it, read no further than the cap."""
+"""Bounded reads: a gzip bomb, an endless ``--config`` and a file past its cap (an episode or
+results file, a model's chat template, Matterport3D files, a recipe's agreement figures) are
+one line that names the cap and how to raise it, read no further than the cap."""
 
 from __future__ import annotations
 
@@ -8,10 +9,22 @@ from pathlib import Path
 
 import pytest
 
+from vlln.agents.local.encoding import ChatEncoder
+from vlln.bench.mp3d_connectivity import building_graph
+from vlln.bench.mp3d_house import house_stats
+from vlln.bench.recipe import recipe_figures
 from vlln.cli import main
 from vlln.errors import ConfigError, DataFormatError
 from vlln.eval.results import RESULTS_CAP, scan_records
 from vlln.tasks.episode import EPISODE_FILE_CAP, read_episodes
+
+
+def sparse(path: Path, mib: int) -> Path:
+    """A file of ``mib`` MiB and one byte of zeros that takes no disk."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with path.open("wb") as handle:
+        handle.truncate((mib << 20) + 1)
+    return path
 
 
 def bomb(path: Path, mib: int) -> Path:
@@ -53,8 +66,60 @@ def test_a_results_file_past_its_cap_is_one_line(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     monkeypatch.setenv(RESULTS_CAP.variable or "", "1")
-    path = tmp_path / "episodes.jsonl"
-    with path.open("wb") as handle:
-        handle.truncate((1 << 20) + 1)  # sparse: no disk used
     with pytest.raises(DataFormatError, match="VLLN_MAX_RESULTS_FILE_MB"):
-        scan_records(path)
+        scan_records(sparse(tmp_path / "episodes.jsonl", 1))
+
+
+@pytest.mark.parametrize("name", ["chat_template.jinja", "chat_template.json"])
+def test_a_chat_template_past_its_cap_is_one_line_before_the_model_loads(
+    tmp_path: Path, name: str
+) -> None:
+    path = sparse(tmp_path / "model" / name, 1)
+    with pytest.raises(DataFormatError) as info:
+        ChatEncoder.load(path.parent)
+    assert str(info.value) == (
+        f"{path} holds more than 1 MiB, the cap on a chat template; give the right file"
+    )
+
+
+def test_a_chat_template_that_is_not_text_is_one_line(tmp_path: Path) -> None:
+    path = tmp_path / "chat_template.json"
+    path.write_text('{"chat_template": 5}')
+    with pytest.raises(DataFormatError) as info:
+        ChatEncoder.load(tmp_path)
+    assert str(info.value) == (
+        f"{path} is not a chat template (its chat_template is not text); use a Qwen-VL "
+        "instruct checkpoint or one saved by vlln train sft"
+    )
+
+
+def test_a_connectivity_file_past_its_cap_is_one_line(tmp_path: Path) -> None:
+    path = sparse(tmp_path / "scan_connectivity.json", 16)
+    with pytest.raises(DataFormatError) as info:
+        building_graph(path)
+    assert str(info.value) == (
+        f"{path} holds more than 16 MiB, the cap on a connectivity file; give the right file"
+    )
+
+
+def test_a_house_file_past_its_cap_says_how_to_raise_it(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setenv("VLLN_MAX_SCAN_ANNOTATION_MB", "1")
+    path = sparse(tmp_path / "scan.house", 1)
+    with pytest.raises(DataFormatError) as info:
+        house_stats(path)
+    assert str(info.value) == (
+        f"{path} holds more than 1 MiB, the cap on a scan's annotation file; "
+        "set VLLN_MAX_SCAN_ANNOTATION_MB to more MiB if the file is right"
+    )
+
+
+def test_an_agreement_file_past_its_cap_is_one_line(tmp_path: Path) -> None:
+    (tmp_path / "eval").mkdir()
+    path = sparse(tmp_path / "agreement" / "100-train.jsonl", 1)
+    with pytest.raises(DataFormatError) as info:
+        recipe_figures(tmp_path)
+    assert str(info.value) == (
+        f"{path} holds more than 1 MiB, the cap on an agreement file; give the right file"
+    )

@@ -188,7 +188,7 @@ def test_the_command_line_names_bad_settings_in_one_line(
     (tmp_path / "file").write_text("not a folder")
     source = ["--episode-file", str(study.episode_file)]
     assert main(["serve", "web", *source, "--out", str(tmp_path / "file")]) == 2
-    assert "is a file; give a folder" in capsys.readouterr().err
+    assert "is a file, not a folder; give a folder" in capsys.readouterr().err
     assert main(["serve", "web", *source, "--out", str(tmp_path / "a"), "--host", "0.0.0.0"]) == 2
     assert "needs an access token: set VLLN_WEB_TOKEN" in capsys.readouterr().err
     (tmp_path / "b").mkdir()

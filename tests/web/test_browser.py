@@ -1,11 +1,13 @@
-"""The real pages in headless Chromium: a person navigates, a person answers an agent, and
-two people play one episode from two browsers. Screenshots go to out/web-screenshots/."""
+"""The real pages in headless Chromium: a person navigates, a person leaves an episode, a
+person answers an agent, and two people play one episode from two browsers. Screenshots go to
+out/web-screenshots/."""
 
 from __future__ import annotations
 
 import json
 import os
 from collections.abc import Iterator
+from pathlib import Path
 from typing import Any
 
 import pytest
@@ -13,9 +15,10 @@ from playwright.sync_api import Browser, Page, Response, sync_playwright
 
 from vlln.cli import main
 from vlln.eval.results import load_run_records
+from vlln.web.config import WebConfig
 
 from .browser import CHROMIUM, CHROMIUM_ARGS, KEY_OF, SCREENSHOTS
-from .conftest import Served, Study
+from .conftest import START_TIMEOUT, Served, Study, start_server
 
 PRIVILEGED_KEYS = {
     "target",
@@ -131,6 +134,50 @@ def test_a_person_reaches_the_target_and_the_record_scores_as_a_success(
     assert groups["human:p01"]["budgets"]["5"]["overall"]["sr"] == 100.0
     (record,) = [r for r in load_run_records([served.config.out]) if r.agent == "human:p01"]
     assert record.oracle == "rules" and record.dialog[0].backend == "rules"
+
+
+@pytest.fixture
+def one_slot(study: Study, tmp_path: Path) -> Iterator[Served]:
+    """A server that lets one session be played at a time."""
+    config = WebConfig(episodes=tuple(study.episodes), out=tmp_path / "web", max_live_sessions=1)
+    url, server, thread = start_server(config)
+    yield Served(url, config)
+    server.should_exit = True  # type: ignore[attr-defined]
+    thread.join(timeout=START_TIMEOUT)
+
+
+@pytest.mark.slow
+def test_a_person_who_leaves_ends_the_episode_and_frees_the_slot_at_once(
+    browser: Browser, one_slot: Served
+) -> None:
+    lobby = browser.new_page(bypass_csp=True)
+    codes = _start(lobby, one_slot, "human", "p33", "rules", 0)
+    lobby.fill("#participant", "p34")
+    lobby.click("#create")
+    lobby.wait_for_selector("#create-error:has-text('the limit is 1')")
+
+    page = browser.new_page(bypass_csp=True, viewport={"width": 1280, "height": 800})
+    page.goto(f"{one_slot.url}/navigate#{codes['navigator']}")
+    page.wait_for_function("document.querySelector('#forward').disabled === false", timeout=WAIT_MS)
+    page.once("dialog", lambda dialog: dialog.accept())  # "Leave this episode? ..."
+    page.click("#leave")
+    page.wait_for_selector("#result:not(.hidden)", timeout=WAIT_MS)
+    assert page.text_content("#result") == "This episode was recorded as abandoned."
+    assert page.text_content("#status") == "The episode is over. Thank you!"
+    assert page.is_disabled("#leave") and page.is_disabled("#forward")
+    page.close()
+
+    lobby.reload()
+    lobby.wait_for_selector("#overview:has-text('Sessions')")
+    assert "Sessions: 0 live, 0 finished, 1 abandoned." in (lobby.text_content("#overview") or "")
+    again = _start(lobby, one_slot, "human", "p34", "rules", 1)
+    assert again["navigator"] not in ("", codes["navigator"])
+    assert lobby.text_content("#create-error") == ""
+    lobby.close()
+    (record,) = load_run_records([one_slot.config.out])
+    assert (
+        record.agent == "human:p33" and record.error == "abandoned: the navigator ended the session"
+    )
 
 
 @pytest.mark.slow

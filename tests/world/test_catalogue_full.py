@@ -145,5 +145,5 @@ def test_the_contact_sheet_tiles_every_category(tmp_path: Path) -> None:
 
 def test_the_sheet_wants_a_folder(tmp_path: Path) -> None:
     (tmp_path / "file").write_text("")
-    with pytest.raises(ConfigError, match="is a file, not a directory"):
+    with pytest.raises(ConfigError, match="is a file, not a folder"):
         write_catalogue_sheet(default_catalogue(), tmp_path / "file")

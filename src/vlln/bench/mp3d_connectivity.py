@@ -21,6 +21,7 @@ from scipy.sparse.csgraph import shortest_path
 
 from vlln.bench.settings import Mp3dConnectivityBench
 from vlln.errors import DataFormatError
+from vlln.files import ReadCap, parse_json
 
 # Panoramas of one floor lie within a few centimetres of the same floor height; stair panoramas
 # sit alone at heights in between. Heights closer than FLOOR_GAP_M form one floor, a floor needs
@@ -29,6 +30,8 @@ from vlln.errors import DataFormatError
 FLOOR_GAP_M = 0.3
 MIN_PANORAMAS_PER_FLOOR = 3
 STOREY_HEIGHT_M = 1.5
+# The largest building's graph (a few hundred panoramas, each listing all the others) is a few MB.
+CONNECTIVITY_CAP = ReadCap("a connectivity file", 16)
 
 
 @dataclass(frozen=True)
@@ -63,7 +66,13 @@ def storeys(floor_z: list[float]) -> int:
 def building_graph(path: Path) -> BuildingGraph:
     """Read one connectivity file; walking distance = shortest path over navigable transitions."""
     try:
-        nodes = json.loads(path.read_text(encoding="utf-8"))
+        data = CONNECTIVITY_CAP.read(path)
+    except OSError as err:
+        raise DataFormatError(
+            f"{path}: cannot read ({err.strerror}); give connectivity/<scan>_connectivity.json"
+        ) from None
+    try:
+        nodes = parse_json(data)
         included = [i for i, node in enumerate(nodes) if node["included"]]
         position = np.array([[nodes[i]["pose"][k] for k in (3, 7, 11)] for i in included])
         floor_z = [float(nodes[i]["pose"][11] - nodes[i]["height"]) for i in included]
@@ -73,7 +82,7 @@ def building_graph(path: Path) -> BuildingGraph:
             for b, j in enumerate(included)
             if a < b and nodes[i]["unobstructed"][j]
         ]
-    except (OSError, ValueError, KeyError, IndexError, TypeError) as err:
+    except (ValueError, KeyError, IndexError, TypeError) as err:
         raise DataFormatError(
             f"{path}: not a Matterport3D Simulator connectivity file ({err!r}); give "
             "connectivity/<scan>_connectivity.json"

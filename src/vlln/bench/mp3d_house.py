@@ -16,6 +16,7 @@ from pathlib import Path
 
 from vlln.bench.settings import Mp3dHouseBench
 from vlln.errors import DataFormatError
+from vlln.world.scans.checks import ANNOTATION_CAP
 
 HEADER = "ASCII 1.1"
 
@@ -70,7 +71,7 @@ def _repeated_share(counts: Counter[str]) -> float:
 def house_stats(path: Path) -> HouseStats:
     """Read one ``.house`` file; a malformed one raises DataFormatError naming file and line."""
     try:
-        lines = path.read_text(encoding="ascii", errors="replace").splitlines()
+        lines = ANNOTATION_CAP.read(path).decode("ascii", errors="replace").splitlines()
     except OSError as err:
         raise DataFormatError(
             f"{path}: cannot read ({err.strerror}); give a readable .house file"

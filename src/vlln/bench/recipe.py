@@ -18,7 +18,6 @@ This prints, as Markdown:
 
 from __future__ import annotations
 
-import json
 import statistics
 from collections import Counter
 from collections.abc import Sequence
@@ -32,8 +31,9 @@ from vlln.bench.fidelity import (
     success_interval,
 )
 from vlln.bench.settings import RecipeFigures
-from vlln.errors import ConfigError
+from vlln.errors import ConfigError, DataFormatError
 from vlln.eval.results import load_run_records
+from vlln.files import ReadCap, parse_json
 from vlln.tasks.metrics import record_spl, success
 from vlln.tasks.record import EpisodeRecord
 from vlln.tasks.taxonomy import CLASS_ABBREVIATIONS, FAILURE_CLASSES, SUCCESS, classify
@@ -41,6 +41,8 @@ from vlln.tasks.taxonomy import CLASS_ABBREVIATIONS, FAILURE_CLASSES, SUCCESS, c
 AGENTS = ("model", "random", "fbe", "teacher")
 TASKS = ("iign", "objectnav")
 SPLITS = ("train", "heldout")  # the agreement files' suffixes
+# An agreement file is a few lines of figures.
+_AGREEMENT_CAP = ReadCap("an agreement file", 1)
 
 
 def print_recipe_figures(settings: RecipeFigures) -> None:
@@ -94,10 +96,16 @@ def _curve(out: Path) -> list[str]:
 
 def _agreement(path: Path) -> str:
     """The ``action_agreement`` figure of a ``vlln bench agreement --json`` output."""
-    for line in path.read_text(encoding="utf-8").splitlines():
-        figure = json.loads(line)
-        if figure.get("metric") == "action_agreement":
-            return f"{float(figure['value']):.1f}"
+    for line in _AGREEMENT_CAP.read(path).splitlines():
+        try:
+            figure = parse_json(line)
+            if figure.get("metric") == "action_agreement":
+                return f"{float(figure['value']):.1f}"
+        except (ValueError, AttributeError, KeyError, TypeError) as error:
+            raise DataFormatError(
+                f"{path} is not an output of vlln bench agreement --json ({error}); "
+                "run vlln bench agreement again"
+            ) from None
     raise ConfigError(f"{path} has no action_agreement figure; run vlln bench agreement again")
 
 

@@ -48,9 +48,11 @@ def _world_show(command: ShowCommand) -> int:
 
 
 def _world_export(command: ExportCommand) -> int:
+    from vlln.files import check_output_folder
     from vlln.world.generator import generate_house, parameters_from_overrides
     from vlln.world.scans import export_scene, with_subdivided_mesh
 
+    check_output_folder(command.out)
     house = generate_house(command.seed, parameters_from_overrides(command.overrides))
     if command.subdivide:
         house = with_subdivided_mesh(house, command.subdivide)

@@ -16,7 +16,7 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 
 from vlln.eval.run_dir import REFUSED_FILE
-from vlln.files import ReadCap, parse_json
+from vlln.files import ReadCap, parse_json, writing
 
 # A refusal line is about 200 bytes, and a run refuses at most its planned episodes.
 _REFUSALS_CAP = ReadCap("a run's refusals file", 64)
@@ -70,7 +70,8 @@ def append_refusals(run_dir: Path, refusals: Iterable[Refusal]) -> None:
     text = "".join(json.dumps(asdict(refusal)) + "\n" for refusal in refusals)
     if not text:
         return
-    with (run_dir / REFUSED_FILE).open("a", encoding="utf-8") as handle:
+    path = run_dir / REFUSED_FILE
+    with writing(path), path.open("a", encoding="utf-8") as handle:
         handle.write(text)
         handle.flush()
         os.fsync(handle.fileno())

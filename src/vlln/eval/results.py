@@ -190,7 +190,7 @@ def _repair(path: Path, scan: RecordScan) -> None:
         return
     if any(skipped.kind == "torn" for skipped in scan.skipped):
         with path.open("r+b") as handle:
-            handle.truncate(path.read_bytes().rfind(b"\n") + 1)
+            handle.truncate(RESULTS_CAP.read(path).rfind(b"\n") + 1)
             handle.flush()
             os.fsync(handle.fileno())
     elif scan.newline_missing:

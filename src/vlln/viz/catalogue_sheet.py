@@ -16,7 +16,7 @@ import numpy as np
 from numpy.typing import NDArray
 from PIL import Image, ImageDraw
 
-from vlln.errors import ConfigError
+from vlln.files import check_output_folder, writing
 from vlln.sim.camera import CameraSpec
 from vlln.sim.renderer import Renderer
 from vlln.viz.frames import save_png
@@ -106,13 +106,14 @@ def _setting(category: Category, lo: NDArray[np.float64], hi: NDArray[np.float64
 
 def write_catalogue_sheet(catalogue: Catalogue, out: Path, columns: int = COLUMNS) -> Path:
     """Render every category to ``out/<name>.png`` and tile them, labelled, into
-    ``out/catalogue.png``; returns the sheet's path."""
-    if out.exists() and not out.is_dir():
-        raise ConfigError(f"--out {out} is a file, not a directory; give a directory")
-    out.mkdir(parents=True, exist_ok=True)
-    views = [render_category(category) for category in catalogue]
-    for view in views:
+    ``out/catalogue.png``; returns the sheet's path. Each picture is written as soon as it is
+    rendered, so a full disk stops the command at once."""
+    check_output_folder(out)
+    views: list[CategoryView] = []
+    for category in catalogue:
+        view = render_category(category)
         save_png(view.rgb, out / f"{view.name.replace(' ', '_')}.png")
+        views.append(view)
     rows = math.ceil(len(views) / columns)
     cell_w, cell_h = THUMB[0], THUMB[1] + LABEL_HEIGHT
     sheet = Image.new("RGB", (columns * cell_w, rows * cell_h), "white")
@@ -126,5 +127,6 @@ def write_catalogue_sheet(catalogue: Catalogue, out: Path, columns: int = COLUMN
             label = view.name
         draw.text((x + 4, y + 2), label, fill="black")
     path = out / "catalogue.png"
-    sheet.save(path)
+    with writing(path):
+        sheet.save(path)
     return path

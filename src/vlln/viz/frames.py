@@ -9,6 +9,7 @@ from matplotlib import colormaps
 from numpy.typing import NDArray
 from PIL import Image
 
+from vlln.files import writing
 from vlln.world.model import StructureId
 
 _STRUCTURE_COLORS = {
@@ -44,5 +45,7 @@ def instance_image(ids: NDArray[np.int32]) -> NDArray[np.uint8]:
 
 
 def save_png(image: NDArray[np.uint8], path: Path) -> None:
-    path.parent.mkdir(parents=True, exist_ok=True)
-    Image.fromarray(image).save(path)
+    """Write ``image`` as a PNG; a full disk or a read-only folder is one WriteError line."""
+    with writing(path):
+        path.parent.mkdir(parents=True, exist_ok=True)
+        Image.fromarray(image).save(path)

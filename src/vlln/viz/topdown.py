@@ -15,6 +15,7 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 from matplotlib.patches import Polygon, Rectangle
 
+from vlln.files import writing
 from vlln.sim.navgrid import NavGrid
 from vlln.sim.storeys import Storeys
 from vlln.viz.labels import declutter
@@ -208,7 +209,10 @@ def house_figure(
 
 
 def save_house_map(house: House, path: Path, grid: NavGrid | Storeys | None = None) -> None:
-    path.parent.mkdir(parents=True, exist_ok=True)
     fig = house_figure(house, grid)
-    fig.savefig(path, dpi=150)
-    plt.close(fig)
+    try:
+        with writing(path):
+            path.parent.mkdir(parents=True, exist_ok=True)
+            fig.savefig(path, dpi=150)
+    finally:
+        plt.close(fig)

@@ -21,7 +21,7 @@ from pathlib import Path
 from typing import IO, Any
 
 from vlln.errors import DataFormatError
-from vlln.files import ReadCap, parse_json
+from vlln.files import ReadCap, parse_json, writing
 from vlln.tasks.oracle_protocol import QuestionType, Reply
 
 JOURNAL_FOLDER = "sessions"
@@ -75,12 +75,13 @@ class Journal:
     """Appends one session's lines (module doc)."""
 
     def __init__(self, folder: Path, spec: SessionSpec) -> None:
-        folder.mkdir(parents=True, exist_ok=True)
         self.path = folder / f"{spec.session_id}.jsonl"
-        fresh = not self.path.exists()
-        if not fresh:
-            _cut_torn_line(self.path)
-        self._handle: IO[bytes] = self.path.open("ab")
+        with writing(self.path):
+            folder.mkdir(parents=True, exist_ok=True)
+            fresh = not self.path.exists()
+            if not fresh:
+                _cut_torn_line(self.path)
+            self._handle: IO[bytes] = self.path.open("ab")
         if fresh:
             self._write({"kind": "session", **asdict(spec)}, durable=True)
 
@@ -101,10 +102,11 @@ class Journal:
         self._handle.close()
 
     def _write(self, data: dict[str, Any], durable: bool = False) -> None:
-        self._handle.write((json.dumps(data, separators=(",", ":")) + "\n").encode("utf-8"))
-        self._handle.flush()
-        if durable:
-            os.fsync(self._handle.fileno())
+        with writing(self.path):
+            self._handle.write((json.dumps(data, separators=(",", ":")) + "\n").encode("utf-8"))
+            self._handle.flush()
+            if durable:
+                os.fsync(self._handle.fileno())
 
 
 def _cut_torn_line(path: Path) -> None:

@@ -23,7 +23,13 @@ from typing import Any
 from vlln.errors import ConfigError, DataFormatError
 from vlln.eval.results import RecordKey, RecordWriter, RunDirectory, record_key
 from vlln.eval.run_dir import episodes_file
-from vlln.files import ReadCap, parse_json, refuse_other_settings, write_text_atomic
+from vlln.files import (
+    ReadCap,
+    check_output_folder,
+    parse_json,
+    refuse_other_settings,
+    write_text_atomic,
+)
 from vlln.tasks.episode import Episode
 from vlln.tasks.record import EpisodeRecord
 from vlln.web.changes import ChangeSignal
@@ -81,8 +87,7 @@ class SessionStore:
     def open(self) -> None:
         """Take the folder, check its settings, and resume or record the episodes in flight."""
         out = self.config.out
-        if out.exists() and not out.is_dir():
-            raise ConfigError(f"--out {out} is a file; give a folder for the study's records")
+        check_output_folder(out)
         out.mkdir(parents=True, exist_ok=True)
         self._check_settings()
         self._writer = self._exit.enter_context(RunDirectory(out).writing())

@@ -12,7 +12,6 @@ steps are done here with the model's own tokenizer, image processor and chat tem
 
 from __future__ import annotations
 
-import json
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass
@@ -20,7 +19,8 @@ from itertools import accumulate
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from vlln.errors import ConfigError
+from vlln.errors import ConfigError, DataFormatError
+from vlln.files import ReadCap, parse_json
 from vlln.prompt import IMAGE_TAG, Turn
 
 if TYPE_CHECKING:
@@ -32,6 +32,8 @@ IMAGE_PAD = "<|image_pad|>"
 ASSISTANT_HEADER = "<|im_start|>assistant\n"
 END_OF_TURN = "<|im_end|>"
 _ROLES = {"human": "user", "gpt": "assistant"}
+# Qwen-VL chat templates are a few KB of Jinja.
+CHAT_TEMPLATE_CAP = ReadCap("a chat template", 1)
 
 Turns = Sequence[Turn]
 
@@ -85,13 +87,21 @@ class ChatEncoder:
     @classmethod
     def load(cls, model_dir: str | Path, max_pixels: int | None = None) -> ChatEncoder:
         """``max_pixels`` caps the pixels of every image (fewer vision tokens)."""
+        saved = _saved_template(Path(model_dir))  # first: the tokenizer's loader reads it whole
         from transformers import AutoImageProcessor, AutoTokenizer
 
         options = {} if max_pixels is None else {"max_pixels": max_pixels}
         with model_loading(model_dir):
             tokenizer = AutoTokenizer.from_pretrained(model_dir)
             image_processor = AutoImageProcessor.from_pretrained(model_dir, **options)
-        return cls(tokenizer, image_processor, _chat_template(Path(model_dir), tokenizer))
+        template = getattr(tokenizer, "chat_template", None) or saved
+        if not template:
+            raise ConfigError(
+                f"{model_dir} has no chat template (tokenizer_config.json, chat_template.jinja or "
+                "chat_template.json); use a Qwen-VL instruct checkpoint or one saved by vlln "
+                "train sft"
+            )
+        return cls(tokenizer, image_processor, str(template))
 
     def save(self, out_dir: str | Path) -> None:
         """Write the tokenizer, image processor and template beside a saved model."""
@@ -212,17 +222,28 @@ def _token_id(tokenizer: Any, token: str) -> int:
     return int(token_id)
 
 
-def _chat_template(model_dir: Path, tokenizer: Any) -> str:
-    """The template from the tokenizer, or from the processor's files beside it."""
-    if getattr(tokenizer, "chat_template", None):
-        return str(tokenizer.chat_template)
-    jinja = model_dir / "chat_template.jinja"
-    if jinja.is_file():
-        return jinja.read_text(encoding="utf-8")
-    document = model_dir / "chat_template.json"
-    if document.is_file():
-        return str(json.loads(document.read_text(encoding="utf-8"))["chat_template"])
-    raise ConfigError(
-        f"{model_dir} has no chat template (tokenizer_config.json, chat_template.jinja or "
-        "chat_template.json); use a Qwen-VL instruct checkpoint or one saved by vlln train sft"
-    )
+def _saved_template(model_dir: Path) -> str | None:
+    """The chat template saved beside a model's tokenizer (``chat_template.jinja``) or
+    processor (``chat_template.json``), if any."""
+    for name in ("chat_template.jinja", "chat_template.json"):
+        if (model_dir / name).is_file():
+            return _template_file(model_dir / name)
+    return None
+
+
+def _template_file(path: Path) -> str:
+    """A ``.jinja`` template, or a ``.json`` one holding it as ``chat_template``: untrusted, as
+    a model folder may come from anywhere, so read to :data:`CHAT_TEMPLATE_CAP`."""
+    data = CHAT_TEMPLATE_CAP.read(path)
+    try:
+        if path.suffix == ".jinja":
+            return data.decode("utf-8")
+        template = parse_json(data)["chat_template"]
+        if not isinstance(template, str):
+            raise TypeError("its chat_template is not text")
+        return template
+    except (UnicodeDecodeError, DataFormatError, KeyError, TypeError) as error:
+        raise DataFormatError(
+            f"{path} is not a chat template ({error}); use a Qwen-VL instruct checkpoint or "
+            "one saved by vlln train sft"
+        ) from None

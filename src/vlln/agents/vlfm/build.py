@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import Any
 
 from vlln.errors import VllnError
+from vlln.files import write_text_atomic
 from vlln.tasks.splits import SPLIT_SIZES, house_seeds
 from vlln.world.generator.presets import DEFAULT_PRESET, generate_preset_house
 from vlln.world.model import House
@@ -71,8 +72,8 @@ def build(houses: int, preset: str) -> dict[str, Any]:
 
 
 def write(prior: dict[str, Any], out: Path) -> None:
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(json.dumps(prior, indent=None, separators=(",", ":")) + "\n")
+    """Atomically: the agent reads this file at every start, so a cut-off one must never stay."""
+    write_text_atomic(out, json.dumps(prior, indent=None, separators=(",", ":")) + "\n")
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -19,7 +19,7 @@ import trimesh
 from numpy.typing import NDArray
 
 from vlln.errors import DataFormatError
-from vlln.files import parse_json
+from vlln.files import parse_json, write_bytes_atomic
 
 FloatArray = NDArray[np.float64]
 
@@ -133,5 +133,4 @@ def write_glb(path: Path, triangles: NDArray[np.floating], colours: NDArray[np.f
         vertex_colors=np.round(np.clip(rgba, 0.0, 1.0) * 255).astype(np.uint8),
         process=False,
     )
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_bytes(trimesh.exchange.gltf.export_glb(trimesh.Scene(mesh)))
+    write_bytes_atomic(path, trimesh.exchange.gltf.export_glb(trimesh.Scene(mesh)))

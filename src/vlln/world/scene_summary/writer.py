@@ -33,7 +33,6 @@ def export_scene_summary(house: House, out_dir: str | Path) -> Path:
             "without path separators"
         )
     scene_dir = Path(out_dir) / name
-    scene_dir.mkdir(parents=True, exist_ok=True)
     write_text_atomic(scene_dir / OBJECT_DICT_FILE, _to_json(_object_dict(house)))
     write_text_atomic(scene_dir / REGION_DICT_FILE, _to_json(_region_dict(house)))
     return scene_dir
