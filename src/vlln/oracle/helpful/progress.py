@@ -42,10 +42,7 @@ def answer_passed(
     where = f"it is {distance_words(now)} away, {_direction(knowledge, state)}"
     nearest = min((_walking(knowledge, p) for p in path[:-1]), default=math.inf)
     if nearest <= PASSED_NEAR and now >= nearest + PASSED_MARGIN:
-        return (
-            f"Yes, you passed the {category}: you were within {distance_words(nearest)} of it. "
-            f"Now {where}."
-        )
+        return f"Yes, you passed the {category}: you walked right by it. Now {where}."
     return f"No, you have not passed it: {where}."
 
 
