@@ -184,6 +184,8 @@ def test_comparison_names_the_side_distance_and_colour_of_the_target(
         if mine != theirs:
             answer = _ask(oracle, state, frame, f"is it the {theirs} one or the {mine} one?")
             assert answer.answer == f"It is the {mine} one.", answer.answer
+            asked = _ask(oracle, state, frame, f"Is it the {theirs} one?").answer
+            assert asked == f"No, it is the {mine} one.", asked
         checked += 1
     assert checked >= 3
 

@@ -38,9 +38,9 @@ def answer_comparison(
     if target is None:
         where = _where(knowledge, state)
         if not candidates:
-            return f"I can't tell from here: no {category} is in your view. {where}"
+            return f"I can't tell from here: no {category} is in your view. {where}".rstrip()
         none = "Neither" if len(candidates) == 2 else "None of them"
-        return f"{none}: the {category} I mean is not in your view. {where}"
+        return f"{none}: the {category} I mean is not in your view. {where}".rstrip()
     if len(candidates) == 1:
         return (
             f"Only one {category} is in your view, and it is the one I mean: it is "
@@ -81,7 +81,7 @@ def _told_apart(
             return "", f"{fallback} (I do not know its colour)"
         shared = any(c.instance.attributes.color == color for c in candidates if c is not target)
         phrase = f"the {color} one" + (f", {fallback}" if shared else "")
-        if request.asked and color not in request.asked:
+        if len(request.asked) > 1 and color not in request.asked:
             return color, f"neither: {phrase}"
         return color, phrase
     return "", fallback
@@ -93,7 +93,8 @@ def answer_confirmation(knowledge: EpisodeKnowledge, state: AgentState, frame: F
     target = target_among(knowledge, candidates)
     category = knowledge.target.category
     if not candidates:
-        return f"I can't tell from here: no {category} is in your view. {_where(knowledge, state)}"
+        where = _where(knowledge, state)
+        return f"I can't tell from here: no {category} is in your view. {where}".rstrip()
     if target is None:
         seen = f"the {category}" if len(candidates) == 1 else f"none of the {plural(category)}"
         verb = "is not" if len(candidates) == 1 else "is"
