@@ -38,7 +38,16 @@ def test_the_oracle_comes_from_the_record_or_its_answers() -> None:
     assert oracle_kind(_record("frontier", None, True)) == "rule"
     assert oracle_kind(_record("frontier", None, True, backend="openai:gpt-4o@x")) == "LLM"
     assert oracle_kind(_record("frontier with human oracle", "human", True)) == "human"
+    assert oracle_kind(_record("frontier", None, True, backend="helpful")) == "helpful"
     assert not involves_people([_record("frontier", None, True)])
+
+
+def test_the_helpful_oracle_has_a_column_only_where_it_answered() -> None:
+    records = [_record("human:p1", "rules", True), _record("human:p2", "helpful", False)]
+    table = cross_table(records)
+    assert table.header[-1] == "helpful oracle"
+    assert table.rows[0][-1] == "0.0 (n=1)"
+    assert "helpful oracle" not in cross_table(records[:1]).header
 
 
 def test_the_cross_table_counts_each_pairing(tmp_path: Path) -> None:

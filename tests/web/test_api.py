@@ -160,7 +160,8 @@ def test_a_person_asks_the_language_model_oracle(study: Study, tmp_path: Path) -
         llm = OpenAISettings(model="scripted-oracle", base_url=chat.base_url, max_retries=0)
         config = WebConfig(episodes=tuple(study.episodes), out=tmp_path / "a", llm=llm)
         with TestClient(create_app(config)) as client:
-            assert client.get("/api/lobby").json()["oracles"] == ["rules", "llm", "human"]
+            oracles = client.get("/api/lobby").json()["oracles"]
+            assert oracles == ["rules", "helpful", "llm", "human"]
             body = {"navigator": "human", "participant": "p40", "oracle": "llm"}
             headers = {
                 "X-Session-Code": client.post("/api/sessions", json=body).json()["navigator_code"]
@@ -180,6 +181,29 @@ def test_a_person_asks_the_language_model_oracle(study: Study, tmp_path: Path) -
     (record,) = load_run_records([config.out])
     assert record.agent == "human:p40 with llm oracle" and record.oracle == "llm"
     assert record.dialog[0].backend.startswith("openai:scripted-oracle")
+
+
+def test_a_person_asks_the_helpful_oracle(study: Study, tmp_path: Path) -> None:
+    config = WebConfig(episodes=tuple(study.episodes), out=tmp_path / "a")
+    with TestClient(create_app(config)) as client:
+        assert client.get("/api/lobby").json()["oracles"] == ["rules", "helpful", "human"]
+        body = {"navigator": "human", "participant": "p41", "oracle": "helpful"}
+        headers = {
+            "X-Session-Code": client.post("/api/sessions", json=body).json()["navigator_code"]
+        }
+        view = client.get("/api/navigator", headers=headers).json()
+        while view["status"] != "playing":
+            view = client.get(f"/api/navigator?after={view['version']}", headers=headers).json()
+        asked = client.post(
+            "/api/navigator/ask", json={"question": "Should I go upstairs?"}, headers=headers
+        )
+        assert asked.json()["dialog"][0]["answer"].endswith(
+            "This house has one floor, and it is on it."
+        )
+        client.post("/api/navigator/act", json={"action": "stop"}, headers=headers)
+    (record,) = load_run_records([config.out])
+    assert record.agent == "human:p41 with helpful oracle" and record.oracle == "helpful"
+    assert (record.dialog[0].backend, record.dialog[0].help_kind) == ("helpful", "floor")
 
 
 def test_the_command_line_names_bad_settings_in_one_line(

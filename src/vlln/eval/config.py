@@ -176,9 +176,10 @@ class EvalConfig(Config):
     (demo, fast tests)"""
     scenes: AbsolutePath = None
     """folder of scanned scenes (<scenes>/<scene>/) the episode file names"""
-    oracle: Literal["rules", "llm"] = "rules"
-    """who answers questions: rules (offline) or llm (the paper's language-model oracle over
-    an OpenAI-compatible server; needs --oracle-model)"""
+    oracle: Literal["rules", "llm", "helpful"] = "rules"
+    """who answers questions: rules (offline), llm (the paper's language-model oracle over
+    an OpenAI-compatible server; needs --oracle-model) or helpful (offline: the rule
+    oracle's answers and grounded help beyond them)"""
     oracle_model: str | None = None
     """--oracle llm: the served model's name, e.g. gpt-4o"""
     oracle_base_url: str | None = None

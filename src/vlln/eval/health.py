@@ -34,7 +34,7 @@ FAILURE_KINDS: dict[str, FailureCounter] = {
 """Failure kind -> how many times one episode record shows it."""
 
 _EXAMPLES = 3  # skipped lines named in the one-line statement
-_NOT_A_MODEL = ("rules", "offline", "none")  # dialog-turn backends that never fall back
+_NOT_A_MODEL = ("rules", "helpful", "offline", "none")  # dialog-turn backends that never fall back
 
 
 @dataclass(frozen=True)

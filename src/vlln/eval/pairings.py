@@ -3,8 +3,9 @@
 The paper's strongest finding is the gap between people and agents, measured with people as
 navigators and as oracles. A record's navigator is a person when its agent label starts with
 ``human`` (the web app's ``human:<participant>``); its oracle is the record's ``oracle`` field
-(rules, llm, human) or, for records without one (``vlln eval``), read from the backends of
-its answered turns: the rule oracle unless a language model answered.
+(rules, llm, human, helpful) or, for records without one (``vlln eval``), read from the
+backends of its answered turns: the rule oracle unless a language model or the helpful
+oracle answered.
 """
 
 from __future__ import annotations
@@ -18,7 +19,7 @@ from vlln.tasks.record import EpisodeRecord
 
 NAVIGATORS = ("human", "agent")
 ORACLES = ("human", "rule", "LLM")
-_ORACLE_NAMES = {"rules": "rule", "llm": "LLM", "human": "human"}
+_ORACLE_NAMES = {"rules": "rule", "llm": "LLM", "human": "human", "helpful": "helpful"}
 
 
 def navigator_kind(record: EpisodeRecord) -> str:
@@ -26,7 +27,7 @@ def navigator_kind(record: EpisodeRecord) -> str:
 
 
 def oracle_kind(record: EpisodeRecord) -> str:
-    """``human``, ``rule`` or ``LLM``; ``none`` for an episode without dialog."""
+    """``human``, ``rule``, ``LLM`` or ``helpful``; ``none`` for an episode without dialog."""
     if record.budget == 0:
         return "none"
     if record.oracle is not None:
@@ -34,6 +35,8 @@ def oracle_kind(record: EpisodeRecord) -> str:
     backends = {turn.backend for turn in record.dialog if turn.answered}
     if "human" in backends:
         return "human"
+    if "helpful" in backends:
+        return "helpful"
     return "LLM" if backends - {"rules"} else "rule"
 
 
@@ -42,18 +45,21 @@ def involves_people(records: Sequence[EpisodeRecord]) -> bool:
 
 
 def cross_table(records: Sequence[EpisodeRecord], success_radius: float = SUCCESS_RADIUS) -> Table:
-    """SR (and episode count) per navigator kind and oracle kind; ``–`` where none played."""
+    """SR (and episode count) per navigator kind and oracle kind; ``–`` where none played.
+    The helpful oracle, this benchmark's extension, has a column only where it answered."""
+    helpful = any(oracle_kind(record) == "helpful" for record in records)
+    oracles = (*ORACLES, "helpful") if helpful else ORACLES
     rows = []
     for navigator in NAVIGATORS:
         row = [f"{navigator} navigator"]
-        for oracle in ORACLES:
+        for oracle in oracles:
             cell = [
                 r for r in records if navigator_kind(r) == navigator and oracle_kind(r) == oracle
             ]
             wins = sum(success(r, success_radius) for r in cell)
             row.append(f"{100.0 * wins / len(cell):.1f} (n={len(cell)})" if cell else "–")
         rows.append(row)
-    return Table(["SR % (episodes)", *(f"{oracle} oracle" for oracle in ORACLES)], rows)
+    return Table(["SR % (episodes)", *(f"{oracle} oracle" for oracle in oracles)], rows)
 
 
 def people_section(

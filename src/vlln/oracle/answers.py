@@ -164,10 +164,11 @@ def room_phrase(
     polygon = np.asarray(room.polygon)
     cx, cz = polygon.mean(axis=0)
     angle = math.degrees(wrap_angle(yaw_of(float(cx) - x, float(cz) - z) - state.yaw))
-    return f"the {name} {_direction_words(angle)}"
+    return f"the {name} {direction_words(angle)}"
 
 
-def _direction_words(angle: float) -> str:
+def direction_words(angle: float) -> str:
+    """Where a thing at ``angle`` degrees from the heading (left positive) lies: "behind you"."""
     if abs(angle) <= 45.0:
         return "ahead of you"
     if abs(angle) >= 135.0:
@@ -302,7 +303,7 @@ def answer_other(
         return CANNOT_ANSWER
     if distance < knowledge.follower.goal_radius:
         return choose(rng, ("You are there.", "You have arrived; it is right here."))
-    away = _distance_words(distance)
+    away = distance_words(distance)
     if topic == OtherTopic.DISTANCE:
         if re.search(r"\bsteps?\b", analysis.text):
             steps = math.ceil(distance / knowledge.follower.motion.forward_step)
@@ -322,7 +323,8 @@ def answer_other(
     )
 
 
-def _distance_words(distance: float) -> str:
+def distance_words(distance: float) -> str:
+    """Metres as said: "less than a meter", "about 3 meters"."""
     if distance < 1.0:
         return "less than a meter"
     whole = round(distance)

@@ -89,11 +89,16 @@ class RuleOracle:
             context, self._index, self.seed, self.goal_radius
         )
 
+    @property
+    def knowledge(self) -> EpisodeKnowledge:
+        """The episode's look-ups, for answerers built on this oracle."""
+        if self._knowledge is None:
+            raise ConfigError("the oracle has no episode; call start(context) before answer()")
+        return self._knowledge
+
     def answer(self, question: Question) -> Reply:
         """The answer to one question, with the type it was classified as."""
-        knowledge = self._knowledge
-        if knowledge is None:
-            raise ConfigError("the oracle has no episode; call start(context) before answer()")
+        knowledge = self.knowledge
         analysis = analysed(question.text)
         state = question.state
         kind = analysis.question_type

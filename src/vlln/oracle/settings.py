@@ -1,7 +1,9 @@
 """Which oracle answers and what it may answer: the settings of the paper's oracle ablations.
 
-* ``backend``: the rule oracle, or the paper's language-model oracle over an
-  OpenAI-compatible server (the oracle-backbone ablation, paper supplementary).
+* ``backend``: the rule oracle, the paper's language-model oracle over an
+  OpenAI-compatible server (the oracle-backbone ablation, paper supplementary), or the
+  helpful oracle, the rule oracle's answers and grounded help beyond them
+  (docs/helpful-oracle.md).
 * ``question_types``: the types answered; a question of another type gets
   :data:`vlln.oracle.rule_oracle.TYPE_REFUSAL` and still costs its turn (the question-type
   ablation).
@@ -23,6 +25,7 @@ from pydantic import model_validator
 
 from vlln.config import settings_dataclass
 from vlln.errors import ConfigError
+from vlln.oracle.helpful.oracle import HelpfulOracle
 from vlln.oracle.llm.openai_client import (
     OpenAIChatClient,
     OpenAISettings,
@@ -38,6 +41,7 @@ class OracleBackend(StrEnum):
 
     RULES = "rules"  # the offline rule oracle
     LLM = "llm"  # a language model over an OpenAI-compatible server
+    HELPFUL = "helpful"  # the rule oracle and grounded help beyond the paper's questions
 
 
 class Disambiguation(StrEnum):
@@ -82,18 +86,22 @@ class OracleSettings:
     @property
     def oracle_name(self) -> str:
         """The class that answers, as run.json's provenance names it."""
+        if self.backend == OracleBackend.HELPFUL:
+            return "HelpfulOracle"
         return "LLMOracle" if self.llm is not None else "RuleOracle"
 
     @property
     def backend_name(self) -> str:
-        """How records name the backend: ``rules`` or ``openai:<model>@<host>``."""
+        """How records name the backend: ``rules``, ``helpful`` or ``openai:<model>@<host>``."""
         if self.llm is None:
-            return OracleBackend.RULES.value
+            return self.backend.value
         return llm_backend_name(self.llm)
 
     def make(self, seed: int) -> Oracle:
         """A fresh oracle for one episode, seeded (paraphrases), over the client that every
         episode of the process shares (its pool, and its count of failed requests in a row)."""
+        if self.backend == OracleBackend.HELPFUL:
+            return HelpfulOracle(seed, question_types=self.question_types, cues=self.cues)
         rules = RuleOracle(seed, question_types=self.question_types, cues=self.cues)
         if self.llm is None:
             return rules

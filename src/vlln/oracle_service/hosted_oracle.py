@@ -2,9 +2,12 @@
 
 Clients send only a pose; the current view that the disambiguation rule needs is rendered here
 from that pose, so a client in any language (or a robot whose camera differs from ours) gets the
-same answer as an agent inside :class:`vlln.tasks.env.NavigationEnv`. The dialog budget works
-as in the environment: the first ``dialog_budget`` questions are answered, later ones get
-:data:`vlln.tasks.spec.REFUSAL_MESSAGE` (counted; the first few are kept in the dialog).
+same answer as an agent inside :class:`vlln.tasks.env.NavigationEnv`. A session answers with
+the rule oracle or, created with ``"oracle": "helpful"``, the helpful oracle; the positions
+walked that a question carries are the poses of the session's turns so far. The dialog
+budget works as in the environment: the first ``dialog_budget`` questions are answered,
+later ones get :data:`vlln.tasks.spec.REFUSAL_MESSAGE` (counted; the first few are kept in
+the dialog).
 
 Houses with several storeys work like one: goals and poses carry their height ``y`` (a
 pose on the stairs stands at the tread's height), and route answers on or near a flight say
@@ -17,11 +20,14 @@ context on one thread.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import numpy as np
 
 from vlln import __version__
 from vlln.errors import VllnError
+from vlln.oracle.helpful.oracle import HelpfulOracle
+from vlln.oracle.helpful.oracle import reads_view as helpful_reads_view
 from vlln.oracle.rule_oracle import RuleOracle, reads_view
 from vlln.oracle_service.config import ServiceConfig
 from vlln.oracle_service.limits import BuildLimiter
@@ -43,7 +49,7 @@ from vlln.sim.simulator import Simulator
 from vlln.sim.storeys import Storeys
 from vlln.sim.viewpoints import GoalPoint
 from vlln.tasks.episode import Episode
-from vlln.tasks.oracle_protocol import EpisodeContext, Question, QuestionType
+from vlln.tasks.oracle_protocol import EpisodeContext, Oracle, Question, QuestionType
 from vlln.tasks.scenes import SceneCache, canonical_seed, procedural_scene_id
 from vlln.tasks.spec import REFUSAL_MESSAGE
 from vlln.world.frame import wrap_angle
@@ -55,6 +61,11 @@ _WIRE_TYPES: dict[QuestionType, WireQuestionType] = {
     QuestionType.ROUTE: "route",
     QuestionType.DISAMBIGUATION: "disambiguation",
     QuestionType.OTHER: "other",
+}
+# The oracles a session may ask for: how to make one, and which questions make it look.
+_ORACLES: dict[str, tuple[Callable[[int], Oracle], Callable[[str], bool]]] = {
+    "rules": (RuleOracle, reads_view),
+    "helpful": (HelpfulOracle, helpful_reads_view),
 }
 
 
@@ -101,6 +112,7 @@ class HostedOracle:
             goals=tuple(goals),
             instruction=instruction,
             dialog_budget=request.dialog_budget,
+            oracle_name=request.oracle,
         )
         self._oracle(session, sim)
         self.sessions.add(session)
@@ -124,7 +136,7 @@ class HostedOracle:
         else:
             oracle = self._oracle(session, sim)
             reply = oracle.answer(
-                Question(request.question, state, _view(sim, state, request.question))
+                self._question(session, sim, request.question, state, session.dialog)
             )
             answer, kind, answered = reply.answer, _WIRE_TYPES[reply.question_type], True
             session.answered += 1
@@ -174,19 +186,35 @@ class HostedOracle:
         self.scenes.close()
 
     # ----------------------------------------------------------------- look-ups
-    def _oracle(self, session: Session, sim: Simulator) -> RuleOracle:
+    def _oracle(self, session: Session, sim: Simulator) -> Oracle:
         """The session's oracle on ``sim``, started afresh (answered turns replayed, so the
         seeded wording goes on where it was) when the scene cache had dropped its house."""
         if session.oracle is not None and session.simulator is sim:
             return session.oracle
-        oracle = RuleOracle(seed=self.config.oracle_seed)
+        make, _ = _ORACLES[session.oracle_name]
+        oracle = make(self.config.oracle_seed)
         oracle.start(EpisodeContext(sim, session.target, session.goals))
-        for turn in session.dialog:
+        for index, turn in enumerate(session.dialog):
             if turn.answered:
                 state = self._state(sim, turn.pose)
-                oracle.answer(Question(turn.question, state, _view(sim, state, turn.question)))
+                earlier = session.dialog[:index]
+                oracle.answer(self._question(session, sim, turn.question, state, earlier))
         session.oracle, session.simulator = oracle, sim
         return oracle
+
+    def _question(
+        self,
+        session: Session,
+        sim: Simulator,
+        text: str,
+        state: AgentState,
+        earlier: list[DialogTurnView],
+    ) -> Question:
+        """The question as the session's oracle takes it: the view (rendered where its answer
+        looks at it) and the positions walked, the earlier turns' poses and then ``state``."""
+        _, reads = _ORACLES[session.oracle_name]
+        walked = (*(self._state(sim, turn.pose).position for turn in earlier), state.position)
+        return Question(text, state, _view(sim, state, reads(text)), walked)
 
     def _simulator(self, scene_id: str, client: str) -> Simulator:
         try:
@@ -318,13 +346,13 @@ class HostedOracle:
         return pose.tilt
 
 
-def _view(sim: Simulator, state: AgentState, question: str) -> Frame:
-    """The view a question is asked from, as far as the rule oracle looks at it: only answers
-    that read the view (:func:`reads_view`) read it, and only its instance ids, so only those
-    are rendered; the colour and depth images are read-only zeros of the right shape and
-    every other question is answered without drawing anything."""
+def _view(sim: Simulator, state: AgentState, looks: bool) -> Frame:
+    """The view a question is asked from, as far as the oracle looks at it: only answers
+    that read the view (``looks``, from the oracle's ``reads_view``) read it, and only its
+    instance ids, so only those are rendered; the colour and depth images are read-only
+    zeros of the right shape and every other question is answered without drawing anything."""
     height, width = sim.config.camera.height, sim.config.camera.width
-    if reads_view(question):
+    if looks:
         ids = sim.render_instance_ids(state)
     else:
         ids = np.broadcast_to(np.zeros(1, np.int32), (height, width))

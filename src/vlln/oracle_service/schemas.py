@@ -22,6 +22,7 @@ SESSION_ID_PATTERN = r"^[A-Za-z0-9_-]{1,64}$"
 
 Coordinate = Annotated[float, Field(ge=-MAX_COORDINATE, le=MAX_COORDINATE)]
 QuestionType = Literal["attribute", "route", "disambiguation", "other", "refused"]
+OracleName = Literal["rules", "helpful"]
 
 
 class _Request(BaseModel):
@@ -52,6 +53,7 @@ class CreateSessionRequest(_Request):
     dialog_budget: int = Field(
         default=TaskType.IIGN.default_budget, ge=0, le=MAX_DIALOG_BUDGET
     )  # the paper's range, as in the environment
+    oracle: OracleName = "rules"  # the paper's rule oracle, or the helpful oracle
 
     @model_validator(mode="after")
     def _one_target(self) -> CreateSessionRequest:

@@ -1,9 +1,10 @@
 """Dialog sessions of the oracle service and the bounded store that keeps them.
 
-A session is one target with its dialog budget and turns. Its :class:`RuleOracle` (which
-holds the house's look-ups and a distance field) lives only while the session's simulator is
-in the scene cache; once the cache drops that house, the oracle is dropped too and rebuilt on
-the next question (replaying the answered turns, so the wording stays that of the seed). So
+A session is one target with its dialog budget, the oracle that answers (the rule or the
+helpful oracle) and its turns. The oracle (which holds the house's look-ups and a distance
+field) lives only while the session's simulator is in the scene cache; once the cache drops
+that house, the oracle is dropped too and rebuilt on the next question (replaying the
+answered turns, so the wording stays that of the seed). So
 memory is bounded by the scene cache, not by the number of sessions. The store keeps at
 most ``capacity`` sessions and drops the least recently used one when a new one would exceed
 it, so a client that never deletes its sessions cannot grow the server's memory without bound.
@@ -24,10 +25,10 @@ from dataclasses import dataclass, field
 
 from vlln.errors import ConfigError
 from vlln.http.responses import RequestError
-from vlln.oracle.rule_oracle import RuleOracle
-from vlln.oracle_service.schemas import DialogTurnView
+from vlln.oracle_service.schemas import DialogTurnView, OracleName
 from vlln.sim.simulator import Simulator
 from vlln.sim.viewpoints import GoalPoint
+from vlln.tasks.oracle_protocol import Oracle
 from vlln.world.model import ObjectInstance
 
 
@@ -54,7 +55,8 @@ class Session:
     goals: tuple[GoalPoint, ...]  # (x, z), or (x, y, z) in a house with several storeys
     instruction: str | None
     dialog_budget: int
-    oracle: RuleOracle | None = None  # started on ``simulator``; None once that is dropped
+    oracle_name: OracleName = "rules"  # which oracle answers: the rule or the helpful oracle
+    oracle: Oracle | None = None  # started on ``simulator``; None once that is dropped
     simulator: Simulator | None = None
     dialog: list[DialogTurnView] = field(default_factory=list)
     answered: int = 0

@@ -295,7 +295,7 @@ class NavigationEnv:
         if self._questions_answered >= budget or self.oracle is None:
             turn = DialogTurn(self._steps, text, REFUSAL_MESSAGE, "refused", False, backend="none")
         else:
-            reply = self.oracle.answer(Question(text, self.sim.state, self._frame))
+            reply = self.oracle.answer(Question(text, self.sim.state, self._frame, self._walked()))
             turn = DialogTurn(
                 self._steps,
                 text,
@@ -308,10 +308,16 @@ class NavigationEnv:
                 completion_tokens=reply.completion_tokens,
                 fallback=reply.fallback,
                 type_refused=reply.type_refused,
+                help_kind=reply.help_kind,
             )
             self._questions_answered += 1
         self._answer = turn.answer
         self._dialog.append(turn)
+
+    def _walked(self) -> tuple[tuple[float, float, float], ...]:
+        """The positions (x, y, z) of the episode so far, the current one last."""
+        heights = self._heights or [self.sim.state.position[1]] * len(self._positions)
+        return tuple((p[0], y, p[1]) for p, y in zip(self._positions, heights, strict=True))
 
     def _check_caps(self) -> None:
         if self._end is not None:

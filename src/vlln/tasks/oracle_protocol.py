@@ -32,18 +32,23 @@ class EpisodeContext:
 
 @dataclass(frozen=True)
 class Question:
-    """A question with the asker's state and current view (for "is this the one?")."""
+    """A question with the asker's state and current view (for "is this the one?"), and the
+    positions (x, y, z) it has stood at so far, oldest first and ending where it stands (empty
+    where the caller keeps no history), so that an answer can say whether it is getting
+    closer or has passed the target."""
 
     text: str
     state: AgentState
     frame: Frame
+    path: tuple[tuple[float, float, float], ...] = ()
 
 
 @dataclass(frozen=True)
 class Reply:
     """An answer and how it was made: by which backend, how long the model took, the tokens
     it spent, whether offline logic stood in for a model call that failed, and whether the
-    question was refused for its type (the run does not allow questions of that type)."""
+    question was refused for its type (the run does not allow questions of that type), and
+    which kind of help it gave (empty from the paper's oracles; see docs/helpful-oracle.md)."""
 
     answer: str
     question_type: QuestionType
@@ -53,6 +58,7 @@ class Reply:
     completion_tokens: int = 0
     fallback: bool = False
     type_refused: bool = False
+    help_kind: str = ""
 
 
 class Oracle(Protocol):

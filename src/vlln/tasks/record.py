@@ -51,6 +51,8 @@ class DialogTurn:
     # The run does not allow questions of this type: answered with the refusal, turn spent
     # (written only when true).
     type_refused: bool = False
+    # The kind of help a helpful oracle gave (vlln.oracle.helpful); written only when set.
+    help_kind: str = ""
 
 
 MAX_STORED_OUTPUT_CHARS = 2048  # of a model's raw output, per call
@@ -137,8 +139,9 @@ class EpisodeRecord:
             if data[name] is None:
                 del data[name]
         for turn in data["dialog"]:
-            if not turn["type_refused"]:
-                del turn["type_refused"]
+            for name in ("type_refused", "help_kind"):  # written only when set
+                if not turn[name]:
+                    del turn[name]
         for call in data["model_calls"]:  # written only when something was cut or built
             for name in ("truncated_chars", "prompt_digest"):
                 if not call[name]:

@@ -38,6 +38,7 @@ class OracleKind(StrEnum):
 
     RULES = "rules"  # the offline rule oracle
     LLM = "llm"  # a language model over an OpenAI-compatible server
+    HELPFUL = "helpful"  # the rule oracle and grounded help beyond the paper's questions
     HUMAN = "human"  # a person on the oracle page
 
 
@@ -144,9 +145,9 @@ class WebConfig(WebLimits):
         """The oracles a session may choose here."""
         if self.dialog_budget == 0:
             return (OracleKind.RULES,)
-        kinds = [OracleKind.RULES, OracleKind.HUMAN]
+        kinds = [OracleKind.RULES, OracleKind.HELPFUL, OracleKind.HUMAN]
         if self.llm is not None:
-            kinds.insert(1, OracleKind.LLM)
+            kinds.insert(2, OracleKind.LLM)
         return tuple(kinds)
 
 

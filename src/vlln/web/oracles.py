@@ -10,11 +10,12 @@ from vlln.web.session import OracleFactory
 
 
 def oracle_factory(config: WebConfig) -> OracleFactory:
-    """Makes a session's oracle: the rule oracle, the language-model oracle (when the server
-    was given a model) or a person on the oracle page, each seeded per episode. The machine
-    oracles are those of ``vlln eval`` (:class:`OracleSettings`), answering every question
-    type, with cues."""
+    """Makes a session's oracle: the rule oracle, the helpful oracle, the language-model oracle
+    (when the server was given a model) or a person on the oracle page, each seeded per
+    episode. The machine oracles are those of ``vlln eval`` (:class:`OracleSettings`),
+    answering every question type."""
     rules = OracleSettings()
+    helpful = OracleSettings(OracleBackend.HELPFUL)
     llm = None if config.llm is None else OracleSettings(OracleBackend.LLM, config.llm)
 
     def make(kind: OracleKind, seed: int, board: AnswerBoard) -> Oracle:
@@ -22,6 +23,8 @@ def oracle_factory(config: WebConfig) -> OracleFactory:
             return HumanOracle(board, config.answer_time_limit_s, seed)
         if kind == OracleKind.LLM and llm is not None:
             return llm.make(seed)
+        if kind == OracleKind.HELPFUL:
+            return helpful.make(seed)
         return rules.make(seed)
 
     return make

@@ -25,7 +25,7 @@ class _Strict(BaseModel):
 class CreateSession(_Strict):
     navigator: str = Field(min_length=1, max_length=40)  # "human" or an agent name
     participant: str | None = Field(default=None, max_length=40)
-    oracle: Literal["rules", "llm", "human"] = "rules"
+    oracle: Literal["rules", "helpful", "llm", "human"] = "rules"
     episode_index: int | None = Field(default=None, ge=0)
 
 

@@ -31,7 +31,12 @@ async function load() {
   info.agents.forEach((name) => option(navigator, name, `agent: ${name}`));
   const oracle = document.getElementById("oracle");
   oracle.replaceChildren();
-  const names = { rules: "rule-based oracle", llm: "language-model oracle", human: "a person" };
+  const names = {
+    rules: "rule-based oracle",
+    helpful: "helpful oracle (beyond the paper)",
+    llm: "language-model oracle",
+    human: "a person",
+  };
   info.oracles.forEach((kind) => option(oracle, kind, names[kind] || kind));
   const episode = document.getElementById("episode");
   episode.replaceChildren();

@@ -1,0 +1,1 @@
+"""The helpful oracle: the paper's answers, and exact grounded help beyond its questions."""

@@ -1,0 +1,161 @@
+"""Answers about the asker's progress: whether it passed the target, whether it is getting
+closer (measured along the path it walked), which storey the target is on, and the way
+from where it stands when it is lost.
+
+Distances are walking distances to the target's view points, as the rule oracle's; the path
+is :attr:`vlln.tasks.oracle_protocol.Question.path`, the positions walked so far.
+"""
+
+from __future__ import annotations
+
+import math
+
+from vlln.errors import NavigationError
+from vlln.oracle.answers import direction_words, distance_words, room_phrase
+from vlln.oracle.helpful.recognise import FloorClaim, HelpRequest
+from vlln.oracle.knowledge import EpisodeKnowledge, room_name
+from vlln.oracle.route import CANNOT_ANSWER, answer_path, signed_degrees
+from vlln.sim.agent import Action, AgentState
+
+PASSED_NEAR = 1.0  # m of walking distance: the asker came this close to the target ...
+PASSED_MARGIN = 1.0  # m: ... and is now this much farther than it was there
+TREND_WALK = 2.0  # m walked back along the path to the position "a few steps ago"
+TREND_CHANGE = 0.5  # m of walking distance that count as closer or farther
+_STEP_ADVICE = {
+    Action.MOVE_FORWARD: "keep going forward",
+    Action.TURN_LEFT: "turn left",
+    Action.TURN_RIGHT: "turn right",
+}
+
+
+def answer_passed(
+    knowledge: EpisodeKnowledge, state: AgentState, path: tuple[tuple[float, ...], ...]
+) -> str:
+    """ "Did I pass it?": yes when the path came within :data:`PASSED_NEAR` of it and the
+    asker has since walked :data:`PASSED_MARGIN` farther away."""
+    now = _walking(knowledge, state.position)
+    if now == math.inf:
+        return CANNOT_ANSWER
+    if now < knowledge.follower.goal_radius:
+        return "No, you are there: it is right here."
+    category = knowledge.target.category
+    where = f"it is {distance_words(now)} away, {_direction(knowledge, state)}"
+    nearest = min((_walking(knowledge, p) for p in path[:-1]), default=math.inf)
+    if nearest <= PASSED_NEAR and now >= nearest + PASSED_MARGIN:
+        return f"Yes, you passed the {category}: you walked right by it. Now {where}."
+    return f"No, you have not passed it: {where}."
+
+
+def answer_closer(
+    knowledge: EpisodeKnowledge, state: AgentState, path: tuple[tuple[float, ...], ...]
+) -> str:
+    """ "Am I getting closer?": the walking distance now against that of the position
+    :data:`TREND_WALK` metres back along the path."""
+    now = _walking(knowledge, state.position)
+    if now == math.inf:
+        return CANNOT_ANSWER
+    away = distance_words(now)
+    earlier = _walked_back(path, TREND_WALK)
+    if earlier is None:
+        return f"You have not moved yet; it is {away} away."
+    change = _walking(knowledge, earlier) - now
+    advice = _advice(knowledge, state)
+    if change >= TREND_CHANGE:
+        return f"Yes, you are getting closer: {distance_words(change)} closer; it is {away} away."
+    if change <= -TREND_CHANGE:
+        return (
+            f"No, you are getting farther: {distance_words(-change)} farther; it is {away} "
+            f"away. {advice}"
+        )
+    return f"Not really: it is still {away} away. {advice}"
+
+
+def answer_floor(knowledge: EpisodeKnowledge, request: HelpRequest, state: AgentState) -> str:
+    """Which storey the target is on, seen from the asker's, with yes or no when the question
+    proposed one ("should I go upstairs?")."""
+    levels = sorted({room.level for room in knowledge.index.house.rooms})
+    room = knowledge.target_room
+    target = room.level if room is not None else levels[0]
+    here = knowledge.index.storey_at(state.position[1])
+    if here is None:
+        claim = request.floor_claim
+        same = None if claim is None else claim == FloorClaim.SAME
+        return _yes_no(request, same, "This house has one floor, and it is on it.")
+    name = storey_name(target, levels)
+    if target == here:
+        fact = f"It is on {name}, the floor you are on."
+    else:
+        way = "upstairs" if target > here else "downstairs"
+        fact = f"It is on {name}: go {way}."
+    claims = {
+        FloorClaim.UP: target > here,
+        FloorClaim.DOWN: target < here,
+        FloorClaim.OTHER: target != here,
+        FloorClaim.SAME: target == here,
+    }
+    claim = request.floor_claim
+    return _yes_no(request, claims[claim] if claim is not None else None, fact)
+
+
+def storey_name(level: int, levels: list[int]) -> str:
+    """ "the ground floor", "the upper floor" (of two), "the middle floor", "the top floor"."""
+    if level == levels[0]:
+        return "the ground floor"
+    if level == levels[-1]:
+        return "the upper floor" if len(levels) == 2 else "the top floor"
+    return "the middle floor" if len(levels) == 3 else f"floor {levels.index(level)}"
+
+
+def answer_reroute(knowledge: EpisodeKnowledge, state: AgentState) -> str:
+    """Where the asker is and where the target is, then the way from where it stands."""
+    x, y, z = state.position
+    here = knowledge.index.room_at(x, z, y)
+    room = knowledge.target_room
+    distance = knowledge.geodesic(x, z, y)
+    if distance == math.inf:
+        return CANNOT_ANSWER
+    opening = f"You are in the {room_name(here)}" if here is not None else "You are here"
+    there = f"in {room_phrase(knowledge, room, state)}" if room is not None else "there"
+    category = knowledge.target.category
+    if distance < knowledge.follower.goal_radius:
+        return f"{opening}, and so is the {category}: it is right here."
+    return (
+        f"{opening}; the {category} is {there}, {distance_words(distance)} away. From here: "
+        f"{answer_path(knowledge, state)}"
+    )
+
+
+def _yes_no(request: HelpRequest, claim_true: bool | None, fact: str) -> str:
+    if not request.yes_no or claim_true is None:
+        return fact
+    return f"{'Yes' if claim_true else 'No'}. {fact}"
+
+
+def _walking(knowledge: EpisodeKnowledge, point: tuple[float, ...]) -> float:
+    x, y, z = point
+    return knowledge.geodesic(x, z, y)
+
+
+def _walked_back(path: tuple[tuple[float, ...], ...], metres: float) -> tuple[float, ...] | None:
+    """The position ``metres`` of walking before the last one of ``path`` (its first when it
+    is shorter); None when the path never left its last position."""
+    walked = 0.0
+    for later, earlier in zip(path[::-1], path[-2::-1], strict=False):
+        walked += math.dist(later, earlier)
+        if walked >= metres:
+            return earlier
+    return path[0] if walked > 0.0 else None
+
+
+def _direction(knowledge: EpisodeKnowledge, state: AgentState) -> str:
+    return direction_words(signed_degrees(knowledge, state))
+
+
+def _advice(knowledge: EpisodeKnowledge, state: AgentState) -> str:
+    """The next step toward the target: "To get closer, turn left."."""
+    try:
+        action = knowledge.follower.next_action(state)
+    except NavigationError:
+        return ""
+    step = _STEP_ADVICE.get(action)
+    return f"To get closer, {step}." if step else "You are there."
