@@ -23,6 +23,7 @@ import numpy as np
 
 from vlln.agents.protocol import Agent
 from vlln.agents.registry import make_agent
+from vlln.files import write_text_atomic
 from vlln.oracle.settings import OracleBackend, OracleSettings
 from vlln.tasks.env import NavigationEnv
 from vlln.tasks.episode import Episode
@@ -61,7 +62,11 @@ def answer_questions(
             candidates = matching_episodes(episodes, str(question["category"]))
             episode = candidates[int(rng.integers(len(candidates)))]
             env = NavigationEnv(
-                [episode], TaskConfig(task=TaskType.IIGN), scenes, settings.make(seed + index)
+                [episode],
+                TaskConfig(task=TaskType.IIGN),
+                scenes,
+                settings.make(seed + index),
+                privileged=True,
             )
             walked = _walk(env, make_agent("fbe", seed + index, "truth"), rng)
             env.step(Talk(str(question["question"])))
@@ -114,7 +119,7 @@ def main(argv: list[str] | None = None) -> int:
     questions = [json.loads(line) for line in args.questions.read_text().splitlines() if line]
     episodes = load_or_build_split("test", "iign", args.houses, args.cache, progress=False)
     rows = answer_questions(questions, OracleBackend(args.oracle), episodes, args.seed)
-    args.out.write_text("".join(json.dumps(row) + "\n" for row in rows), encoding="utf-8")
+    write_text_atomic(args.out, "".join(json.dumps(row) + "\n" for row in rows))
     print(f"{len(rows)} answers in {args.out}")
     return 0
 
