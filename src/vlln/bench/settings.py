@@ -222,6 +222,24 @@ class AgreementBench(BenchOptions):
     """teacher decisions asked, spread evenly over the export"""
 
 
+class OracleAnswersBench(Config):
+    """``vlln bench oracle-answers QUESTIONS``: an oracle's answers to a question file, each
+    asked in a real episode, for readers to judge (docs/helpful-oracle.md)."""
+
+    questions: CliPositionalArg[Path]
+    """JSON Lines, each {"question", "kind", "category"}"""
+    oracle: Literal["rules", "helpful"] = "helpful"
+    """who answers"""
+    out: Path = Path("out/oracle-answers.jsonl")
+    """the answers, one JSON line per question"""
+    houses: Count = 4
+    """small test houses the questions are asked in"""
+    seed: Annotated[int, Field(ge=0)] = 0
+    """seed of the episode, the exploration and the oracle's wording"""
+    cache_dir: Path | None = None
+    """where built splits are kept (none: ~/.cache/vlln)"""
+
+
 class RecipeFigures(Config):
     """``vlln bench recipe-figures``: the held-out figures of scripts/cpu-recipe.sh."""
 

@@ -75,6 +75,12 @@ COMMANDS = (
         "scripts/cpu-recipe.sh",
     ),
     (
+        "oracle-answers",
+        "OracleAnswersBench",
+        ("oracle_answers:run_oracle_answers",),
+        "an oracle's answers to a question file, each asked in a real episode after exploring",
+    ),
+    (
         "fidelity",
         "FidelityBench",
         ("fidelity:run_fidelity_benchmark",),

@@ -1,11 +1,12 @@
-"""An oracle's answers to a file of questions, each asked in a real episode, for readers to
-judge whether each answer fits its question (docs/helpful-oracle.md).
+"""``vlln bench oracle-answers``: an oracle's answers to a file of questions, each asked in a
+real episode, for readers to judge whether each answer fits its question
+(docs/helpful-oracle.md).
 
 Each question is asked in an IIGN episode of the small test houses whose target is of the
 question's category, after the FBE agent (true detector) has explored a seeded number of
 steps, so it is asked where a searching agent stands, through the environment's own TALK.
 
-    python -m oracle_training.blind_answers QUESTIONS.jsonl --oracle helpful --out A.jsonl
+    vlln bench oracle-answers QUESTIONS.jsonl --oracle helpful --out A.jsonl
 
 A question line is ``{"question": ..., "kind": ..., "category": ...}``; an answer line adds
 the episode, the steps walked, the answer, its question type and the kind of help it gave.
@@ -13,17 +14,18 @@ the episode, the steps walked, the answer, its question type and the kind of hel
 
 from __future__ import annotations
 
-import argparse
 import json
 from collections.abc import Sequence
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from vlln.agents.protocol import Agent
 from vlln.agents.registry import make_agent
-from vlln.files import write_text_atomic
+from vlln.bench.settings import OracleAnswersBench
+from vlln.errors import DataFormatError
+from vlln.eval.runner import default_cache_dir
+from vlln.files import ReadCap, parse_json, write_text_atomic
 from vlln.oracle.settings import OracleBackend, OracleSettings
 from vlln.tasks.env import NavigationEnv
 from vlln.tasks.episode import Episode
@@ -33,6 +35,8 @@ from vlln.tasks.split_files import load_or_build_split
 from vlln.world.catalogue.aliases import ALIASES
 
 MAX_WALK = 60  # the most steps explored before the question is asked
+# A question set is hundreds of short lines.
+QUESTIONS_CAP = ReadCap("a question file", 16)
 
 
 def matching_episodes(episodes: Sequence[Episode], category: str) -> list[Episode]:
@@ -107,22 +111,25 @@ def _walk(env: NavigationEnv, agent: Agent, rng: np.random.Generator) -> int:
     return len(actions)
 
 
-def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("questions", type=Path)
-    parser.add_argument("--oracle", default="helpful", choices=[b.value for b in OracleBackend])
-    parser.add_argument("--out", type=Path, required=True)
-    parser.add_argument("--houses", type=int, default=4, help="small test houses")
-    parser.add_argument("--cache", type=Path, default=Path("out/blind-cache"))
-    parser.add_argument("--seed", type=int, default=0)
-    args = parser.parse_args(argv)
-    questions = [json.loads(line) for line in args.questions.read_text().splitlines() if line]
-    episodes = load_or_build_split("test", "iign", args.houses, args.cache, progress=False)
-    rows = answer_questions(questions, OracleBackend(args.oracle), episodes, args.seed)
-    write_text_atomic(args.out, "".join(json.dumps(row) + "\n" for row in rows))
-    print(f"{len(rows)} answers in {args.out}")
-    return 0
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())
+def run_oracle_answers(settings: OracleAnswersBench) -> None:
+    """Ask every question of ``settings.questions`` and write the answer lines."""
+    text = QUESTIONS_CAP.read(settings.questions).decode("utf-8", errors="replace")
+    questions = []
+    for number, line in enumerate(text.splitlines(), 1):
+        if not line.strip():
+            continue
+        try:
+            question = parse_json(line)
+        except DataFormatError as error:
+            question = str(error)
+        if not isinstance(question, dict) or not {"question", "category"} <= question.keys():
+            raise DataFormatError(
+                f"{settings.questions}:{number} is not a question line; write each as "
+                '{"question": ..., "kind": ..., "category": ...}'
+            )
+        questions.append(question)
+    cache = settings.cache_dir or default_cache_dir()
+    episodes = load_or_build_split("test", "iign", settings.houses, cache, progress=False)
+    rows = answer_questions(questions, OracleBackend(settings.oracle), episodes, settings.seed)
+    write_text_atomic(settings.out, "".join(json.dumps(row) + "\n" for row in rows))
+    print(f"{len(rows)} answers in {settings.out}")

@@ -8,7 +8,8 @@ from pathlib import Path
 
 import pytest
 
-from oracle_training.blind_answers import answer_questions, main, matching_episodes
+from vlln.bench.oracle_answers import answer_questions, matching_episodes
+from vlln.cli import main
 from vlln.oracle.settings import OracleBackend
 from vlln.tasks.split_files import load_or_build_split
 
@@ -34,10 +35,20 @@ def test_questions_are_asked_in_episodes_of_their_category(
     source = tmp_path / "questions.jsonl"
     source.write_text("".join(json.dumps(q) + "\n" for q in questions))
     out = tmp_path / "answers.jsonl"
-    args = [str(source), "--oracle", "rules", "--out", str(out), "--houses", "1"]
-    assert main([*args, "--cache", str(split_cache)]) == 0
+    args = ["bench", "oracle-answers", str(source), "--oracle", "rules", "--out", str(out)]
+    assert main([*args, "--houses", "1", "--cache-dir", str(split_cache)]) == 0
     lines = [json.loads(line) for line in out.read_text().splitlines()]
     assert [line["help_kind"] for line in lines] == ["", ""]  # the paper's oracle gives none
+
+
+def test_a_line_that_is_not_a_question_is_named(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    source = tmp_path / "questions.jsonl"
+    source.write_text('{"question": "Is it red?", "category": "chair"}\n{"question": "hi"}\n')
+    assert main(["bench", "oracle-answers", str(source), "--out", str(tmp_path / "a")]) == 2
+    error = capsys.readouterr().err
+    assert error.count("\n") == 1 and f"{source}:2 is not a question line" in error
 
 
 def test_a_category_by_another_name_finds_its_episodes(split_cache: Path) -> None:
