@@ -434,16 +434,6 @@ def _written_view_point(data: Any) -> ViewPoint | None:
     if type(x) is float and type(y) is float and type(z) is float and math.isfinite(x + y + z):
         return ViewPoint((x, y, z))  # a finite sum: each is finite
     return None
-    state = data.get("agent_state")
-    if type(state) is not dict or len(state) != 1:
-        return None
-    position = state.get("position")
-    if type(position) is not list or len(position) != 3:
-        return None
-    x, y, z = position
-    if type(x) is float and type(y) is float and type(z) is float and math.isfinite(x + y + z):
-        return (x, y, z)  # a finite sum: each is finite
-    return None
 
 
 def _parse_instruction(data: Any) -> Instruction:
