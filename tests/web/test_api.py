@@ -162,13 +162,7 @@ def test_a_person_asks_the_language_model_oracle(study: Study, tmp_path: Path) -
         with TestClient(create_app(config)) as client:
             oracles = client.get("/api/lobby").json()["oracles"]
             assert oracles == ["rules", "helpful", "llm", "human"]
-            body = {"navigator": "human", "participant": "p40", "oracle": "llm"}
-            headers = {
-                "X-Session-Code": client.post("/api/sessions", json=body).json()["navigator_code"]
-            }
-            view = client.get("/api/navigator", headers=headers).json()
-            while view["status"] != "playing":
-                view = client.get(f"/api/navigator?after={view['version']}", headers=headers).json()
+            headers = _playing(client, "p40", "llm")
             asked = client.post(
                 "/api/navigator/ask", json={"question": "What color is it?"}, headers=headers
             )
@@ -187,13 +181,7 @@ def test_a_person_asks_the_helpful_oracle(study: Study, tmp_path: Path) -> None:
     config = WebConfig(episodes=tuple(study.episodes), out=tmp_path / "a")
     with TestClient(create_app(config)) as client:
         assert client.get("/api/lobby").json()["oracles"] == ["rules", "helpful", "human"]
-        body = {"navigator": "human", "participant": "p41", "oracle": "helpful"}
-        headers = {
-            "X-Session-Code": client.post("/api/sessions", json=body).json()["navigator_code"]
-        }
-        view = client.get("/api/navigator", headers=headers).json()
-        while view["status"] != "playing":
-            view = client.get(f"/api/navigator?after={view['version']}", headers=headers).json()
+        headers = _playing(client, "p41", "helpful")
         asked = client.post(
             "/api/navigator/ask", json={"question": "Should I go upstairs?"}, headers=headers
         )
@@ -219,3 +207,13 @@ def test_the_command_line_names_bad_settings_in_one_line(
     (tmp_path / "b" / "web.json").write_text('{"source": "split val, 3 houses"}')
     assert main(["serve", "web", *source, "--out", str(tmp_path / "b")]) == 2
     assert "holds a study with other settings" in capsys.readouterr().err
+
+
+def _playing(client: TestClient, participant: str, oracle: str) -> dict[str, str]:
+    """The headers of a person's navigator session with ``oracle``, once its episode plays."""
+    body = {"navigator": "human", "participant": participant, "oracle": oracle}
+    headers = {"X-Session-Code": client.post("/api/sessions", json=body).json()["navigator_code"]}
+    view = client.get("/api/navigator", headers=headers).json()
+    while view["status"] != "playing":
+        view = client.get(f"/api/navigator?after={view['version']}", headers=headers).json()
+    return headers
