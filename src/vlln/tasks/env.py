@@ -53,11 +53,11 @@ from vlln.sim.agent import Action, AgentState, MotionConfig
 from vlln.sim.camera import CameraSpec
 from vlln.sim.follower import GreedyFollower
 from vlln.sim.simulator import Simulator
-from vlln.sim.viewpoints import GoalPoint
 from vlln.tasks.episode import Episode
+from vlln.tasks.goals import goal_instances, goal_points
 from vlln.tasks.oracle_protocol import EpisodeContext, Oracle, Question
 from vlln.tasks.record import DialogTurn, EndReason, EpisodeRecord, ModelCall, StopReason
-from vlln.tasks.refusal import no_goal_reason, on_the_storey, reach_problem, start_problem
+from vlln.tasks.refusal import reach_problem, start_problem
 from vlln.tasks.scenes import SceneCache
 from vlln.tasks.spec import (
     REFUSAL_MESSAGE,
@@ -72,7 +72,7 @@ from vlln.tasks.stop import distractor_distance, stop_instance
 from vlln.tasks.taxonomy import target_observed
 from vlln.tasks.waypoint import Waypoint, waypoint_for_pixel
 from vlln.world.frame import quaternion_to_yaw, wrap_angle
-from vlln.world.model import Attributes, Box3, ObjectInstance
+from vlln.world.model import Attributes, Box3
 
 Observation = dict[str, Any]
 SUCCESS_REWARD = 2.5
@@ -141,12 +141,12 @@ class NavigationEnv:
         self._episode = episode
         self.sim: Simulator = self.scenes.get(episode.scene_id)
         house = self.sim.house
-        self.targets = self._goal_instances(episode)
+        self.targets = goal_instances(self.sim.house, episode, self.config.task)
         x0, y0, z0 = episode.start_position
         problem = start_problem(self.sim, x0, y0, z0)
         if problem is not None:
             raise EpisodeRefusedError(episode.episode_id, episode.scene_id, problem)
-        self.goal_points = self._goal_points(episode)
+        self.goal_points = goal_points(self.sim, episode, self.targets)
         self.field = self.sim.distance_field(self.goal_points)
         problem = reach_problem(self.sim, self.field, (x0, y0, z0), self.goal_points)
         if problem is not None:
@@ -435,57 +435,6 @@ class NavigationEnv:
             stop_reason=stop_reason.value if stop_reason and end == EndReason.STOP else None,
             distractor_distance=near,
         )
-
-    def _goal_points(self, episode: Episode) -> list[GoalPoint]:
-        """The goals' view points; a goal listing none gets those of its box (reference §1).
-        ``(x, z)`` on one storey (listed points off its floor are not its), ``(x, y, z)`` in a
-        house with several; none at all refuses the episode (:mod:`vlln.tasks.refusal`)."""
-        points: list[GoalPoint] = []
-        storeys = self.sim.storeys
-        listed = 0
-        for k, goal in enumerate(episode.goals):
-            if goal.view_points and storeys is not None:
-                points += [vp.position for vp in goal.view_points]
-                continue
-            if goal.view_points:
-                listed += len(goal.view_points)
-                points += [
-                    (vp.position[0], vp.position[2])
-                    for vp in goal.view_points
-                    if on_the_storey(self.sim, vp.position[1])
-                ]
-                continue
-            if goal.bbox is not None:
-                x0, y0, z0, x1, y1, z1 = goal.bbox
-                box = Box3((x0, y0, z0), (x1, y1, z1))
-            elif k < len(self.targets):
-                box = self.targets[k].box
-            else:
-                box = Box3(goal.position, goal.position)
-            points += self.sim.view_points(box)
-        if not points:
-            reason = no_goal_reason(self.sim, listed)
-            raise EpisodeRefusedError(episode.episode_id, episode.scene_id, reason)
-        return points
-
-    def _goal_instances(self, episode: Episode) -> list[ObjectInstance]:
-        house = self.sim.house
-        if self.config.task == TaskType.OBJECTNAV:
-            found = house.instances_of(episode.object_category)
-        else:
-            try:
-                found = [house.instance_for_key(i) for i in episode.instruction.instance_id]
-            except KeyError as error:
-                raise ConfigError(
-                    f"episode {episode.episode_id}: {error.args[0]}; the episode file and the "
-                    "scene do not match"
-                ) from None
-        if not found:
-            raise ConfigError(
-                f"episode {episode.episode_id} names no goal instance of "
-                f"{episode.object_category!r} in {episode.scene_id}"
-            )
-        return found
 
     def _require_episode(self) -> Episode:
         if self._episode is None:
