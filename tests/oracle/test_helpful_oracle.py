@@ -123,7 +123,7 @@ def test_the_papers_questions_get_the_rule_oracles_answers(
 ) -> None:
     """Word for word, whatever help was asked for in between; a clarification only adds."""
     rules = _started(RuleOracle(3), sim, chair)
-    helpful = _started(HelpfulOracle(3), sim, chair)
+    helpful = _started(HelpfulOracle(RuleOracle(3)), sim, chair)
     for state in _states(sim, 3, 21):
         frame = sim.render(state)
         for question in QUESTIONS:
@@ -143,7 +143,7 @@ def test_is_this_the_one_with_several_chairs_in_view_says_which(
 ) -> None:
     for state, frame in views:
         rules = _started(RuleOracle(0), sim, chair)
-        helpful = _started(HelpfulOracle(0), sim, chair)
+        helpful = _started(HelpfulOracle(RuleOracle(0)), sim, chair)
         expected = _ask(rules, state, frame, "Is this the one?").answer
         reply = _ask(helpful, state, frame, "Is this the one?")
         shown = _visible(sim, frame, "chair")
@@ -151,7 +151,9 @@ def test_is_this_the_one_with_several_chairs_in_view_says_which(
         assert reply.help_kind == "clarification"
         assert reply.answer.startswith(f"{expected} {words} chairs are in view")
         assert ("the one I mean is" in reply.answer) == (chair.id in shown)
-    alone = _ask(_started(HelpfulOracle(0), sim, chair), state, _blank(sim), "Is this the one?")
+    alone = _ask(
+        _started(HelpfulOracle(RuleOracle(0)), sim, chair), state, _blank(sim), "Is this the one?"
+    )
     assert alone.help_kind == "schema" and alone.answer.startswith("No")
 
 
@@ -161,7 +163,7 @@ def test_is_this_the_one_with_several_chairs_in_view_says_which(
 def test_comparison_names_the_side_distance_and_colour_of_the_target(
     sim: Simulator, chair: ObjectInstance, views: list[tuple[AgentState, Frame]]
 ) -> None:
-    oracle = _started(HelpfulOracle(0), sim, chair)
+    oracle = _started(HelpfulOracle(RuleOracle(0)), sim, chair)
     checked = 0
     for state, frame in views:
         shown = _visible(sim, frame, "chair")
@@ -193,7 +195,7 @@ def test_comparison_names_the_side_distance_and_colour_of_the_target(
 def test_confirmation_is_sure_only_when_the_view_leaves_no_doubt(
     sim: Simulator, chair: ObjectInstance, views: list[tuple[AgentState, Frame]]
 ) -> None:
-    oracle = _started(HelpfulOracle(0), sim, chair)
+    oracle = _started(HelpfulOracle(RuleOracle(0)), sim, chair)
     for state, frame in views:
         shown = _visible(sim, frame, "chair")
         answer = _ask(oracle, state, frame, "Are you sure?").answer
@@ -207,7 +209,7 @@ def test_confirmation_is_sure_only_when_the_view_leaves_no_doubt(
     # At a view point of a chair alone in its room, facing it, it is the only chair in view.
     rooms = Counter(inst.room_id for inst in sim.house.instances_of("chair"))
     lone = next(inst for inst in sim.house.instances_of("chair") if rooms[inst.room_id] == 1)
-    oracle = _started(HelpfulOracle(0), sim, lone)
+    oracle = _started(HelpfulOracle(RuleOracle(0)), sim, lone)
     cx, _, cz = lone.box.center
     for x, z in view_points(sim.grid, lone.box):
         state = AgentState((x, 0.0, z), yaw_of(cx - x, cz - z))
@@ -259,7 +261,7 @@ def _back(walked: list[Point], metres: float) -> list[Point]:
 def test_passed_and_closer_are_measured_along_the_walked_path(
     sim: Simulator, chair: ObjectInstance
 ) -> None:
-    oracle = _started(HelpfulOracle(0), sim, chair)
+    oracle = _started(HelpfulOracle(RuleOracle(0)), sim, chair)
     walked = _walk_to(sim, chair, 4)
     frame = _blank(sim)
 
@@ -278,7 +280,7 @@ def test_passed_and_closer_are_measured_along_the_walked_path(
 def test_lost_gets_where_it_stands_and_the_way_from_there(
     sim: Simulator, chair: ObjectInstance
 ) -> None:
-    oracle = _started(HelpfulOracle(0), sim, chair)
+    oracle = _started(HelpfulOracle(RuleOracle(0)), sim, chair)
     start = _walk_to(sim, chair, 5)[0]
     here = next(
         room for room in sim.house.rooms if PolygonPath(room.polygon).contains_point(start[::2])
@@ -293,7 +295,7 @@ def test_lost_gets_where_it_stands_and_the_way_from_there(
 def test_floor_answers_in_a_house_of_one_storey_and_of_two(
     sim: Simulator, scenes: SceneCache, chair: ObjectInstance
 ) -> None:
-    oracle = _started(HelpfulOracle(0), sim, chair)
+    oracle = _started(HelpfulOracle(RuleOracle(0)), sim, chair)
     state, frame = AgentState(_walk_to(sim, chair, 6)[0], 0.0), _blank(sim)
     assert _ask(oracle, state, frame, "should I go upstairs?").answer.startswith("No. ")
     assert _ask(oracle, state, frame, "Which floor is it on?").answer == (
@@ -307,7 +309,7 @@ def test_floor_answers_in_a_house_of_one_storey_and_of_two(
         for inst in two.house.instances
         if two.house.room(inst.room_id).level == 1 and storey_view_points(storeys, inst.box)
     )
-    oracle = HelpfulOracle(0)
+    oracle = HelpfulOracle(RuleOracle(0))
     oracle.start(EpisodeContext(two, upstairs, tuple(storey_view_points(storeys, upstairs.box))))
     rng = np.random.default_rng(2)
     main = storeys.largest_component()
@@ -334,7 +336,7 @@ def test_floor_answers_in_a_house_of_one_storey_and_of_two(
 
 
 def test_counts_are_the_houses_instances_by_room(sim: Simulator, chair: ObjectInstance) -> None:
-    oracle = _started(HelpfulOracle(0), sim, chair)
+    oracle = _started(HelpfulOracle(RuleOracle(0)), sim, chair)
     state, frame = AgentState(_walk_to(sim, chair, 7)[0], 0.0), _blank(sim)
     answer = _ask(oracle, state, frame, "How many chairs are there?").answer
     by_type = Counter(sim.house.room(i.room_id).type for i in sim.house.instances_of("chair"))
@@ -354,7 +356,7 @@ def test_counts_are_the_houses_instances_by_room(sim: Simulator, chair: ObjectIn
 
 
 def test_the_neighbourhood_names_the_nearest_objects(sim: Simulator, chair: ObjectInstance) -> None:
-    oracle = _started(HelpfulOracle(0), sim, chair)
+    oracle = _started(HelpfulOracle(RuleOracle(0)), sim, chair)
     state = AgentState(_walk_to(sim, chair, 8)[0], 0.0)
     answer = _ask(oracle, state, _blank(sim), "What is around it?").answer
     others = sorted(
@@ -383,10 +385,14 @@ def test_window_answers_follow_the_distance_to_the_window_coverings(sim: Simulat
     near, far = min(reachable, key=gap), max(reachable, key=gap)
     state = _states(sim, 1, 9)[0]
     frame = _blank(sim)
-    by_window = _ask(_started(HelpfulOracle(0), sim, near), state, frame, "is it near a window?")
+    by_window = _ask(
+        _started(HelpfulOracle(RuleOracle(0)), sim, near), state, frame, "is it near a window?"
+    )
     assert by_window.answer.startswith("Yes, it is near a window: ")
     assert by_window.help_kind == "window"
-    away = _ask(_started(HelpfulOracle(0), sim, far), state, frame, "Is it by the window?").answer
+    away = _ask(
+        _started(HelpfulOracle(RuleOracle(0)), sim, far), state, frame, "Is it by the window?"
+    ).answer
     assert away.startswith(f"No, the nearest window is about {round(gap(far))} meters from it")
 
 
@@ -396,7 +402,9 @@ def test_window_answers_follow_the_distance_to_the_window_coverings(sim: Simulat
 def test_help_of_a_type_the_run_does_not_allow_is_refused(
     sim: Simulator, chair: ObjectInstance
 ) -> None:
-    oracle = _started(HelpfulOracle(0, question_types=(QuestionType.ATTRIBUTE,)), sim, chair)
+    oracle = _started(
+        HelpfulOracle(RuleOracle(0, question_types=(QuestionType.ATTRIBUTE,))), sim, chair
+    )
     state, frame = _states(sim, 1, 10)[0], _blank(sim)
     refused = _ask(oracle, state, frame, "should I go upstairs?")
     assert (refused.answer, refused.type_refused, refused.help_kind) == (
@@ -421,7 +429,9 @@ def test_the_environment_gives_the_path_and_records_the_kind_of_help(
     scenes: SceneCache, sim: Simulator, chair: ObjectInstance
 ) -> None:
     episode = iign_episode(sim, chair, "helpful-test")
-    env = NavigationEnv([episode], TaskConfig(dialog_budget=2), scenes, HelpfulOracle(1))
+    env = NavigationEnv(
+        [episode], TaskConfig(dialog_budget=2), scenes, HelpfulOracle(RuleOracle(1))
+    )
     env.reset(options={"episode_index": 0})
     for _ in range(40):
         action = env.follower.next_action(env.sim.state)

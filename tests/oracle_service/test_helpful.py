@@ -65,7 +65,7 @@ def test_a_helpful_session_answers_questions_beyond_the_papers(
     assert all(reply["answered"] for reply in replies)
     answers = [reply["answer"] for reply in replies]
     assert CANNOT_ANSWER not in answers
-    assert answers == _in_process(HelpfulOracle(3), world, dialog)
+    assert answers == _in_process(HelpfulOracle(RuleOracle(3)), world, dialog)
     sure, side, upstairs, window, lost = answers
     assert sure.startswith(("Yes, I am sure", "I can't tell which one"))
     assert "the one" in side and replies[1]["question_type"] == "disambiguation"

@@ -100,9 +100,9 @@ class OracleSettings:
     def make(self, seed: int) -> Oracle:
         """A fresh oracle for one episode, seeded (paraphrases), over the client that every
         episode of the process shares (its pool, and its count of failed requests in a row)."""
-        if self.backend == OracleBackend.HELPFUL:
-            return HelpfulOracle(seed, question_types=self.question_types, cues=self.cues)
         rules = RuleOracle(seed, question_types=self.question_types, cues=self.cues)
+        if self.backend == OracleBackend.HELPFUL:
+            return HelpfulOracle(rules)
         if self.llm is None:
             return rules
         return LLMOracle(_shared_client(self.llm), seed, rules)

@@ -26,9 +26,9 @@ import numpy as np
 
 from vlln import __version__
 from vlln.errors import VllnError
-from vlln.oracle.helpful.oracle import HelpfulOracle
 from vlln.oracle.helpful.oracle import reads_view as helpful_reads_view
-from vlln.oracle.rule_oracle import RuleOracle, reads_view
+from vlln.oracle.rule_oracle import reads_view
+from vlln.oracle.settings import OracleBackend, OracleSettings
 from vlln.oracle_service.config import ServiceConfig
 from vlln.oracle_service.limits import BuildLimiter
 from vlln.oracle_service.schemas import (
@@ -64,8 +64,8 @@ _WIRE_TYPES: dict[QuestionType, WireQuestionType] = {
 }
 # The oracles a session may ask for: how to make one, and which questions make it look.
 _ORACLES: dict[str, tuple[Callable[[int], Oracle], Callable[[str], bool]]] = {
-    "rules": (RuleOracle, reads_view),
-    "helpful": (HelpfulOracle, helpful_reads_view),
+    "rules": (OracleSettings(OracleBackend.RULES).make, reads_view),
+    "helpful": (OracleSettings(OracleBackend.HELPFUL).make, helpful_reads_view),
 }
 
 

@@ -31,7 +31,7 @@ from vlln.oracle.helpful.progress import (
 )
 from vlln.oracle.helpful.recognise import HelpKind, HelpRequest, recognised
 from vlln.oracle.knowledge import EpisodeKnowledge
-from vlln.oracle.rule_oracle import ALL_QUESTION_TYPES, TYPE_REFUSAL, RuleOracle
+from vlln.oracle.rule_oracle import TYPE_REFUSAL, RuleOracle
 from vlln.oracle.rule_oracle import reads_view as rules_read_view
 from vlln.tasks.oracle_protocol import EpisodeContext, Question, QuestionType, Reply
 
@@ -69,20 +69,13 @@ def reads_view(text: str) -> bool:
 
 
 class HelpfulOracle:
-    """The rule oracle's answers, and grounded help beyond them (module doc); the arguments
-    are the rule oracle's."""
+    """The answers of ``rules`` (its seed, question types and cues), and grounded help beyond
+    them (module doc)."""
 
     snapshottable = True  # copy.deepcopy gives an independent oracle (vlln.eval.sweep)
 
-    def __init__(
-        self,
-        seed: int = 0,
-        goal_radius: float = 0.25,
-        *,
-        question_types: tuple[QuestionType, ...] = ALL_QUESTION_TYPES,
-        cues: bool = False,
-    ) -> None:
-        self.rules = RuleOracle(seed, goal_radius, question_types=question_types, cues=cues)
+    def __init__(self, rules: RuleOracle) -> None:
+        self.rules = rules
         self._knowledge: EpisodeKnowledge | None = None
 
     def start(self, context: EpisodeContext) -> None:
