@@ -428,11 +428,7 @@ def test_eval_selects_it_and_names_it_in_provenance() -> None:
 def test_the_environment_gives_the_path_and_records_the_kind_of_help(
     scenes: SceneCache, sim: Simulator, chair: ObjectInstance
 ) -> None:
-    episode = iign_episode(sim, chair, "helpful-test")
-    env = NavigationEnv(
-        [episode], TaskConfig(dialog_budget=2), scenes, HelpfulOracle(RuleOracle(1))
-    )
-    env.reset(options={"episode_index": 0})
+    env = _env_with(HelpfulOracle(RuleOracle(1)), scenes, sim, chair, budget=2)
     for _ in range(40):
         action = env.follower.next_action(env.sim.state)
         if action == Action.STOP:
@@ -456,9 +452,21 @@ def test_the_environment_gives_the_path_and_records_the_kind_of_help(
 def test_rule_oracle_records_keep_their_shape(
     scenes: SceneCache, sim: Simulator, chair: ObjectInstance
 ) -> None:
-    episode = iign_episode(sim, chair, "rules-test")
-    env = NavigationEnv([episode], TaskConfig(dialog_budget=1), scenes, RuleOracle(1))
-    env.reset(options={"episode_index": 0})
+    env = _env_with(RuleOracle(1), scenes, sim, chair, budget=1)
     env.step(Talk("What color is it?"))
     (turn,) = env.record("test").to_json()["dialog"]
     assert "help_kind" not in turn and turn["backend"] == "rules"
+
+
+def _env_with(
+    oracle: HelpfulOracle | RuleOracle,
+    scenes: SceneCache,
+    sim: Simulator,
+    chair: ObjectInstance,
+    budget: int,
+) -> NavigationEnv:
+    """An IIGN episode for ``chair`` with ``oracle``, started."""
+    episode = iign_episode(sim, chair, f"{type(oracle).__name__}-test")
+    env = NavigationEnv([episode], TaskConfig(dialog_budget=budget), scenes, oracle)
+    env.reset(options={"episode_index": 0})
+    return env
