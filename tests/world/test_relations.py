@@ -151,3 +151,10 @@ def test_rejects_repeated_ids_and_negative_distance() -> None:
         build_relations([a, a])
     with pytest.raises(ConfigError, match="max_distance"):
         build_relations([a], max_distance=-1.0)
+
+
+def test_plan_distance_is_the_gap_to_the_footprint_whatever_the_height() -> None:
+    box = Box3((0.0, 0.5, 0.0), (2.0, 1.0, 1.0))
+    assert box.plan_distance(1.0, 0.5) == 0.0  # inside the footprint
+    assert box.plan_distance(5.0, 0.5) == 3.0
+    assert box.plan_distance(5.0, 5.0) == 5.0  # 3 and 4 from the corner

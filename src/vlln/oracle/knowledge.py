@@ -8,7 +8,6 @@ when an episode starts, so answering a question does no search beyond one path q
 
 from __future__ import annotations
 
-import math
 import re
 import zlib
 from dataclasses import dataclass
@@ -240,10 +239,7 @@ class EpisodeKnowledge:
 
     def plan_distance(self, x: float, z: float) -> float:
         """Floor-plan distance from a point to the target's box (0 inside its footprint)."""
-        box = self.target.box
-        dx = max(box.min[0] - x, 0.0, x - box.max[0])
-        dz = max(box.min[2] - z, 0.0, z - box.max[2])
-        return math.hypot(dx, dz)
+        return self.target.box.plan_distance(x, z)
 
     def geodesic(self, x: float, z: float, y: float | None = None) -> float:
         """Walking distance to the nearest view point; ``inf`` when it cannot be reached

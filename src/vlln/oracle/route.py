@@ -335,9 +335,7 @@ def _landmark(knowledge: EpisodeKnowledge, point: np.ndarray, y: float) -> Objec
         if inst.category == knowledge.target.category:
             continue
         box = inst.box
-        gap = math.hypot(
-            max(box.min[0] - x, 0.0, x - box.max[0]), max(box.min[2] - z, 0.0, z - box.max[2])
-        )
+        gap = box.plan_distance(x, z)
         if gap <= LANDMARK_REACH and (best is None or gap < best[0]):
             best = (gap, inst)
     return None if best is None else best[1]

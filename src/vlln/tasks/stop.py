@@ -25,7 +25,6 @@ from numpy.typing import NDArray
 from vlln.sim.agent import AgentState
 from vlln.sim.simulator import Simulator
 from vlln.world.catalogue.aliases import canonical_category
-from vlln.world.model import Box3
 
 STOP_OBJECT_MIN_PIXELS = 50
 """Pixels an object must cover in the level view to be what the agent stopped at."""
@@ -54,7 +53,7 @@ def stop_instance(
         if count < STOP_OBJECT_MIN_PIXELS:
             continue
         inst = house.instance(instance_id)
-        distance = floor_distance(inst.box, x, z)
+        distance = inst.box.plan_distance(x, z)
         if distance > STOP_OBJECT_RANGE:
             continue
         same = canonical_category(inst.category) == wanted
@@ -82,10 +81,3 @@ def distractor_distance(sim: Simulator, goals: Collection[int], category: str) -
     x, y, z = sim.state.position
     distance = sim.distance_field(points).distance(x, z, y)
     return distance if math.isfinite(distance) else None
-
-
-def floor_distance(box: Box3, x: float, z: float) -> float:
-    """Floor-plan distance from a point to the footprint of a box (0 inside it)."""
-    dx = max(box.min[0] - x, 0.0, x - box.max[0])
-    dz = max(box.min[2] - z, 0.0, z - box.max[2])
-    return math.hypot(dx, dz)

@@ -7,6 +7,7 @@ imported from a scene summary have no geometry.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from enum import IntEnum
@@ -80,6 +81,12 @@ class Box3:
             (self.min[0] - margin, self.min[1] - margin, self.min[2] - margin),
             (self.max[0] + margin, self.max[1] + margin, self.max[2] + margin),
         )
+
+    def plan_distance(self, x: float, z: float) -> float:
+        """Floor-plan distance from a point to the box's footprint (0 inside it)."""
+        dx = max(self.min[0] - x, 0.0, x - self.max[0])
+        dz = max(self.min[2] - z, 0.0, z - self.max[2])
+        return math.hypot(dx, dz)
 
     def distance_to(self, other: Box3) -> float:
         """Euclidean gap between the two boxes (0 when they touch or overlap)."""

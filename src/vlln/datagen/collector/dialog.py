@@ -170,9 +170,7 @@ class DialogTriggers:
             self.storeys.level_under(box.min[1]) != self.storeys.level_of(y)
         ):
             return
-        gap = math.hypot(
-            max(box.min[0] - x, 0.0, x - box.max[0]), max(box.min[2] - z, 0.0, z - box.max[2])
-        )
+        gap = box.plan_distance(x, z)
         if gap > self.config.ask_range:
             return
         self._asked_about.add(candidate.id)

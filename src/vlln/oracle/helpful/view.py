@@ -17,7 +17,7 @@ from vlln.oracle.answers import VISIBLE_MIN_SHARE
 from vlln.oracle.knowledge import EpisodeKnowledge
 from vlln.sim.agent import AgentState
 from vlln.sim.renderer import Frame
-from vlln.world.model import Box3, ObjectInstance
+from vlln.world.model import ObjectInstance
 
 SIDE_GAP = 0.05  # of the view's width between candidates that "left" and "right" tell apart
 DISTANCE_GAP = 0.3  # m between candidates that "nearer" and "farther" tell apart
@@ -40,13 +40,6 @@ class Candidate:
         return math.log(max(sx * sy * sz, 1e-9))
 
 
-def plan_gap(box: Box3, x: float, z: float) -> float:
-    """Floor-plan metres from a point to a box (0 inside its footprint)."""
-    dx = max(box.min[0] - x, 0.0, x - box.max[0])
-    dz = max(box.min[2] - z, 0.0, z - box.max[2])
-    return math.hypot(dx, dz)
-
-
 def candidates_in_view(
     knowledge: EpisodeKnowledge, state: AgentState, frame: Frame
 ) -> list[Candidate]:
@@ -63,7 +56,7 @@ def candidates_in_view(
         if count < VISIBLE_MIN_SHARE * ids.size:
             continue
         column = float(np.nonzero(ids == value)[1].mean()) / ids.shape[1]
-        found.append(Candidate(instance, column, plan_gap(instance.box, x, z)))
+        found.append(Candidate(instance, column, instance.box.plan_distance(x, z)))
     return sorted(found, key=lambda c: c.column)
 
 
