@@ -29,7 +29,7 @@ BLUE_CHAIR = 2
 SCENE_ID = "test/two_rooms"
 
 
-def _chair(instance_id: int, colour: str, x: float, z: float, room: int) -> ObjectInstance:
+def chair(instance_id: int, colour: str, x: float, z: float, room: int) -> ObjectInstance:
     box = Box3((x - 0.25, 0.0, z - 0.25), (x + 0.25, 0.9, z + 0.25))
     return ObjectInstance(
         instance_id, "chair", "chair", Attributes(color=colour), f"a {colour} chair", box, room
@@ -37,11 +37,11 @@ def _chair(instance_id: int, colour: str, x: float, z: float, room: int) -> Obje
 
 
 def two_room_house() -> House:
-    chairs = [_chair(RED_CHAIR, "red", 5.0, 1.0, 0), _chair(BLUE_CHAIR, "blue", 1.5, 7.5, 1)]
+    chairs = [chair(RED_CHAIR, "red", 5.0, 1.0, 0), chair(BLUE_CHAIR, "blue", 1.5, 7.5, 1)]
     parts = [scenes.l_shaped_rooms()]
-    for chair in chairs:
-        x, _, z = chair.box.center
-        parts.append(scenes.box_object(chair.id, x, z, (0.5, 0.9, 0.5)))
+    for placed in chairs:
+        x, _, z = placed.box.center
+        parts.append(scenes.box_object(placed.id, x, z, (0.5, 0.9, 0.5)))
     rooms = [
         Room(0, "living room", ((0.0, 0.0), (6.0, 0.0), (6.0, 4.0), (0.0, 4.0))),
         Room(1, "bedroom", ((0.0, 4.0), (3.0, 4.0), (3.0, 9.0), (0.0, 9.0))),

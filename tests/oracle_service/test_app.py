@@ -81,6 +81,7 @@ def test_full_session_answers_then_refuses_past_the_budget(
         "question_type": "refused",
         "answered": False,
         "questions_left": 0,
+        "help_kind": None,
     }
 
     shown = client.get(f"/v1/sessions/{sid}").json()

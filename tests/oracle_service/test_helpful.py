@@ -72,6 +72,12 @@ def test_a_helpful_session_answers_questions_beyond_the_papers(
     assert upstairs == "No. This house has one floor, and it is on it."
     assert window.startswith(("Yes, it is near a window", "No, the nearest window", "No, I know"))
     assert lost.startswith("You are in the ") and "From here: " in lost
+    kinds = [reply["help_kind"] for reply in replies]
+    assert kinds == ["confirmation", "comparison", "floor", "window", "reroute"]
+    sid = _create(client, world, dialog_budget=1, oracle="helpful")["session_id"]
+    _ask(client, sid, *dialog[0])
+    turns = client.get(f"/v1/sessions/{sid}").json()["dialog"]
+    assert [turn["help_kind"] for turn in turns] == ["confirmation"]
 
 
 def test_the_default_session_keeps_the_rule_oracles_answers(
@@ -82,6 +88,7 @@ def test_the_default_session_keeps_the_rule_oracles_answers(
     assert answers == _in_process(RuleOracle(3), world, dialog)
     assert answers[0] == CANNOT_ANSWER  # "Are you sure?" is no question of the paper's
     assert answers == [reply["answer"] for reply in _served(client, world, dialog, oracle="rules")]
+    assert {reply["help_kind"] for reply in _served(client, world, dialog)} == {None}
 
 
 def test_an_unknown_oracle_is_refused(client: TestClient, world: World) -> None:

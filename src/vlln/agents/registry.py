@@ -25,10 +25,17 @@ def fbe_agent(seed: int, detector: str = "truth") -> FrontierAgent:
     return FrontierAgent(seed, FrontierConfig(asks=False), detector=detector)
 
 
+def comparing_agent(seed: int, detector: str = "truth") -> FrontierAgent:
+    """The frontier agent that asks which candidate is meant when several are in view and
+    reads the helpful oracle's clarifications (docs/helpful-oracle.md)."""
+    return FrontierAgent(seed, FrontierConfig(compares=True), detector=detector)
+
+
 AGENTS: dict[str, Callable[[int], Agent]] = {
     "random": RandomAgent,
     "expert": ExpertAgent,
     "frontier": FrontierAgent,
+    "frontier-compare": comparing_agent,
     "fbe": fbe_agent,
     "vlfm": VlfmAgent,
 }
@@ -53,6 +60,7 @@ CONFIGURED_DETECTING_AGENTS: dict[str, Callable[[int, Any, str], Agent]] = {
 
 DETECTING_AGENTS: dict[str, Callable[[int, str], Agent]] = {
     "frontier": lambda seed, detector: FrontierAgent(seed, detector=detector),
+    "frontier-compare": comparing_agent,
     "fbe": fbe_agent,
     "vlfm": lambda seed, detector: VlfmAgent(seed, detector=detector),
 }

@@ -143,8 +143,8 @@ class EvalConfig(Config):
     file_keys: ClassVar[tuple[str, ...]] = RUN_FACTS
 
     agent: str
-    """agent name (random, expert, frontier, fbe, vlfm, openai-vlm, aiuta, vlln) or your own
-    class as package.module:Class (docs/own-agent.md)"""
+    """agent name (random, expert, frontier, frontier-compare, fbe, vlfm, openai-vlm, aiuta,
+    vlln) or your own class as package.module:Class (docs/own-agent.md)"""
     task: str
     """iign, ign or objectnav"""
     split: str | None = "test"

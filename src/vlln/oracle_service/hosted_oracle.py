@@ -131,6 +131,7 @@ class HostedOracle:
         sim = self._simulator(session.scene_id, client)
         state = self._state(sim, request.pose)
         kind: WireQuestionType
+        help_kind: str | None = None
         if session.answered >= session.dialog_budget:
             answer, kind, answered = REFUSAL_MESSAGE, "refused", False
         else:
@@ -139,6 +140,7 @@ class HostedOracle:
                 self._question(session, sim, request.question, state, session.dialog)
             )
             answer, kind, answered = reply.answer, _WIRE_TYPES[reply.question_type], True
+            help_kind = reply.help_kind or None
             session.answered += 1
         turn = DialogTurnView(
             question=request.question,
@@ -146,6 +148,7 @@ class HostedOracle:
             question_type=kind,
             answered=answered,
             pose=request.pose,
+            help_kind=help_kind,
         )
         if answered or session.refused < REFUSED_TURNS_KEPT:
             session.dialog.append(turn)
@@ -156,6 +159,7 @@ class HostedOracle:
             question_type=turn.question_type,
             answered=answered,
             questions_left=session.questions_left,
+            help_kind=help_kind,
         )
 
     def view(self, session_id: str) -> SessionView:

@@ -85,6 +85,7 @@ class AskResponse(_Response):
     question_type: QuestionType
     answered: bool
     questions_left: int
+    help_kind: str | None = None  # the helpful oracle's kind of help (docs/helpful-oracle.md)
 
 
 class DialogTurnView(_Response):
@@ -93,6 +94,7 @@ class DialogTurnView(_Response):
     question_type: QuestionType
     answered: bool
     pose: Pose
+    help_kind: str | None = None
 
 
 class SessionView(_Response):

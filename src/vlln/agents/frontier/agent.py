@@ -27,7 +27,7 @@ import zlib
 
 import numpy as np
 
-from vlln.agents.frontier import dialog
+from vlln.agents.frontier import dialog, which_one
 from vlln.agents.frontier.config import FrontierConfig
 from vlln.agents.frontier.crossing import Crossing
 from vlln.agents.frontier.detector import Candidate, CandidateTracker
@@ -62,6 +62,8 @@ class FrontierAgent:
         self.config = config or FrontierConfig()
         if not self.config.asks:
             self.name = "fbe"
+        elif self.config.compares:
+            self.name = "frontier-compare"
         self.detector = check_detector(detector)
         self._info: EpisodeInfo | None = None
         self._stop_reason: StopReason | None = None
@@ -101,6 +103,7 @@ class FrontierAgent:
             )
         self.rejected: set[int] = set()
         self.confirmed: int | None = None
+        self._compared: set[frozenset[int]] = set()  # candidates in view asked about together
         self._target: int | None = None
         self._pending: tuple[str, int | None] | None = None
         self._asked_attribute = "color" in self.known  # IGN: the instruction may name it
@@ -352,12 +355,31 @@ class FrontierAgent:
         return None
 
     def _inspect(self, candidate: Candidate) -> AgentOutput | None:
-        """With the candidate in the middle of the view: ask "is this the one?" (None: go on
-        without asking)."""
+        """With the candidate in the middle of the view: ask "is this the one?", or, comparing
+        with others of the category in view, which one it is (None: go on without asking)."""
+        if self.config.compares:
+            together = frozenset(instance for instance, _ in self._in_view())
+            if len(together) >= 2 and together not in self._compared:
+                self._compared.add(together)
+                return self._ask("comparison", which_one.COMPARISON_QUESTION)
         text = dialog.question(
             dialog.DISAMBIGUATION_TEMPLATES, self.episode.object_category, self._rng
         )
         return self._ask("disambiguation", text, candidate.instance_id)
+
+    def _in_view(self) -> list[tuple[int, float]]:
+        """The candidates not yet ruled out in the current view, as (id, mean column), left to
+        right: what a place named in an answer picks from."""
+        detected = {c.instance_id: c for c in self.tracker.detected()}
+        seen = [
+            (instance, sighting.column)
+            for instance, sighting in self.tracker.visible.items()
+            if instance in detected
+            and instance not in self.rejected
+            and sighting.pixels >= self.config.min_detection_pixels
+            and self._on_this_storey(detected[instance])
+        ]
+        return sorted(seen, key=lambda seen: seen[1])
 
     def _may_aim(self, pose: Pose) -> bool:
         """After a failed aim, try again only from somewhere else."""
@@ -397,6 +419,10 @@ class FrontierAgent:
             elif verdict is False:
                 self.rejected.add(about)
                 self.known.update(self._answer_vocabulary.parse(answer))
+            if self.config.compares:
+                self._take_pick(which_one.read_clarification(answer))
+        elif kind == "comparison":
+            self._take_pick(which_one.read_comparison(answer))
         elif kind == "route":
             storey = dialog.parse_storey(answer)
             if storey is not None or dialog.parse_route(answer) is not None:
@@ -408,6 +434,18 @@ class FrontierAgent:
             if turn is not None:
                 self._hint = (wrap_angle(pose.yaw + turn), self._steps + self.config.hint_steps)
                 self.explorer.drop_path()
+
+    def _take_pick(self, pick: which_one.Pick | None) -> None:
+        """Act on an answer that says which candidate in view the target is: that one is
+        confirmed and the others in view are ruled out (all of them when it is none)."""
+        if pick is None:
+            return
+        in_view = self._in_view()
+        chosen = which_one.picked(pick, in_view)
+        self.rejected.update(instance for instance, _ in in_view if instance != chosen)
+        if chosen is not None:
+            self.rejected.discard(chosen)
+            self.confirmed = self._target = chosen
 
     # ----------------------------------------------------------------- helpers
     def _level(self, tilt: float) -> Action:

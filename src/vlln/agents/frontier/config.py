@@ -38,3 +38,7 @@ class FrontierConfig:
     # Whether it asks the oracle at all: off, it is the paper's FBE baseline, which explores
     # and detects but never talks, whatever budget the task gives.
     asks: bool = True
+    # Whether, with several candidates in view, it asks which one is meant, and reads the
+    # place a clarification names (the comparing navigator, ``frontier-compare``;
+    # vlln.agents.frontier.which_one). Off, it asks only the paper's questions.
+    compares: bool = False

@@ -56,6 +56,7 @@ class Sighting:
 
     pixels: int
     central_pixels: int  # inside rows H/4..3H/4 and columns W/4..3W/4
+    column: float  # mean column of its pixels, 0 at the view's left edge, 1 at its right
 
 
 class CandidateTracker:
@@ -86,6 +87,7 @@ class CandidateTracker:
         uu, vv = np.meshgrid(us, vs)
         self._rays = camera.pixel_ray(uu, vv)
         w, h = camera.width, camera.height
+        self._columns = (uu + 0.5) / w
         self._central = (uu >= w / 4) & (uu < 3 * w / 4) & (vv >= h / 4) & (vv < 3 * h / 4)
         rows, cols = np.nonzero(self._central)
         self._central_window = (
@@ -117,13 +119,16 @@ class CandidateTracker:
         hit = (d > 0.0) & (d < self.camera.max_depth * 0.999)
         seen_ids = ids[mask]
         central = self._central[mask]
+        columns = self._columns[mask]
         pose_matrix = self.camera.camera_to_world((pose.x, height, pose.z), pose.yaw, tilt)
         points = (self._rays[mask] * d[:, None]) @ pose_matrix[:3, :3].T + pose_matrix[:3, 3]
         for instance_id in np.unique(seen_ids).tolist():
             mine = seen_ids == instance_id
             pixels = int(np.count_nonzero(mine)) * self._scale
             self.visible[instance_id] = Sighting(
-                pixels, int(np.count_nonzero(mine & central)) * self._scale
+                pixels,
+                int(np.count_nonzero(mine & central)) * self._scale,
+                float(columns[mine].mean()),
             )
             usable = mine & hit
             if not usable.any():
