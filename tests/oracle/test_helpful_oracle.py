@@ -14,6 +14,7 @@ from matplotlib.path import Path as PolygonPath
 from tests.oracle.episodes import iign_episode
 from tests.oracle.test_answers import _blank
 from tests.oracle.test_rule_oracle import QUESTIONS, _states
+from vlln.errors import ConfigError
 from vlln.eval.config import EvalConfig
 from vlln.eval.runner import default_provenance
 from vlln.oracle.answers import VISIBLE_MIN_SHARE
@@ -423,6 +424,13 @@ def test_eval_selects_it_and_names_it_in_provenance() -> None:
     provenance = default_provenance(config, None)
     assert (provenance["oracle"], provenance["backend"]) == ("HelpfulOracle", "helpful")
     assert EvalConfig(agent="random", task="iign").oracle_settings().backend_name == "rules"
+    worded = EvalConfig(agent="random", task="iign", oracle="helpful", oracle_model="m")
+    provenance = default_provenance(worded, None)
+    assert (provenance["oracle"], provenance["backend"]) == ("LLMOracle", "openai:m@api.openai.com")
+    with pytest.raises(ConfigError, match="rule oracle takes no server"):
+        EvalConfig(agent="random", task="iign", oracle_model="m")
+    with pytest.raises(ConfigError, match="--oracle-timeout applies to a language model"):
+        EvalConfig(agent="random", task="iign", oracle="helpful", oracle_timeout=5.0)
 
 
 def test_the_environment_gives_the_path_and_records_the_kind_of_help(

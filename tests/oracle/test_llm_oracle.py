@@ -2,17 +2,21 @@
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 
 from tests.oracle.episodes import iign_episode
 from tests.oracle.llm.chat_server import Scripted, chat_server, completion
 from vlln.errors import ConfigError
+from vlln.oracle.helpful.oracle import HelpfulOracle
 from vlln.oracle.llm.offline import OfflineLanguageModel
 from vlln.oracle.llm.openai_client import OpenAIChatClient, OpenAISettings
 from vlln.oracle.llm.prompts import QUESTION_MARKER, REFERENCE_MARKER, field_value
 from vlln.oracle.llm_oracle import LLMOracle
 from vlln.oracle.rule_oracle import RuleOracle
+from vlln.oracle.settings import OracleBackend, OracleSettings
 from vlln.sim.agent import AgentState
 from vlln.sim.simulator import Simulator
 from vlln.sim.viewpoints import view_points
@@ -251,3 +255,47 @@ def test_a_trickling_server_is_cut_off_and_the_rule_answer_given(
     assert reply.fallback and reply.answer == offline.answer
     assert client.ledger.failed_requests >= 1
     assert reply.latency_ms < 5000.0  # cut off long before the reply could end
+
+
+BEYOND_THE_SCHEMA = ("Are you sure?", "Did I pass it?", "Is it near a window?")
+
+
+def test_with_help_the_offline_model_gives_the_helpful_oracles_answers(
+    sim: Simulator, target: ObjectInstance
+) -> None:
+    llm = LLMOracle(OfflineLanguageModel(), seed=5, helpful=True)
+    helpful = HelpfulOracle(RuleOracle(seed=5))
+    for oracle in (llm, helpful):
+        oracle.start(context(sim, target))
+    kinds = set()
+    for text in (*QUESTIONS, *BEYOND_THE_SCHEMA):
+        asked = question(sim, text)
+        mine, theirs = llm.answer(asked), helpful.answer(asked)
+        assert (mine.answer, mine.question_type) == (theirs.answer, theirs.question_type)
+        assert mine.help_kind == theirs.help_kind and mine.backend == "offline"
+        kinds.add(mine.help_kind)
+    assert {"schema", "confirmation", "passed", "window"} <= kinds
+    plain = LLMOracle(OfflineLanguageModel(), seed=5)
+    plain.start(context(sim, target))
+    assert plain.answer(question(sim, "Are you sure?")).help_kind == ""
+
+
+def test_help_beyond_the_schema_is_one_call_rewording_the_grounded_answer(
+    sim: Simulator, target: ObjectInstance
+) -> None:
+    asked = question(sim, "Is it near a window?")
+    reference = HelpfulOracle(RuleOracle(seed=3))
+    reference.start(context(sim, target))
+    expected = reference.answer(asked)
+    settings = OpenAISettings(model="m", timeout_s=2.0, max_retries=0)
+    with chat_server([completion("Yes, by the window.", 80, 5)]) as server:
+        settings = dataclasses.replace(settings, base_url=server.base_url)
+        oracle = OracleSettings(OracleBackend.HELPFUL, settings).make(3)
+        oracle.start(context(sim, target))
+        reply = oracle.answer(asked)
+    assert isinstance(oracle, LLMOracle) and len(server.requests) == 1
+    assert (reply.answer, reply.help_kind) == ("Yes, by the window.", "window")
+    assert reply.question_type == expected.question_type and reply.prompt_tokens == 80
+    word = prompt_of(server.requests[0])
+    assert field_value(word, REFERENCE_MARKER) == " ".join(expected.answer.split())
+    assert field_value(word, "Help Asked: ") == "window" and "Target Detected: " in word

@@ -178,10 +178,10 @@ class EvalConfig(Config):
     """folder of scanned scenes (<scenes>/<scene>/) the episode file names"""
     oracle: Literal["rules", "llm", "helpful"] = "rules"
     """who answers questions: rules (offline), llm (the paper's language-model oracle over
-    an OpenAI-compatible server; needs --oracle-model) or helpful (offline: the rule
-    oracle's answers and grounded help beyond them)"""
+    an OpenAI-compatible server; needs --oracle-model) or helpful (the rule oracle's answers
+    and grounded help beyond them; offline, or worded by --oracle-model)"""
     oracle_model: str | None = None
-    """--oracle llm: the served model's name, e.g. gpt-4o"""
+    """--oracle llm or helpful: the served model's name, e.g. gpt-4o"""
     oracle_base_url: str | None = None
     """--oracle llm: the server, e.g. http://localhost:8000/v1 (none: OpenAI's)"""
     oracle_api_key_env: str | None = None
@@ -256,9 +256,9 @@ class EvalConfig(Config):
     def oracle_settings(self) -> OracleSettings:
         """The run's oracle (:mod:`vlln.oracle.settings`); the llm flags need --oracle llm."""
         llm = None
-        if self.oracle == OracleBackend.LLM.value:
-            if not self.oracle_model:
-                raise ConfigError("--oracle llm needs --oracle-model, the served model's name")
+        if self.oracle == OracleBackend.LLM.value and not self.oracle_model:
+            raise ConfigError("--oracle llm needs --oracle-model, the served model's name")
+        if self.oracle_model:
             llm = OpenAISettings(model=self.oracle_model, max_failures=DEFAULT_MAX_FAILURES)
             given = {
                 setting: getattr(self, name)
@@ -270,7 +270,9 @@ class EvalConfig(Config):
             extra = [name for name in _ORACLE_FLAGS if getattr(self, name) is not None]
             if extra:
                 flag = "--" + extra[0].replace("_", "-")
-                raise ConfigError(f"{flag} applies to --oracle llm; add --oracle llm or drop it")
+                raise ConfigError(
+                    f"{flag} applies to a language model's oracle; add --oracle-model or drop it"
+                )
         types = tuple(QuestionType(name) for name in self.question_types)
         backend, disambiguation = OracleBackend(self.oracle), Disambiguation(self.disambiguation)
         return OracleSettings(backend, llm, types, disambiguation)

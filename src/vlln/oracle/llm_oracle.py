@@ -12,7 +12,9 @@ the rule oracle does.
 Failures never stop an episode: a classification reply that names no type is replaced by the
 offline classifier's type, and a call that fails after the client's retries is replaced by
 the rule oracle's answer (when the server cannot be reached at all, the second call is not
-tried); the reply then says ``fallback=True``. With the
+tried); the reply then says ``fallback=True``. With ``helpful``, the helpful oracle grounds
+instead of the rule oracle: a question it claims beyond the paper's schema gets one call, the
+help prompt with its answer to reword (docs/helpful-oracle.md). With the
 :class:`~vlln.oracle.llm.offline.OfflineLanguageModel` the answers are the rule oracle's, word
 for word.
 """
@@ -20,14 +22,17 @@ for word.
 from __future__ import annotations
 
 import logging
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from vlln.errors import ConfigError
 from vlln.oracle.disambiguation import answer_disambiguation
+from vlln.oracle.helpful.oracle import HelpfulOracle
+from vlln.oracle.helpful.recognise import HelpKind
 from vlln.oracle.knowledge import EpisodeKnowledge, HouseIndex
-from vlln.oracle.llm.facts import all_facts, goal_information, route_facts
+from vlln.oracle.llm.facts import all_facts, goal_information, route_facts, target_detected
 from vlln.oracle.llm.prompts import (
     ATTRIBUTE_PROMPT,
+    HELP_PROMPT,
     OTHER_PROMPT,
     ROUTE_PROMPT,
     answer_messages,
@@ -46,6 +51,9 @@ from vlln.oracle.rule_oracle import TYPE_REFUSAL, RuleOracle
 from vlln.tasks.oracle_protocol import EpisodeContext, Question, QuestionType, Reply
 
 logger = logging.getLogger(__name__)
+
+# Help kinds answered through the paper's prompts ("" from the rule oracle).
+_THE_PAPERS = frozenset({"", HelpKind.SCHEMA.value, HelpKind.CLARIFICATION.value})
 
 
 @dataclass
@@ -84,6 +92,7 @@ class LLMOracle:
         *,
         max_tokens: int = 256,
         temperature: float = 0.0,
+        helpful: bool = False,
     ) -> None:
         if fallback is None:
             fallback = RuleOracle(seed)
@@ -101,12 +110,13 @@ class LLMOracle:
         self.fallback = fallback
         self.max_tokens = max_tokens
         self.temperature = float(temperature)
+        self._grounds: RuleOracle | HelpfulOracle = HelpfulOracle(fallback) if helpful else fallback
         self._index: HouseIndex | None = None
         self._knowledge: EpisodeKnowledge | None = None
 
     def start(self, context: EpisodeContext) -> None:
         """Start the rule oracle's episode and the look-ups that the prompts' facts read."""
-        self.fallback.start(context)
+        self._grounds.start(context)
         simulator = context.simulator
         house = simulator.house
         if self._index is None or self._index.house is not house:
@@ -120,7 +130,9 @@ class LLMOracle:
         knowledge = self._knowledge
         if knowledge is None:
             raise ConfigError("the oracle has no episode; call start(context) before answer()")
-        offline = self.fallback.answer(question)
+        offline = self._grounds.answer(question)
+        if offline.help_kind not in _THE_PAPERS:
+            return self._help(knowledge, question, offline)
         spend = _Spend()
         kind = self._classify(question.text, offline.question_type, spend)
         refused = False
@@ -151,6 +163,30 @@ class LLMOracle:
             completion_tokens=spend.completion_tokens,
             fallback=spend.fallback,
             type_refused=refused,
+            help_kind=offline.help_kind,
+        )
+
+    def _help(self, knowledge: EpisodeKnowledge, question: Question, offline: Reply) -> Reply:
+        """Help beyond the paper's schema: the helpful oracle's answer, reworded in one call
+        (its refusal of a type the run does not answer, as it is)."""
+        if offline.type_refused:
+            return replace(offline, backend=self.model.backend)
+        facts = {
+            "goal_information": goal_information(knowledge, question.state),
+            "target_detected": target_detected(knowledge, question.state, question.frame),
+            "help_kind": offline.help_kind,
+        }
+        spend = _Spend()
+        messages = answer_messages(HELP_PROMPT, facts, question.text, offline.answer)
+        worded = self._call(messages, spend)
+        return replace(
+            offline,
+            answer=offline.answer if worded is None else worded,
+            backend=self.model.backend,
+            latency_ms=round(spend.latency_ms, 3),
+            prompt_tokens=spend.prompt_tokens,
+            completion_tokens=spend.completion_tokens,
+            fallback=spend.fallback,
         )
 
     def _classify(self, text: str, offline: QuestionType, spend: _Spend) -> QuestionType:

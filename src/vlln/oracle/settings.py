@@ -3,7 +3,7 @@
 * ``backend``: the rule oracle, the paper's language-model oracle over an
   OpenAI-compatible server (the oracle-backbone ablation, paper supplementary), or the
   helpful oracle, the rule oracle's answers and grounded help beyond them
-  (docs/helpful-oracle.md).
+  (docs/helpful-oracle.md), worded by a language model when ``llm`` is given.
 * ``question_types``: the types answered; a question of another type gets
   :data:`vlln.oracle.rule_oracle.TYPE_REFUSAL` and still costs its turn (the question-type
   ablation).
@@ -75,20 +75,22 @@ class OracleSettings:
     disambiguation: Disambiguation = Disambiguation.PLAIN
 
     @model_validator(mode="after")
-    def _llm_settings_for_llm_alone(self) -> Self:
-        if (self.backend == OracleBackend.LLM) != (self.llm is not None):
+    def _llm_settings_for_a_model(self) -> Self:
+        if self.backend == OracleBackend.LLM and self.llm is None:
+            raise ConfigError("the llm oracle needs its server's settings (--oracle-model)")
+        if self.backend == OracleBackend.RULES and self.llm is not None:
             raise ConfigError(
-                "the llm oracle needs its server's settings (--oracle-model), and only it "
-                "takes them; pass --oracle llm with --oracle-model, or neither"
+                "the rule oracle takes no server; pass --oracle llm or helpful with "
+                "--oracle-model, or neither"
             )
         return self
 
     @property
     def oracle_name(self) -> str:
         """The class that answers, as run.json's provenance names it."""
-        if self.backend == OracleBackend.HELPFUL:
-            return "HelpfulOracle"
-        return "LLMOracle" if self.llm is not None else "RuleOracle"
+        if self.llm is not None:
+            return "LLMOracle"
+        return "HelpfulOracle" if self.backend == OracleBackend.HELPFUL else "RuleOracle"
 
     @property
     def backend_name(self) -> str:
@@ -101,11 +103,10 @@ class OracleSettings:
         """A fresh oracle for one episode, seeded (paraphrases), over the client that every
         episode of the process shares (its pool, and its count of failed requests in a row)."""
         rules = RuleOracle(seed, question_types=self.question_types, cues=self.cues)
-        if self.backend == OracleBackend.HELPFUL:
-            return HelpfulOracle(rules)
-        if self.llm is None:
-            return rules
-        return LLMOracle(_shared_client(self.llm), seed, rules)
+        helpful = self.backend == OracleBackend.HELPFUL
+        if self.llm is not None:
+            return LLMOracle(_shared_client(self.llm), seed, rules, helpful=helpful)
+        return HelpfulOracle(rules) if helpful else rules
 
     def check_server(self) -> None:
         """:class:`ConfigError` unless the llm oracle's server answers (nothing for rules)."""

@@ -69,6 +69,19 @@ OTHER_PROMPT = (
     "Next Step: {next_step}\n"
     "Target Detected: {target_detected}"
 )
+# Not the paper's: help beyond its schema (docs/helpful-oracle.md), grounded by the helpful
+# oracle, whose answer is always the reference to reword.
+HELP_PROMPT = (
+    f"{_ANSWER_PREAMBLE}"
+    "Beyond where the goal object is and how to reach it, the asker may ask which of the "
+    "objects in view is the goal, how sure you are, whether they passed it or are getting "
+    "closer, which floor it is on, how many there are, and what is around it. The reference "
+    "answer holds that help, grounded in the house, the asker's view and the path they "
+    "walked\n"
+    "Goal Information: {goal_information}\n"
+    "Target Detected: {target_detected}\n"
+    "Help Asked: {help_kind}"
+)
 
 
 def classification_messages(question: str) -> list[Message]:
