@@ -356,6 +356,24 @@ def test_counts_are_the_houses_instances_by_room(sim: Simulator, chair: ObjectIn
     )
 
 
+def test_counts_in_view_are_of_the_candidates_the_asker_sees(
+    sim: Simulator, chair: ObjectInstance, views: list[tuple[AgentState, Frame]]
+) -> None:
+    oracle = _started(HelpfulOracle(RuleOracle(0)), sim, chair)
+    for state, frame in views:
+        reply = _ask(oracle, state, frame, "how many chairs can i see from here?")
+        shown = _visible(sim, frame, "chair")
+        words = {2: "Two", 3: "Three", 4: "Four", 5: "Five"}[len(shown)]
+        assert reply.help_kind == "count"
+        assert reply.answer.startswith(f"{words} chairs are in your view.")
+        assert ("One of them is the one I mean" in reply.answer) == (chair.id in shown)
+    assert _ask(oracle, state, _blank(sim), "How many chairs are in view?").answer == (
+        "No chair is in your view."
+    )
+    on_floors = _ask(oracle, state, frame, "How many chairs are on this floor?").answer
+    assert on_floors.startswith("There are ") and on_floors.endswith("This house has one floor.")
+
+
 def test_the_neighbourhood_names_the_nearest_objects(sim: Simulator, chair: ObjectInstance) -> None:
     oracle = _started(HelpfulOracle(RuleOracle(0)), sim, chair)
     state = AgentState(_walk_to(sim, chair, 8)[0], 0.0)

@@ -19,6 +19,10 @@ PHRASINGS: dict[HelpKind, tuple[str, ...]] = {
         "Is it the red one or the blue one?",
         "Which one is it?",
         "There are two plants here. Which one of these is the target?",
+        "Is it the kitchen table or the dining table?",
+        "front one or back one?",
+        "I see two beds, which one?",
+        "the one by the window or the one by the door?",
     ),
     HelpKind.CONFIRMATION: (
         "Are you sure?",
@@ -28,6 +32,8 @@ PHRASINGS: dict[HelpKind, tuple[str, ...]] = {
         "really?",
         "How sure are you?",
         "Are you sure this is the one?",
+        "Can you double-check? I don't want to pick the wrong lamp.",
+        "Is that your final answer on which sofa?",
     ),
     HelpKind.PASSED: (
         "Did I pass it?",
@@ -52,6 +58,8 @@ PHRASINGS: dict[HelpKind, tuple[str, ...]] = {
         "WHAT FLOOR IS IT ON",
         "Is it on this floor?",
         "How many floors does the house have?",
+        "Is the house one storey or two?",
+        "Is it on the floor I started on?",
     ),
     HelpKind.REROUTE: (
         "I think I'm lost, can you help?",
@@ -59,6 +67,8 @@ PHRASINGS: dict[HelpKind, tuple[str, ...]] = {
         "Sorry, I am lost.",
         "Can you help me?",
         "I'm a bit confused, help me get there",
+        "Have I been in this room already?",
+        "I think I walked in a loop.",
     ),
     HelpKind.COUNT: (
         "How many chairs are there?",
@@ -66,12 +76,17 @@ PHRASINGS: dict[HelpKind, tuple[str, ...]] = {
         "how many of them are in the house?",
         "Is there more than one chair?",
         "How many lamps are in this house?",
+        "count the lamps for me?",
+        "Is this the only bed in the room?",
+        "how many toilets does this place have",
+        "How many tables are on this floor?",
     ),
     HelpKind.NEIGHBOURHOOD: (
         "What is around it?",
         "what else is near it?",
         "Describe its surroundings.",
         "Which things are around the plant?",
+        "What's opposite the toilet?",
     ),
     HelpKind.WINDOW: (
         "is it near a window?",

@@ -12,11 +12,17 @@ import re
 from collections import defaultdict
 from functools import lru_cache
 
-from vlln.oracle.answers import distance_words, room_phrase
+import numpy as np
+
+from vlln.oracle.answers import VISIBLE_MIN_SHARE, distance_words, room_phrase
 from vlln.oracle.classifier.entities import object_names
+from vlln.oracle.helpful.progress import storey_name
+from vlln.oracle.helpful.recognise import HelpRequest
 from vlln.oracle.helpful.view import counted, plural
 from vlln.oracle.knowledge import EpisodeKnowledge, object_phrase, room_name
 from vlln.sim.agent import AgentState
+from vlln.sim.renderer import Frame
+from vlln.tasks.oracle_protocol import Question
 from vlln.world.catalogue.aliases import canonical_category
 from vlln.world.generator.furnishing import WINDOW_COVERINGS
 from vlln.world.model import ObjectInstance, Room
@@ -25,18 +31,34 @@ NEIGHBOUR_RADIUS = 1.5  # m between boxes: what stands "around" the target
 NEIGHBOURS_NAMED = 4
 RIGHT_BESIDE = 0.3  # m between boxes: "right beside it"
 WINDOW_NEAR = 1.5  # m between the target's box and a window's: "near a window"
+_MODAL_CAN = re.compile(r"\bcan (?=(i|you|we|they|it)\b)")
+_STOREY_WORDS = re.compile(r"\b(upstairs|downstairs|floors?|storeys?|stor(y|ies)|levels?)\b")
 
 
-def answer_count(knowledge: EpisodeKnowledge, text: str, state: AgentState) -> str:
+def answer_count(knowledge: EpisodeKnowledge, request: HelpRequest, question: Question) -> str:
     """How many instances of the category the question names (else the target's) the house
-    has, by room: "There are 3 chairs in this house: 2 in the kitchen, 1 in the study."."""
+    has, by room: "There are 3 chairs in this house: 2 in the kitchen, 1 in the study."; by
+    floor too when it names floors; those in view when it asks what the asker sees."""
     target = knowledge.target
     house = knowledge.index.house
+    text = _MODAL_CAN.sub("", request.text)  # "how many can I see": "can" is no object here
     named = [canonical_category(m.group(1)) for m in _catalogue_pattern().finditer(text)]
     category = next((name for name in named if name != target.category), target.category)
     instances = house.instances_of(category)
+    if request.in_view:
+        return _count_in_view(knowledge, category, question.frame)
     if not instances:
         return f"There is no {category} in this house."
+    sentence = _count_in_house(knowledge, category, instances, question.state)
+    if _STOREY_WORDS.search(text):
+        return f"{sentence} {_by_floor(knowledge, instances)}"
+    return sentence
+
+
+def _count_in_house(
+    knowledge: EpisodeKnowledge, category: str, instances: list[ObjectInstance], state: AgentState
+) -> str:
+    target = knowledge.target
     by_type: dict[str, list[ObjectInstance]] = defaultdict(list)
     for instance in instances:
         room = _room(knowledge, instance)
@@ -52,6 +74,40 @@ def answer_count(knowledge: EpisodeKnowledge, text: str, state: AgentState) -> s
     if category != target.category or room is None:
         return sentence
     return f"{sentence} The one I mean is in {room_phrase(knowledge, room, state)}."
+
+
+def _by_floor(knowledge: EpisodeKnowledge, instances: list[ObjectInstance]) -> str:
+    """ "By floor: 2 on the ground floor, 1 on the upper floor." (one-floor houses say so)."""
+    levels = sorted({room.level for room in knowledge.index.house.rooms})
+    if len(levels) < 2:
+        return "This house has one floor."
+    on: dict[int, int] = defaultdict(int)
+    for instance in instances:
+        room = _room(knowledge, instance)
+        on[room.level if room is not None else levels[0]] += 1
+    parts = [f"{on[level]} on {storey_name(level, levels)}" for level in levels]
+    return f"By floor: {', '.join(parts)}."
+
+
+def _count_in_view(knowledge: EpisodeKnowledge, category: str, frame: Frame) -> str:
+    """How many of ``category`` the asker sees, and which is the target among them."""
+    ids = frame.instance_ids
+    values, counts = np.unique(ids[ids > 0], return_counts=True)
+    seen = [
+        value
+        for value, count in zip(values.tolist(), counts.tolist(), strict=True)
+        if count >= VISIBLE_MIN_SHARE * ids.size
+        and getattr(knowledge.index.instances.get(value), "category", None) == category
+    ]
+    if not seen:
+        return f"No {category} is in your view."
+    verb = "is" if len(seen) == 1 else "are"
+    sentence = f"{counted(len(seen), category).capitalize()} {verb} in your view."
+    if category != knowledge.target.category:
+        return sentence
+    if knowledge.target.id not in seen:
+        return f"{sentence} The one I mean is not among them."
+    return f"{sentence} One of them is the one I mean."
 
 
 def _rooms(knowledge: EpisodeKnowledge, name: str, group: list[ObjectInstance]) -> str:

@@ -52,7 +52,7 @@ _ANSWERS: dict[HelpKind, tuple[QuestionType, Answerer]] = {
     HelpKind.CLOSER: (QuestionType.OTHER, lambda k, r, q: answer_closer(k, q.state, _path(q))),
     HelpKind.FLOOR: (QuestionType.ROUTE, lambda k, r, q: answer_floor(k, r, q.state)),
     HelpKind.REROUTE: (QuestionType.ROUTE, lambda k, r, q: answer_reroute(k, q.state)),
-    HelpKind.COUNT: (QuestionType.OTHER, lambda k, r, q: answer_count(k, r.text, q.state)),
+    HelpKind.COUNT: (QuestionType.OTHER, answer_count),
     HelpKind.NEIGHBOURHOOD: (
         QuestionType.ATTRIBUTE,
         lambda k, r, q: answer_neighbourhood(k, q.state),
@@ -65,7 +65,9 @@ _READS_VIEW = frozenset({HelpKind.COMPARISON, HelpKind.CONFIRMATION})
 def reads_view(text: str) -> bool:
     """Whether the helpful answer to ``text`` looks at the view it is asked from."""
     request = recognised(text)
-    return rules_read_view(text) if request is None else request.kind in _READS_VIEW
+    if request is None:
+        return rules_read_view(text)
+    return request.kind in _READS_VIEW or request.in_view
 
 
 class HelpfulOracle:

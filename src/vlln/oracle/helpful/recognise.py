@@ -75,6 +75,7 @@ class HelpRequest:
     dimension: Dimension | None = None
     asked: tuple[str, ...] = ()  # the values named: "left", "near", "big", colours
     floor_claim: FloorClaim | None = None
+    in_view: bool = False  # a count of what the asker sees ("how many can I see?")
 
 
 _CONTRACTIONS = {
@@ -175,7 +176,10 @@ _FLOOR = re.compile(
     + _STOREY
     + r"|(up|down) (a|one) "
     + _STOREY
-    + r"|floor (above|below))\b"
+    + r"|floor (above|below)|(one|two|three|single|multi) ?(storey|story|level|floor)s?|"
+    r"(floor|level|storey) (i am|i was|i started|we are|with the|as the|of the)|"
+    r"(share|shares|sharing) (a|the) (floor|level|storey)|(entrance|entry|ground|street) level|"
+    r"level with the)\b"
 )
 # "how many chairs", "is there another one": a count of objects, not of steps or rooms.
 _COUNT = re.compile(
@@ -188,12 +192,29 @@ _OWN_PARTS = re.compile(
     r"\b(does|do|has|have) (the|this|that|a|an|it|its) (?!house|home|building|place|flat)\w+"
 )
 _COUNTED = frozenset({"them", "these", "those", "it", "one", "ones", "the", "this", "that", ""})
+_COUNTED_VERBS = frozenset({"are", "is", "can", "could", "do", "does", "of", "in", "there"})
+# Counts of things that are not objects: "how many steps?", "how many floors?".
+_NOT_OBJECTS = frozenset(
+    {"steps", "step", "questions", "question", "meters", "metres", "turns", "degrees", "times"}
+    | {"minutes", "seconds", "rooms", "floors", "storeys", "stories", "levels", "more"}
+)
+_MORE_COUNT = re.compile(
+    r"\b(total number|count (the|all|them|up)|is (this|that|it) the only|(the )?only (one|\w+) "
+    r"in (the|this|that) (house|room|place|home)|a second (one|\w+)|more than (one|two|three|"
+    r"four|five|six|\d+)|(a lot of|lots of|several|many) \w+ (in the house|or (just )?a few)|"
+    r"(is|are) there (more|other|any other|a lot|lots)|any other \w+ (in|like|besides))\b"
+)
+_IN_VIEW = re.compile(
+    r"\b(in (my |your )?view|(can|do) (i|we) see|i (can )?see|from (here|where i am)|in sight|"
+    r"visible|in front of me)\b"
+)
 _WINDOW = re.compile(r"\bwindows?\b")
 _NEAR_WORDS = re.compile(
     r"\b(near|by|next to|beside|under|underneath|beneath|below|close|adjacent|facing|against|"
     r"in front of)\b"
 )
 _PASSED = re.compile(
+    r"\b(have|did) (i|we) (already )?(seen|see|walk into|walked into|been in) (it|the room with)\b|"
     r"\b((did|have|had|has) (i|we) (already |just )?(pass|passed|miss|missed|overshoot|"
     r"overshot|(go|gone|went|walk|walked) (past|by))|(i|we) (think (i|we) )?(already |just )?"
     r"(passed|missed|overshot|(went|walked) (past|by))) (it|the|them)\b"
@@ -212,14 +233,23 @@ _REROUTE = re.compile(
     r"lost (track|my way|my bearings)|no idea where (i am|to go)|do not know where (i am|to go)|"
     r"(going|walking) (around )?in circles|help (me |us )?(get|getting|find|finding|reach|"
     r"navigate)|got lost)\b|\b(can|could|would) you help( me| us)?( please)?$|^(please )?help"
-    r"( me)?( please)?$|^(so |totally |completely )?lost\b"
+    r"( me)?( please)?$|^(so |totally |completely )?lost\b|\bback on track\b|"
+    r"\b(walked|walking|going|gone) in (a )?(loop|circle)s?\b|\b(have|did) (i|we) (already )?"
+    r"(been|visited|walked) (in |into |through )?(this|here|that)\b|\bbeen (here|in this room) "
+    r"before\b|\b(haven t|have not|not yet) (visited|been|explored)\b|was that a mistake\b|"
+    r"\bwhere am i relative to\b"
 )
 _CONFIRMATION = re.compile(
     r"^((are|do) )?(you|you are) (really |very |absolutely )?(sure|certain|positive|confident)"
     r"( about (it|that|this)| of (it|that|this)| (that|this|it)( one)? (is|is not|isnt)( it| the"
     r" one| right| correct| the right one)?)?$|^how (sure|"
     r"certain) are you$|^(really|sure|certain)$|\bis (that|this|it) (really|definitely|"
-    r"certainly) (it|the one)\b"
+    r"certainly) (it|the one)\b|\b(are you|you are) (really |very |absolutely |completely )?(sure|"
+    r"certain|positive|confident)\b|\bhow (sure|certain|confident)\b|\bdouble ?check\b|"
+    r"\b(can|could) you confirm\b|\bfinal answer\b|\b(be|are you) (mistaken|wrong)\b|"
+    r"\bconfusing (it|them)\b|\bjust guessing\b|\b(can|could) you tell from (here|this)\b|"
+    r"\b(is|it is) (that|this|it) definitely\b|\b(is it possible|could it be) (it is |its )?(the "
+    r"other|another|a different)\b"
 )
 _THE_ONES = (
     r"(\b(the|this|that|which) (\w+ )?ones?\b|\bof (them|these|those|the two)\b|\bones? or\b)"
@@ -241,11 +271,21 @@ _WHICH = re.compile(
     r"(is (it|the target|the goal|the one|yours|mine|the right one|the correct one)|(do|did) "
     r"you mean)\b|^which (one|of them)( is it)?$"
 )
+# "which one?", "between the white chair and the black chair", "the one by the door or ...".
+_CHOICE = re.compile(
+    r"\bwhich (one|ones|of (them|these|those|the))\b|^which$|\bwhich is (the one|it|yours)\b|"
+    r"\bbetween the \w+( \w+)? and the\b|\bbetween the .* and the ones?\b|"
+    r"\bthe (one|\w+ one) .*\bor (the|by|in|on|with)\b|\b(\w+) (one )?or (the )?(\w+ ){1,2}one\b|"
+    r"\b(front|back|first|second|top|bottom) one or\b|\bor (the )?ones?\b|"
+    r"\bor (to |on )?the (left|right)\b|\bthe (\w+ )?(?P<noun>\w+) or the (\w+ )?(?P=noun)\b"
+)
 _NEIGHBOURHOOD = re.compile(
     r"\b(what (else )?(is|are)( there)? around (it|the (target|goal|\w+))|(which|what) (things|"
     r"objects|furniture|items) (is|are) (around|near|next to|by|beside|close to)|what else "
     r"(is|are) (near|next to|by|beside|close to) it|(its|the) (surroundings|neighbou?rhood|"
-    r"immediate vicinity)|(surrounds|surrounding) (it|the)|anything (around|near|by) (it|the))\b"
+    r"immediate vicinity)|(surrounds|surrounding) (it|the)|anything (around|near|by) (it|the))\b|"
+    r"\bwhat (is|are)( there)? (directly |right )?(on top of|across from|opposite|on (either|each"
+    r"|both) sides? of|behind|above|below|underneath) (it|the)\b"
 )
 _SIMPLE = (
     (HelpKind.PASSED, _PASSED),
@@ -262,17 +302,18 @@ def recognised(text: str) -> HelpRequest | None:
     if not words:
         return None
     yes_no = words.split()[0] in YES_NO_OPENERS and " or " not in f" {words} "
-    floor = _FLOOR.search(words)
-    if floor:
-        return HelpRequest(HelpKind.FLOOR, words, yes_no, floor_claim=_floor_claim(words))
     if _counts_objects(words):
-        return HelpRequest(HelpKind.COUNT, words, yes_no)
+        return HelpRequest(HelpKind.COUNT, words, yes_no, in_view=bool(_IN_VIEW.search(words)))
+    if _FLOOR.search(words):
+        return HelpRequest(HelpKind.FLOOR, words, yes_no, floor_claim=_floor_claim(words))
+    comparison = _comparison(words, yes_no)
+    if comparison is not None and " or " in words:  # "by the window or by the door?"
+        return comparison
     if _WINDOW.search(words) and _NEAR_WORDS.search(words):
         return HelpRequest(HelpKind.WINDOW, words, yes_no)
     for kind, pattern in _SIMPLE:
         if pattern.search(words):
             return HelpRequest(kind, words, yes_no)
-    comparison = _comparison(words, yes_no)
     if comparison is not None:
         return comparison
     if _NEIGHBOURHOOD.search(words):
@@ -285,9 +326,15 @@ def _counts_objects(words: str) -> bool:
     or a catalogue name."""
     if _OWN_PARTS.search(words):
         return False
+    if _MORE_COUNT.search(words):
+        return True
     for match in _COUNT.finditer(words):
         thing = match["thing"]
-        if thing in _COUNTED or thing in _object_words() or thing.rstrip("s") in _object_words():
+        if thing in _NOT_OBJECTS:
+            continue
+        if match[1] in ("how many", "number of") or thing in _COUNTED:
+            return True
+        if thing in _COUNTED_VERBS or thing.rstrip("s") in _object_words():
             return True
     return False
 
@@ -300,8 +347,9 @@ def _object_words() -> frozenset[str]:
 
 
 def _comparison(words: str, yes_no: bool) -> HelpRequest | None:
-    """A choice between candidates: a side, nearness, size or colour said of "one"."""
-    if re.search(_THE_ONES, words) is None:
+    """A choice between candidates: a side, nearness, size or colour said of "one", or
+    "which one?" and "the X or the Y?" about things of one kind."""
+    if re.search(_THE_ONES, words) is None and _CHOICE.search(words) is None:
         return None
     tokens = words.split()
     sides = [_SIDES[w] for w in tokens if w in _SIDES]
@@ -316,7 +364,7 @@ def _comparison(words: str, yes_no: bool) -> HelpRequest | None:
         if values:
             asked = tuple(dict.fromkeys(values))
             return HelpRequest(HelpKind.COMPARISON, words, yes_no, dimension, asked)
-    if _WHICH.search(words):
+    if _WHICH.search(words) or _CHOICE.search(words):
         return HelpRequest(HelpKind.COMPARISON, words, False, Dimension.ANY)
     return None
 
