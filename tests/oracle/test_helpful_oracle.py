@@ -15,6 +15,7 @@ from tests.oracle.episodes import iign_episode
 from tests.oracle.test_answers import _blank
 from tests.oracle.test_rule_oracle import QUESTIONS, _states
 from vlln.errors import ConfigError
+from vlln.eval.ablation import switch_values
 from vlln.eval.config import EvalConfig
 from vlln.eval.runner import default_provenance
 from vlln.oracle.answers import VISIBLE_MIN_SHARE
@@ -445,6 +446,7 @@ def test_eval_selects_it_and_names_it_in_provenance() -> None:
     worded = EvalConfig(agent="random", task="iign", oracle="helpful", oracle_model="m")
     provenance = default_provenance(worded, None)
     assert (provenance["oracle"], provenance["backend"]) == ("LLMOracle", "openai:m@api.openai.com")
+    assert switch_values(worded)["oracle"] == "helpful:m"  # the report's ablation rows
     with pytest.raises(ConfigError, match="rule oracle takes no server"):
         EvalConfig(agent="random", task="iign", oracle_model="m")
     with pytest.raises(ConfigError, match="--oracle-timeout applies to a language model"):

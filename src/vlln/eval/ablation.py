@@ -23,9 +23,12 @@ SWITCHES = ("oracle", "question_types", "disambiguation")
 
 
 def switch_values(config: EvalConfig) -> dict[str, str]:
-    """Each switch's value as a row shows it: ``oracle=llm:gpt-4o``, ``question_types=
-    attribute+route`` (``all`` for the four), ``disambiguation=plain``."""
-    oracle = config.oracle if config.oracle_model is None else f"llm:{config.oracle_model}"
+    """Each switch's value as a row shows it: ``oracle=llm:gpt-4o`` (``helpful:gpt-4o`` for
+    the helpful oracle worded by that model), ``question_types=attribute+route`` (``all`` for
+    the four), ``disambiguation=plain``."""
+    oracle = (
+        config.oracle if config.oracle_model is None else f"{config.oracle}:{config.oracle_model}"
+    )
     every = tuple(kind.value for kind in ALL_QUESTION_TYPES)
     types = "all" if config.question_types == every else "+".join(config.question_types)
     return {"oracle": oracle, "question_types": types, "disambiguation": config.disambiguation}
