@@ -25,8 +25,13 @@ def test_data_benchmark_prints_json_lines(capsys: pytest.CaptureFixture[str]) ->
     if values["yield"] > 0:  # a kept trajectory: JPEG frames of both cameras, 0.02-0.1 MB each
         per_frame = values["mb_per_trajectory"] / values["frames_per_trajectory"]
         assert 0.02 < per_frame < 0.1
+        per_cpu_hour = values["kept_trajectories_per_cpu_hour"]
+        assert per_cpu_hour == pytest.approx(
+            3600.0 / values["cpu_seconds_per_kept_trajectory"], rel=1e-2
+        )
     else:
         assert values["mb_per_trajectory"] == values["frames_per_trajectory"] == 0
+        assert values["kept_trajectories_per_cpu_hour"] == 0
 
 
 def test_a_bad_workload_is_refused() -> None:

@@ -9,7 +9,7 @@ import pytest
 from tests.sim import scenes
 from vlln.errors import ConfigError, NavigationError
 from vlln.sim.agent import Action, AgentState, MotionConfig, step
-from vlln.sim.follower import GreedyFollower
+from vlln.sim.follower import ForwardProbes, GreedyFollower
 from vlln.sim.geodesic import GeodesicField
 from vlln.sim.navgrid import NavGrid
 
@@ -112,3 +112,22 @@ def test_bad_follower_settings_and_unreachable_goals_are_errors() -> None:
     follower = GreedyFollower(grid, field)
     with pytest.raises(NavigationError, match="no goal can be reached"):
         follower.next_action(AgentState((5.5, 0.0, 1.5)))
+
+
+def test_followers_sharing_forward_probes_choose_as_they_would_alone() -> None:
+    grid = NavGrid.from_mesh(scenes.furnished_room())
+    rng = np.random.default_rng(5)
+    component = grid.largest_component()
+    probes = ForwardProbes(grid, MOTION)
+    states = []
+    for _ in range(20):
+        x, z = grid.sample_navigable_point(rng, component)
+        states.append(AgentState((x, 0.0, z), float(rng.uniform(-math.pi, math.pi))))
+    for _ in range(4):  # four goals asked about the same places
+        field = GeodesicField(grid, [grid.sample_navigable_point(rng, component)])
+        alone, shared = GreedyFollower(grid, field), GreedyFollower(grid, field, probes=probes)
+        for state in states:
+            assert shared.next_action(state) == alone.next_action(state)
+    assert probes.around(states[0]) is probes.around(states[0])  # made once
+    with pytest.raises(ConfigError, match="another grid or motion"):
+        GreedyFollower(grid, field, motion=MotionConfig(turn_deg=45.0), probes=probes)

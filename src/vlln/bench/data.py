@@ -7,7 +7,9 @@ a real build pays it once for all its houses) are made before the clock starts; 
 is collection (which keeps the level views it renders), filtering, rendering the look-down
 view of every kept frame and encoding both.
 ``mb_per_trajectory`` is the disk the kept trajectories' folders take (as ``du`` counts it),
-per kept trajectory.
+per kept trajectory. ``cpu_seconds_per_kept_trajectory`` is the process's CPU time (every
+thread, the rasteriser's included) per kept trajectory: unlike the hourly rates, it barely
+moves with what else the machine runs, and ``kept_trajectories_per_cpu_hour`` is its inverse.
 """
 
 from __future__ import annotations
@@ -54,10 +56,11 @@ def run_data_benchmark(settings: DataBench) -> list[Figure]:
                     (scenes.get(scene_id), choose_episodes(by_house[scene_id], config, seed))
                 )
             packaged_classifier()
-            started = time.perf_counter()
+            started, cpu_started = time.perf_counter(), time.process_time()
             for sim, episodes in work:
                 build_house(root, sim, episodes, config, progress=False)
             seconds = time.perf_counter() - started
+            cpu_seconds = time.process_time() - cpu_started
         finally:
             scenes.close()
         summary = summarize(root)
@@ -70,4 +73,6 @@ def run_data_benchmark(settings: DataBench) -> list[Figure]:
     note("frames_written_per_second", frames / seconds, "frames/s")
     note("mb_per_trajectory", summary.mb_per_trajectory, "MB")
     note("frames_per_trajectory", frames / kept if kept else 0.0, "frames")
+    note("cpu_seconds_per_kept_trajectory", cpu_seconds / kept if kept else 0.0, "s")
+    note("kept_trajectories_per_cpu_hour", 3600.0 * kept / cpu_seconds, "trajectories/h")
     return figures

@@ -38,6 +38,7 @@ from vlln.datagen.collector.visibility import DOWN_TILT
 from vlln.datagen.trajectory import Trajectory
 from vlln.sim.agent import Action, AgentState
 from vlln.sim.camera import CameraSpec
+from vlln.sim.follower import ForwardProbes
 from vlln.sim.renderer import Frame
 from vlln.sim.simulator import Simulator
 from vlln.tasks.waypoint import waypoint_for_pixel
@@ -91,14 +92,17 @@ class FollowerWalks:
     def __init__(self, sim: Simulator, trajectory: Trajectory) -> None:
         self.sim = sim
         self.steps = trajectory.steps
+        # Every goal's follower is asked about the same teacher states: they share the moves.
+        self.probes = ForwardProbes(sim.nav, sim.config.motion)
 
     def __call__(self, frame: int, later: int, pixel: tuple[int, int], down: Frame) -> bool:
         position, yaw = self.steps[frame].state.position, self.steps[frame].state.yaw
-        found = waypoint_for_pixel(self.sim, down, *pixel, AgentState(position, yaw, DOWN_TILT))
+        state = AgentState(position, yaw, DOWN_TILT)
+        found = waypoint_for_pixel(self.sim, down, *pixel, state, self.probes)
         if isinstance(found, str):
             return False
         taught = [step.action for step in self.steps[frame:later]] + [None]
-        # Stops at the first move the follower would not make: each costs a dozen probes.
+        # Stops at the first move the follower would not make.
         return all(
             found.next_action(step.state) == action
             for step, action in zip(self.steps[frame : later + 1], taught, strict=True)

@@ -19,11 +19,56 @@ from vlln.sim.agent import Action, AgentState, MotionConfig, step
 from vlln.sim.geodesic import GeodesicField
 from vlln.sim.navgrid import NavGrid
 from vlln.sim.storey_field import StoreyField
-from vlln.sim.storeys import Storeys
+from vlln.sim.storeys import Point3, Storeys
 
 # Headings gaining within this share of a step of the best are as good; the one needing the
 # fewest turns wins.
 _EQUAL_GAIN = 0.02
+
+Probe = tuple[int, Point3, bool]  # turns (positive = left), where FORWARD then ends, collided
+
+
+class ForwardProbes:
+    """The FORWARD move from every heading reachable by whole turns, per place, remembered.
+
+    Where such a move ends depends on the place, the heading and the grid, never on the goal,
+    so followers to different goals asked about the same places can share one: the data build
+    walks each teacher state with the followers of the pixel goals of up to eight earlier
+    frames, and the moves (a cell walk each, twelve per state) were most of that check's cost.
+    Give one to :class:`GreedyFollower`; keep it only while the places it is asked about are
+    few (it is unbounded). With ``remember`` off it only makes the moves (a follower's own,
+    by default: one follower rarely sees a place twice).
+    """
+
+    def __init__(
+        self, grid: NavGrid | Storeys, motion: MotionConfig | None = None, remember: bool = True
+    ) -> None:
+        self.grid = grid
+        self.motion = motion if motion is not None else MotionConfig()
+        self.remember = remember
+        # Headings as whole turns from the current one, fewest turns first, left before right.
+        headings = max(1, round(360.0 / self.motion.turn_deg))
+        left = headings // 2
+        right = headings - 1 - left
+        self.offsets = [0]
+        for k in range(1, left + 1):
+            self.offsets += [k, -k] if k <= right else [k]
+        self._known: dict[tuple[Point3, float], list[Probe]] = {}
+
+    def around(self, state: AgentState) -> list[Probe]:
+        """The move from each heading of ``state``, in :attr:`offsets` order."""
+        key = (state.position, state.yaw)
+        known = self._known.get(key)
+        if known is None:
+            known = []
+            turn = self.motion.turn
+            for k in self.offsets:
+                probe = AgentState(state.position, state.yaw + k * turn, state.tilt)
+                result = step(probe, Action.MOVE_FORWARD, self.grid, self.motion)
+                known.append((k, result.state.position, result.collided))
+            if self.remember:
+                self._known[key] = known
+        return known
 
 
 class GreedyFollower:
@@ -40,6 +85,7 @@ class GreedyFollower:
         field: GeodesicField | StoreyField,
         goal_radius: float = 0.25,
         motion: MotionConfig | None = None,
+        probes: ForwardProbes | None = None,
     ) -> None:
         if not goal_radius > 0.0:
             raise ConfigError(f"goal_radius must be positive metres, got {goal_radius}")
@@ -49,13 +95,9 @@ class GreedyFollower:
         self.field = field
         self.goal_radius = float(goal_radius)
         self.motion = motion if motion is not None else MotionConfig()
-        # Headings as whole turns from the current one, fewest turns first, left before right.
-        headings = max(1, round(360.0 / self.motion.turn_deg))
-        left = headings // 2
-        right = headings - 1 - left
-        self._offsets = [0]
-        for k in range(1, left + 1):
-            self._offsets += [k, -k] if k <= right else [k]
+        self.probes = probes or ForwardProbes(grid, self.motion, remember=False)
+        if self.probes.grid is not grid or self.probes.motion != self.motion:
+            raise ConfigError("the forward probes were made for another grid or motion")
 
     def next_action(self, state: AgentState) -> Action:
         x, y, z = state.position
@@ -80,13 +122,10 @@ class GreedyFollower:
         forward = self.motion.forward_step
         free: list[tuple[float, int]] = []
         colliding: list[tuple[float, int]] = []
-        for k in self._offsets:
-            probe = AgentState(state.position, state.yaw + k * self.motion.turn, state.tilt)
-            result = step(probe, Action.MOVE_FORWARD, self.grid, self.motion)
-            x, y, z = result.state.position
+        for k, (x, y, z), collided in self.probes.around(state):
             gain = distance - self.field.distance(x, z, y)
             if gain > 0.0:
-                (colliding if result.collided else free).append((gain, k))
+                (colliding if collided else free).append((gain, k))
         candidates = free or colliding
         if not candidates:
             x, _, z = state.position

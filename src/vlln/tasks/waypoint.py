@@ -24,7 +24,7 @@ from dataclasses import dataclass
 
 from vlln.errors import NavigationError
 from vlln.sim.agent import Action, AgentState
-from vlln.sim.follower import GreedyFollower
+from vlln.sim.follower import ForwardProbes, GreedyFollower
 from vlln.sim.pixel_goal import pixel_floor_goal
 from vlln.sim.renderer import Frame
 from vlln.sim.simulator import Field, Simulator
@@ -53,10 +53,16 @@ class Waypoint:
 
 
 def waypoint_for_pixel(
-    sim: Simulator, frame: Frame, col: int, row: int, state: AgentState
+    sim: Simulator,
+    frame: Frame,
+    col: int,
+    row: int,
+    state: AgentState,
+    probes: ForwardProbes | None = None,
 ) -> Waypoint | str:
     """The waypoint that pixel ``(col, row)`` of ``frame``, taken at ``state``, points to, or
-    a short reason why it gives none."""
+    a short reason why it gives none. ``probes`` lets followers to several pixels share their
+    moves (:class:`ForwardProbes`)."""
     spec = sim.config.camera
     if not (0 <= col < spec.width and 0 <= row < spec.height):
         return f"pixel ({col}, {row}) is outside the {spec.width}x{spec.height} image"
@@ -67,7 +73,8 @@ def waypoint_for_pixel(
     x, y, z = state.position
     if not field.is_reachable(x, z, y):
         return f"pixel ({col}, {row}) shows floor that cannot be reached"
-    waypoint = Waypoint(point, GreedyFollower(sim.nav, field, WAYPOINT_RADIUS, sim.config.motion))
+    follower = GreedyFollower(sim.nav, field, WAYPOINT_RADIUS, sim.config.motion, probes)
+    waypoint = Waypoint(point, follower)
     if waypoint.next_action(state) is None:
         return f"pixel ({col}, {row}) shows floor the agent stands on or cannot step toward"
     return waypoint
