@@ -1,6 +1,7 @@
 """Bounded reads: a gzip bomb, an endless ``--config`` and a file past its cap (an episode or
 results file, a model's chat template, Matterport3D files, a recipe's agreement figures) are
-one line that names the cap and how to raise it, read no further than the cap."""
+one line that names the cap and how to raise it, read no further than the cap; a scan mesh,
+a frame table and an image are measured before a library reads them whole."""
 
 from __future__ import annotations
 
@@ -8,6 +9,7 @@ import gzip
 from pathlib import Path
 
 import pytest
+from PIL import Image
 
 from vlln.agents.local.encoding import ChatEncoder
 from vlln.bench.mp3d_connectivity import building_graph
@@ -16,7 +18,10 @@ from vlln.bench.recipe import recipe_figures
 from vlln.cli import main
 from vlln.errors import ConfigError, DataFormatError
 from vlln.eval.results import RESULTS_CAP, scan_records
+from vlln.files import ReadCap
 from vlln.tasks.episode import EPISODE_FILE_CAP, read_episodes
+from vlln.train.data import load_rgb
+from vlln.world.scans.gltf import SCAN_MESH_CAP, read_glb
 
 
 def sparse(path: Path, mib: int) -> Path:
@@ -123,3 +128,35 @@ def test_an_agreement_file_past_its_cap_is_one_line(tmp_path: Path) -> None:
     assert str(info.value) == (
         f"{path} holds more than 1 MiB, the cap on an agreement file; give the right file"
     )
+
+
+def test_a_scan_mesh_past_its_cap_is_refused_before_the_loader_reads_it(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setenv(SCAN_MESH_CAP.variable or "", "1")
+    path = sparse(tmp_path / "scan.glb", 2)
+    with pytest.raises(DataFormatError, match=r"more than 1 MiB, the cap on a scan mesh") as error:
+        read_glb(path)
+    assert "VLLN_MAX_SCAN_MESH_MB" in str(error.value)
+
+
+def test_a_table_is_measured_uncompressed(tmp_path: Path) -> None:
+    cap = ReadCap("a table", 1)
+    small = sparse(tmp_path / "t.parquet", 0)
+    cap.check_size(small, 1 << 20)  # at the cap: read
+    with pytest.raises(DataFormatError, match=r"more than 1 MiB uncompressed, the cap on a table"):
+        cap.check_size(small, (1 << 20) + 1)
+
+
+def test_an_image_of_too_many_pixels_is_refused_before_it_is_decoded(tmp_path: Path) -> None:
+    huge = tmp_path / "frame.png"
+    Image.new("1", (5000, 5000)).save(huge)  # a few kB on disk, 75 MB decoded as RGB
+    assert huge.stat().st_size < 100_000
+    with pytest.raises(DataFormatError, match=r"is a 5000 x 5000 image, more than the"):
+        load_rgb(huge)
+    broken = tmp_path / "broken.jpg"
+    broken.write_bytes(b"\xff\xd8 not a jpeg")
+    with pytest.raises(DataFormatError, match=r"broken.jpg is not an image vlln can read"):
+        load_rgb(broken)
+    Image.new("RGB", (640, 480)).save(tmp_path / "frame.jpg")
+    assert load_rgb(tmp_path / "frame.jpg").size == (640, 480)

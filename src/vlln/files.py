@@ -5,6 +5,7 @@ bytes without a traceback."""
 from __future__ import annotations
 
 import gzip
+import io
 import json
 import os
 import re
@@ -15,6 +16,8 @@ from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, TypeVar
+
+from PIL import Image
 
 from vlln.errors import ConfigError, DataFormatError, VllnError, WriteError
 
@@ -179,15 +182,52 @@ class ReadCap:
             data = handle.read(limit + 1)
         if len(data) <= limit:
             return data
-        after = " after decompression" if gzipped else ""
+        raise self._refusal(path, limit, " after decompression" if gzipped else "")
+
+    def check_size(self, path: Path, size: int | None = None) -> None:
+        """Refuse ``path`` when it holds more than the cap, before a library that reads it
+        whole (a mesh loader, a table reader) does so; ``size`` is what the read will hold
+        when the file does not say it on disk (a table's uncompressed bytes)."""
+        limit = self.limit()
+        held = path.stat().st_size if size is None else size
+        if held > limit:
+            raise self._refusal(path, limit, " uncompressed" if size is not None else "")
+
+    def _refusal(self, path: Path, limit: int, after: str) -> DataFormatError:
         fix = (
             f"set {self.variable} to more MiB if the file is right"
             if self.variable
             else "give the right file"
         )
-        raise DataFormatError(
+        return DataFormatError(
             f"{path} holds more than {limit >> 20} MiB{after}, the cap on {self.what}; {fix}"
         )
+
+
+# No image vlln reads has more pixels (its frames are 640 x 480): decoded, an image holds three
+# bytes a pixel, and Pillow itself refuses only from 179 million pixels (half a gigabyte) on.
+MAX_IMAGE_PIXELS = 4096 * 4096
+
+
+@contextmanager
+def open_image(source: Path | bytes, where: str | Path) -> Iterator[Image.Image]:
+    """``source`` opened as an image, not yet decoded (decode it inside the block); a file
+    that is no image, or one of more than :data:`MAX_IMAGE_PIXELS`, is a one-line
+    :class:`DataFormatError` naming ``where``. A missing file raises ``FileNotFoundError``."""
+    try:
+        image = Image.open(io.BytesIO(source) if isinstance(source, bytes) else source)
+    except FileNotFoundError:
+        raise
+    except (OSError, ValueError, Image.DecompressionBombError) as error:
+        raise DataFormatError(f"{where} is not an image vlln can read: {error}") from None
+    with image:
+        width, height = image.size
+        if width * height > MAX_IMAGE_PIXELS:
+            raise DataFormatError(
+                f"{where} is a {width} x {height} image, more than the {MAX_IMAGE_PIXELS:,} "
+                "pixels of any frame vlln reads; give the dataset's own image"
+            )
+        yield image
 
 
 # JSON nested deeper than this is refused: no file vlln reads nests more than a few levels,

@@ -12,9 +12,9 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+import pyarrow as pa
 import pyarrow.parquet as pq
 from numpy.typing import NDArray
-from PIL import Image
 
 from vlln.datagen.layout import (
     CAMERAS,
@@ -29,8 +29,11 @@ from vlln.datagen.layout import (
     frame_image_path,
 )
 from vlln.errors import DataFormatError
-from vlln.files import parse_json
+from vlln.files import ReadCap, open_image, parse_json
 from vlln.sim.camera import CameraSpec
+
+# An episode's frame table is a few kB (a pose and an action per frame); read whole.
+FRAME_TABLE_CAP = ReadCap("an episode's frame table", 64)
 
 
 class HouseDataset:
@@ -66,7 +69,14 @@ class HouseDataset:
 
     def frames(self, episode_index: int) -> dict[str, NDArray[Any]]:
         """The parquet columns of one episode as arrays (a 4x4 pose per frame: (n, 4, 4))."""
-        table = pq.read_table(self.root / data_path(episode_index))
+        path = self.root / data_path(episode_index)
+        try:
+            metadata = pq.ParquetFile(path).metadata
+        except (OSError, pa.ArrowException) as error:
+            raise DataFormatError(f"{path} is not a parquet table: {error}") from None
+        sizes = (metadata.row_group(i).total_byte_size for i in range(metadata.num_row_groups))
+        FRAME_TABLE_CAP.check_size(path, sum(sizes))
+        table = pq.read_table(path)
         return {name: np.asarray(table.column(name).to_pylist()) for name in table.column_names}
 
     def image_file(self, camera: str, episode_index: int, frame_index: int) -> Path:
@@ -74,7 +84,8 @@ class HouseDataset:
         return self.root / frame_image_path(self.settings[camera], episode_index, frame_index)
 
     def rgb(self, camera: str, episode_index: int, frame_index: int) -> NDArray[np.uint8]:
-        with Image.open(self.image_file(camera, episode_index, frame_index)) as image:
+        path = self.image_file(camera, episode_index, frame_index)
+        with open_image(path, path) as image:
             return np.asarray(image.convert("RGB"))
 
 

@@ -18,6 +18,7 @@ import numpy as np
 from numpy.typing import NDArray
 from PIL import Image
 
+from vlln.files import open_image
 from vlln.prompt.conversation import Camera
 from vlln.prompt.text import DOWN_IMAGE_SIZE, LEVEL_IMAGE_SIZE
 
@@ -44,7 +45,7 @@ def shown_image(stored: bytes, camera: Camera) -> bytes:
     """The JPEG the model is shown for a stored frame of ``camera``: the stored bytes when
     they already have the prompt's size, else resized and re-encoded."""
     size = _SIZES[camera]
-    with Image.open(io.BytesIO(stored)) as image:
+    with open_image(stored, f"a stored {camera} frame") as image:
         if image.size == size and image.format == "JPEG":
             return stored
         resized = image.convert("RGB").resize(size, Image.Resampling.BICUBIC)

@@ -13,7 +13,7 @@ from PIL import Image
 from vlln.agents.local.encoding import ChatEncoder, ProcessedImage
 from vlln.datagen.sft.records import SFT_FILE, SUMMARY_FILE, SftRecord
 from vlln.errors import DataFormatError
-from vlln.files import ReadCap, parse_json
+from vlln.files import ReadCap, open_image, parse_json
 from vlln.prompt import IMAGE_TAG, Turn
 
 # export.json holds the settings, the houses and the counts: a few kB.
@@ -141,5 +141,5 @@ class SftCollator:
 
 def load_rgb(path: Path) -> Image.Image:
     """An exported image as the model is given it (RGB)."""
-    with Image.open(path) as image:
+    with open_image(path, path) as image:
         return image.convert("RGB")

@@ -10,7 +10,6 @@ agent``; the local evaluation runner plays one episode at a time per process.
 
 from __future__ import annotations
 
-import io
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -23,6 +22,7 @@ from PIL import Image
 from vlln.agents.local.dependencies import require_model_extra
 from vlln.agents.model.backend import ModelReply
 from vlln.errors import ConfigError
+from vlln.files import open_image
 from vlln.prompt import Conversation
 
 if TYPE_CHECKING:
@@ -139,7 +139,7 @@ class TransformersBackend:
 
 
 def _decode(data: bytes) -> Image.Image:
-    with Image.open(io.BytesIO(data)) as image:
+    with open_image(data, "an image of the prompt") as image:
         return image.convert("RGB")
 
 

@@ -13,11 +13,10 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from PIL import Image
-
 from vlln.datagen.layout import EPISODES_FILE, TRAJECTORIES_DIR
 from vlln.datagen.reader import HouseDataset, house_folders, instruction_of
 from vlln.errors import ConfigError, DataFormatError
+from vlln.files import open_image
 from vlln.prompt import DOWN_IMAGE_SIZE, DialogExchange
 
 
@@ -90,7 +89,8 @@ def _trajectory(house: HouseDataset, row: dict[str, Any]) -> SourceTrajectory:
 
 def _goal_scale(house: HouseDataset, index: int) -> tuple[float, float]:
     """From the recorded look-down image's pixels to those of the image the model is shown."""
-    with Image.open(house.image_file("down", index, 0)) as image:
+    path = house.image_file("down", index, 0)
+    with open_image(path, path) as image:
         width, height = image.size
     return DOWN_IMAGE_SIZE[0] / width, DOWN_IMAGE_SIZE[1] / height
 

@@ -19,12 +19,15 @@ import trimesh
 from numpy.typing import NDArray
 
 from vlln.errors import DataFormatError
-from vlln.files import parse_json, write_bytes_atomic
+from vlln.files import ReadCap, parse_json, write_bytes_atomic
 
 FloatArray = NDArray[np.float64]
 
 # A scan's glTF JSON (nodes, accessors, materials) is kilobytes; the mesh is in the binary chunk.
 MAX_GLTF_JSON_BYTES = 16 << 20
+# Matterport3D's and HM3D's glb meshes run to a few hundred MB; the loader holds the whole file,
+# then its arrays, so a larger file is refused before it is read.
+SCAN_MESH_CAP = ReadCap("a scan mesh (.glb)", 1024, "VLLN_MAX_SCAN_MESH_MB")
 
 
 def to_scan_frame(points: NDArray[np.floating]) -> FloatArray:
@@ -83,6 +86,7 @@ def read_glb(path: Path) -> tuple[FloatArray, FloatArray]:
     """Triangles ``(n, 3, 3)`` in vlln's frame and their vertex colours ``(n, 3, 3)``, linear."""
     if not path.is_file():
         raise DataFormatError(f"{path} does not exist")
+    SCAN_MESH_CAP.check_size(path)
     check_decodable(path)
     try:
         scene = trimesh.load(str(path), file_type="glb", force="scene", process=False)
