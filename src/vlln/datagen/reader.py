@@ -12,7 +12,6 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-import pyarrow as pa
 import pyarrow.parquet as pq
 from numpy.typing import NDArray
 
@@ -70,10 +69,7 @@ class HouseDataset:
     def frames(self, episode_index: int) -> dict[str, NDArray[Any]]:
         """The parquet columns of one episode as arrays (a 4x4 pose per frame: (n, 4, 4))."""
         path = self.root / data_path(episode_index)
-        try:
-            metadata = pq.ParquetFile(path).metadata
-        except (OSError, pa.ArrowException) as error:
-            raise DataFormatError(f"{path} is not a parquet table: {error}") from None
+        metadata = pq.ParquetFile(path).metadata
         sizes = (metadata.row_group(i).total_byte_size for i in range(metadata.num_row_groups))
         FRAME_TABLE_CAP.check_size(path, sum(sizes))
         table = pq.read_table(path)
