@@ -180,8 +180,15 @@ def _goal_json(goal: Goal) -> dict[str, Any]:
 EPISODE_FILE_CAP = ReadCap("an episode file", 128, "VLLN_MAX_EPISODE_FILE_MB")
 
 
+# Parsed, each JSON object or list costs 60 to 250 bytes of memory whatever its text: a file of
+# nothing but "{}," would take 25 times its size. The mp3d ObjectNav split of 30 houses holds
+# 5.0 million in 108.8 MB (one per 22 bytes); a file may hold one per 16 bytes of its cap.
+BYTES_PER_CONTAINER = 16
+
+
 def read_episodes(path: str | Path) -> list[Episode]:
-    """Read a gzip JSON episode file, at most :data:`EPISODE_FILE_CAP` of it."""
+    """Read a gzip JSON episode file, at most :data:`EPISODE_FILE_CAP` of it, and at most one
+    JSON object or list per :data:`BYTES_PER_CONTAINER` bytes of the cap."""
     path = Path(path)
     try:
         raw = EPISODE_FILE_CAP.read(path, gzipped=True)
@@ -193,6 +200,7 @@ def read_episodes(path: str | Path) -> list[Episode]:
         raise DataFormatError(
             f"{path} is not a gzip file ({err}); episode files are gzip-compressed JSON"
         ) from None
+    _check_containers(path, raw)
     try:
         data = parse_json(raw, object_hook=_GoalSharing())
     except DataFormatError as err:
@@ -200,6 +208,19 @@ def read_episodes(path: str | Path) -> list[Episode]:
             f"{path} does not hold UTF-8 JSON: {err}; give a released episode file"
         ) from None
     return _parse_file(data, str(path))
+
+
+def _check_containers(path: Path, raw: bytes) -> None:
+    """Refuse a file of more objects and lists than its cap allows, counted (as an upper
+    bound: braces in strings count too) before any is parsed."""
+    most = EPISODE_FILE_CAP.limit() // BYTES_PER_CONTAINER
+    found = raw.count(b"{") + raw.count(b"[")
+    if found > most:
+        raise DataFormatError(
+            f"{path} holds {found:,} JSON objects and lists, more than the {most:,} its cap "
+            f"allows (one per {BYTES_PER_CONTAINER} bytes of {EPISODE_FILE_CAP.limit() >> 20} "
+            f"MiB); set {EPISODE_FILE_CAP.variable} to more MiB if the file is right"
+        )
 
 
 class _GoalSharing:
