@@ -140,7 +140,7 @@ def test_the_papers_questions_get_the_rule_oracles_answers(
                 assert reply.answer.startswith(f"{expected.answer} ")
 
 
-def test_is_this_the_one_with_several_chairs_in_view_says_which(
+def test_with_several_chairs_in_view_clarifications_and_counts_say_which(
     sim: Simulator, chair: ObjectInstance, views: list[tuple[AgentState, Frame]]
 ) -> None:
     for state, frame in views:
@@ -153,6 +153,10 @@ def test_is_this_the_one_with_several_chairs_in_view_says_which(
         assert reply.help_kind == "clarification"
         assert reply.answer.startswith(f"{expected} {words} chairs are in view")
         assert ("the one I mean is" in reply.answer) == (chair.id in shown)
+        count = _ask(helpful, state, frame, "how many chairs can i see from here?")
+        assert count.help_kind == "count"
+        assert count.answer.startswith(f"{words} chairs are in your view.")
+        assert ("One of them is the one I mean" in count.answer) == (chair.id in shown)
     alone = _ask(
         _started(HelpfulOracle(RuleOracle(0)), sim, chair), state, _blank(sim), "Is this the one?"
     )
@@ -357,18 +361,10 @@ def test_counts_are_the_houses_instances_by_room(sim: Simulator, chair: ObjectIn
     )
 
 
-def test_counts_in_view_are_of_the_candidates_the_asker_sees(
-    sim: Simulator, chair: ObjectInstance, views: list[tuple[AgentState, Frame]]
-) -> None:
+def test_counts_out_of_view_and_by_floor(sim: Simulator, chair: ObjectInstance) -> None:
     oracle = _started(HelpfulOracle(RuleOracle(0)), sim, chair)
-    for state, frame in views:
-        reply = _ask(oracle, state, frame, "how many chairs can i see from here?")
-        shown = _visible(sim, frame, "chair")
-        words = {2: "Two", 3: "Three", 4: "Four", 5: "Five"}[len(shown)]
-        assert reply.help_kind == "count"
-        assert reply.answer.startswith(f"{words} chairs are in your view.")
-        assert ("One of them is the one I mean" in reply.answer) == (chair.id in shown)
-    assert _ask(oracle, state, _blank(sim), "How many chairs are in view?").answer == (
+    state, frame = AgentState(_walk_to(sim, chair, 7)[0], 0.0), _blank(sim)
+    assert _ask(oracle, state, frame, "How many chairs are in view?").answer == (
         "No chair is in your view."
     )
     on_floors = _ask(oracle, state, frame, "How many chairs are on this floor?").answer
