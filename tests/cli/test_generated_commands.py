@@ -70,6 +70,7 @@ def test_the_commands_with_settings_are_generated_from_their_configs() -> None:
         "oracle classify-report",
         "oracle train-classifier",
         "train new-model",
+        "train dialog-policy",
         "world show",
         "world export",
         "world import",

@@ -85,7 +85,8 @@ def test_openai_vlm_options_round_trip_through_run_json_typed() -> None:
 @pytest.mark.parametrize(
     ("agent", "options", "message"),
     [
-        ("frontier", {"model": "m"}, "agent 'frontier' takes no options, got model"),
+        ("expert", {"model": "m"}, "agent 'expert' takes no options, got model"),
+        ("frontier", {"model": "m"}, "unknown frontier option 'model'; known: dialog_policy"),
         ("openai-vlm", {"model": "m"}, "the openai-vlm agent needs --base-url"),
         ("openai-vlm", {**OLD_OPTIONS, "max_retries": "-1"}, "max_retries = '-1': Input should"),
         ("openai-vlm", {**OLD_OPTIONS, "device": "cpu"}, "unknown openai-vlm option 'device'"),

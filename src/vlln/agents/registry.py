@@ -10,6 +10,7 @@ from vlln.agents.aiuta.options import AiutaOptions, aiuta_agent
 from vlln.agents.custom import is_agent_spec, load_agent
 from vlln.agents.expert import ExpertAgent
 from vlln.agents.frontier import FrontierAgent, FrontierConfig
+from vlln.agents.frontier.options import FrontierOptions, frontier_agent
 from vlln.agents.frontier.perception import check_detector
 from vlln.agents.local.options import VllnOptions, vlln_agent
 from vlln.agents.model.options import OpenAIVLMOptions, openai_vlm_agent
@@ -44,6 +45,7 @@ OPTIONS: dict[str, type[AgentOptions]] = {
     "openai-vlm": OpenAIVLMOptions,
     "vlln": VllnOptions,
     "aiuta": AiutaOptions,
+    "frontier": FrontierOptions,
 }
 """The options class of each agent that takes options (which server, which model); stored in
 run.json. Every other agent takes none (:class:`AgentOptions` itself, empty)."""
@@ -55,11 +57,11 @@ CONFIGURED_AGENTS: dict[str, Callable[[int, Any], Agent]] = {
 
 CONFIGURED_DETECTING_AGENTS: dict[str, Callable[[int, Any, str], Agent]] = {
     "aiuta": aiuta_agent,
+    "frontier": frontier_agent,
 }
 """Agents that take options and perceive objects through a detector."""
 
 DETECTING_AGENTS: dict[str, Callable[[int, str], Agent]] = {
-    "frontier": lambda seed, detector: FrontierAgent(seed, detector=detector),
     "frontier-compare": comparing_agent,
     "fbe": fbe_agent,
     "vlfm": lambda seed, detector: VlfmAgent(seed, detector=detector),

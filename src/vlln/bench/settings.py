@@ -245,3 +245,15 @@ class RecipeFigures(Config):
 
     out: Path = Path("out/recipe")
     """the recipe's folder (its OUT)"""
+
+
+class DialogPolicyFigures(BenchOptions):
+    """``vlln bench dialog-policy``: a learned dialog policy against the fixed triggers, paired
+    over the episodes both runs played (docs/dialog-policy.md)."""
+
+    fixed: Path
+    """run directory of the frontier agent without --dialog-policy"""
+    learned: Path
+    """run directory of the same evaluation with --dialog-policy"""
+    budget: Annotated[int, Field(ge=0)] = 5
+    """dialog budget compared"""

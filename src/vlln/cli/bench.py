@@ -81,6 +81,13 @@ COMMANDS = (
         "an oracle's answers to a question file, each asked in a real episode after exploring",
     ),
     (
+        "dialog-policy",
+        "DialogPolicyFigures",
+        ("dialog_policy:run_dialog_policy_figures",),
+        "SR and questions per episode of a learned dialog policy against the fixed triggers, "
+        "with paired 95% intervals",
+    ),
+    (
         "fidelity",
         "FidelityBench",
         ("fidelity:run_fidelity_benchmark",),

@@ -30,6 +30,7 @@ MODEL_FLAGS = (
     "model_cache",
     "device",
     "max_tokens",
+    "dialog_policy",
 )
 """The fields of :class:`EvalCommand` that are agent options (by option name or alias)."""
 
@@ -75,6 +76,9 @@ class EvalCommand(EvalConfig, RayChunkOptions, ServingOptions):
     """vlln: torch device (none: cuda if present, else cpu)"""
     max_tokens: int | None = None
     """openai-vlm, vlln: longest model reply in tokens (none: the agent's default)"""
+    dialog_policy: str | None = None
+    """frontier: when to ask, a folder made by vlln train dialog-policy (none: the fixed
+    triggers)"""
 
     @model_validator(mode="before")
     @classmethod

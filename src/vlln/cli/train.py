@@ -1,10 +1,12 @@
-"""``vlln train ...``: fine-tune a vision-language model on exported data."""
+"""``vlln train ...``: fine-tune a vision-language model on exported data, or learn the
+frontier agent's dialog policy."""
 
 from __future__ import annotations
 
 from vlln.cli.generated import add_config_command
 from vlln.cli.options import Commands
 from vlln.train.config import NewModelConfig, TrainConfig
+from vlln.train.dialog_policy import DialogPolicyConfig
 
 
 def _train_sft(config: TrainConfig) -> int:
@@ -38,6 +40,18 @@ def _train_new_model(config: NewModelConfig) -> int:
     return 0
 
 
+def _train_dialog_policy(config: DialogPolicyConfig) -> int:
+    from vlln.train.dialog_policy import train_dialog_policy
+
+    card = train_dialog_policy(config)
+    print(
+        f"trained on {card.timesteps} decisions ({card.episodes} episodes, {card.houses} "
+        f"{card.preset} {card.split} houses) in {card.seconds:.0f} s; policy in {config.out}; "
+        f"use it with: vlln eval --agent frontier --dialog-policy {config.out}"
+    )
+    return 0
+
+
 def add_train_commands(commands: Commands) -> None:
     train = commands.add_parser("train", help="fine-tuning").add_subparsers(
         dest="train_command", required=True
@@ -52,4 +66,11 @@ def add_train_commands(commands: Commands) -> None:
         NewModelConfig,
         _train_new_model,
         help="write a random Qwen2.5-VL-style model of a named size (from scratch; no download)",
+    )
+    add_config_command(
+        train,
+        "dialog-policy",
+        DialogPolicyConfig,
+        _train_dialog_policy,
+        help="learn when the frontier agent asks (PPO; success minus lam per question)",
     )

@@ -167,7 +167,8 @@ class EvalConfig(Config):
         AgentOptions()
     )
     """settings of agents that take them (openai-vlm: server, model, key variable, retries;
-    vlln: model folder, device), never a secret; on the command line the model flags"""
+    vlln: model folder, device; frontier: dialog policy), never a secret; on the command line
+    the model flags"""
     detector: str | None = None
     """object detector of agents that detect objects: truth (the frontier agent's default,
     privileged) or noisy; other agents take none"""

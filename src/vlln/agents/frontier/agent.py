@@ -28,6 +28,7 @@ import zlib
 import numpy as np
 
 from vlln.agents.frontier import dialog, which_one
+from vlln.agents.frontier.asking import Belief, Decision, DialogPolicy, FixedTriggers, Point
 from vlln.agents.frontier.config import FrontierConfig
 from vlln.agents.frontier.crossing import Crossing
 from vlln.agents.frontier.detector import Candidate, CandidateTracker
@@ -56,10 +57,15 @@ class FrontierAgent:
     snapshottable = True  # deep copies are faithful; the budget is read only from refusals
 
     def __init__(
-        self, seed: int = 0, config: FrontierConfig | None = None, detector: str = "truth"
+        self,
+        seed: int = 0,
+        config: FrontierConfig | None = None,
+        detector: str = "truth",
+        dialog_policy: DialogPolicy | None = None,
     ) -> None:
         self.seed = int(seed)
         self.config = config or FrontierConfig()
+        self.dialog_policy = dialog_policy or FixedTriggers(self.config.route_after)
         if not self.config.asks:
             self.name = "fbe"
         elif self.config.compares:
@@ -107,6 +113,8 @@ class FrontierAgent:
         self._target: int | None = None
         self._pending: tuple[str, int | None] | None = None
         self._asked_attribute = "color" in self.known  # IGN: the instruction may name it
+        self._opened = False  # whether the policy was consulted at the start
+        self._verdicts: dict[int, str | None] = {}  # the policy's choice at each candidate
         self._dialog_closed = False
         self._questions_left = cfg.question_budget
         self._aim: int | None = None
@@ -146,7 +154,7 @@ class FrontierAgent:
 
     # ----------------------------------------------------------------- one step
     def act(self, observation: Observation) -> AgentOutput:
-        info = self.episode
+        self.episode  # noqa: B018  (raises before reset)
         gps = observation["gps"]
         pose = Pose(float(gps[0]), float(gps[1]), float(observation["compass"]))
         tilt = float(observation["tilt"])
@@ -157,7 +165,7 @@ class FrontierAgent:
             self._read_answer(kind, about, str(observation["oracle_answer"] or ""), pose)
         else:
             self._sense(observation, pose, tilt)
-        action = self._decide(info, pose, tilt)
+        action = self._decide(pose, tilt)
         self._last = (action, pose)
         if action in (Action.LOOK_UP, Action.LOOK_DOWN):
             self._looks += 1
@@ -202,13 +210,12 @@ class FrontierAgent:
         if new:
             self._scan_left = self.config.scan_turns
 
-    def _decide(self, info: EpisodeInfo, pose: Pose, tilt: float) -> AgentOutput:
-        if self._can_ask() and not self._asked_attribute:
-            self._asked_attribute = True
-            text = dialog.question(
-                dialog.ATTRIBUTE_TEMPLATES["color"], info.object_category, self._rng
-            )
-            return self._ask("attribute", text)
+    def _decide(self, pose: Pose, tilt: float) -> AgentOutput:
+        if self._can_ask() and not self._opened:
+            self._opened = True
+            kind = self._consult(Point.START, pose, False)
+            if kind is not None:
+                return self._question(kind)
         if tilt != 0.0 and self._aim is None:
             return self._level(tilt)
         if self._scan_left > 0:
@@ -235,10 +242,12 @@ class FrontierAgent:
         self._aim = None
         if tilt != 0.0:
             return self._level(tilt)
-        if self._can_ask(spare=True) and (stuck or self._explore_steps >= self.config.route_after):
+        every = self.dialog_policy.explore_every
+        if self._can_ask(spare=True) and (stuck or self._explore_steps >= every):
             self._explore_steps = 0
-            text = dialog.question(dialog.ROUTE_TEMPLATES, info.object_category, self._rng)
-            return self._ask("route", text)
+            kind = self._consult(Point.EXPLORE, pose, stuck)
+            if kind is not None:
+                return self._question(kind)
         self._explore_steps += 1
         hint = self._hint[0] if self._hint and self._hint[1] >= self._steps else None
         move = self.crossing.toward_hint(pose, self._height)
@@ -311,9 +320,13 @@ class FrontierAgent:
         near = candidate.distance_from(pose.x, pose.z)
         cx, _, cz = candidate.centroid
         if self._needs_confirmation(candidate) and self._may_aim(pose) and near <= cfg.ask_distance:
-            action = self._aim_and_ask(candidate, pose, tilt)
-            if action is not None:
-                return action
+            kind = self._verdict(candidate, pose)
+            if kind == "disambiguation":
+                action = self._aim_and_ask(candidate, pose, tilt)
+                if action is not None:
+                    return action
+            elif kind is not None:
+                return self._question(kind)
         self._aim = None
         if tilt != 0.0:
             return self._level(tilt)
@@ -362,24 +375,12 @@ class FrontierAgent:
             if len(together) >= 2 and together not in self._compared:
                 self._compared.add(together)
                 return self._ask("comparison", which_one.COMPARISON_QUESTION)
-        text = dialog.question(
-            dialog.DISAMBIGUATION_TEMPLATES, self.episode.object_category, self._rng
-        )
-        return self._ask("disambiguation", text, candidate.instance_id)
+        return self._question("disambiguation", candidate.instance_id)
 
     def _in_view(self) -> list[tuple[int, float]]:
-        """The candidates not yet ruled out in the current view, as (id, mean column), left to
-        right: what a place named in an answer picks from."""
-        detected = {c.instance_id: c for c in self.tracker.detected()}
-        seen = [
-            (instance, sighting.column)
-            for instance, sighting in self.tracker.visible.items()
-            if instance in detected
-            and instance not in self.rejected
-            and sighting.pixels >= self.config.min_detection_pixels
-            and self._on_this_storey(detected[instance])
-        ]
-        return sorted(seen, key=lambda seen: seen[1])
+        """The candidates in view not yet ruled out, on this storey, as (id, column)."""
+        seen = self.tracker.in_view(self.config.min_detection_pixels, self.rejected)
+        return [s for s in seen if self._on_this_storey(self.tracker.candidates[s[0]])]
 
     def _may_aim(self, pose: Pose) -> bool:
         """After a failed aim, try again only from somewhere else."""
@@ -398,6 +399,57 @@ class FrontierAgent:
             return False
         reserve = self.config.reserve_questions if spare and self.confirmed is None else 0
         return self._questions_left > reserve
+
+    def _consult(self, point: Point, pose: Pose, stuck: bool) -> str | None:
+        """The dialog policy's choice at ``point``: a question kind to ask, or None."""
+        allowed = [] if self._asked_attribute else ["attribute"]
+        allowed.append("disambiguation" if point == Point.CANDIDATE else "route")
+        return self.dialog_policy.choose(Decision(point, tuple(allowed), self._belief(pose, stuck)))
+
+    def _verdict(self, candidate: Candidate, pose: Pose) -> str | None:
+        """The policy's choice at a candidate within asking distance, asked once per
+        candidate (again after a colour question it chose there)."""
+        key = candidate.instance_id
+        if key not in self._verdicts:
+            kind = self._consult(Point.CANDIDATE, pose, False)
+            if kind == "attribute":
+                return kind
+            self._verdicts[key] = kind
+        return self._verdicts[key]
+
+    def _belief(self, pose: Pose, stuck: bool) -> Belief:
+        seen = self.tracker.detected()
+        fitting = [
+            c.distance_from(pose.x, pose.z)
+            for c in seen
+            if c.instance_id not in self.rejected
+            and self._on_this_storey(c)
+            and dialog.matches_known(c.attributes, self.known)
+        ]
+        cell = self.map.cell_size**2
+        return Belief(
+            budget_left=self._questions_left / max(self.config.question_budget, 1),
+            steps=self._steps / max(self.episode.max_steps, 1),
+            colour_known="color" in self.known,
+            attribute_asked=self._asked_attribute,
+            known_attributes=len(self.known),
+            candidates_seen=len(seen),
+            fitting_distance=min(fitting) if fitting else None,
+            rejected=len(self.rejected),
+            confirmed=self.confirmed is not None,
+            explore_steps=self._explore_steps,
+            explored_m2=sum(float(s.map.explored.sum()) * cell for s in self.memory.storeys),
+            stuck=stuck,
+            storeys=len(self.memory.storeys),
+            hinted=self._hint is not None and self._hint[1] >= self._steps,
+        )
+
+    def _question(self, kind: str, about: int | None = None) -> Talk:
+        """Ask a question of ``kind`` in one of its phrasings."""
+        if kind == "attribute":
+            self._asked_attribute = True
+        text = dialog.question(dialog.TEMPLATES[kind], self.episode.object_category, self._rng)
+        return self._ask(kind, text, about)
 
     def _ask(self, kind: str, text: str, about: int | None = None) -> Talk:
         self._pending = (kind, about)
@@ -436,16 +488,11 @@ class FrontierAgent:
                 self.explorer.drop_path()
 
     def _take_pick(self, pick: which_one.Pick | None) -> None:
-        """Act on an answer that says which candidate in view the target is: that one is
-        confirmed and the others in view are ruled out (all of them when it is none)."""
-        if pick is None:
-            return
-        in_view = self._in_view()
-        chosen = which_one.picked(pick, in_view)
-        self.rejected.update(instance for instance, _ in in_view if instance != chosen)
-        if chosen is not None:
-            self.rejected.discard(chosen)
-            self.confirmed = self._target = chosen
+        """An answer naming the target among the candidates in view confirms it."""
+        if pick is not None:
+            chosen = which_one.take(pick, self._in_view(), self.rejected)
+            if chosen is not None:
+                self.confirmed = self._target = chosen
 
     # ----------------------------------------------------------------- helpers
     def _level(self, tilt: float) -> Action:

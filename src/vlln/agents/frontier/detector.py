@@ -168,6 +168,19 @@ class CandidateTracker:
         ids, counts = np.unique(centre[centre > 0], return_counts=True)
         return ids.size > 0 and int(ids[np.argmax(counts)]) == instance_id
 
+    def in_view(self, min_pixels: int, ruled_out: set[int]) -> list[tuple[int, float]]:
+        """Candidates seen well enough to act on, not ``ruled_out``, that the current frame
+        shows with at least ``min_pixels``, as (id, mean column), left to right."""
+        seen = [
+            (instance, sighting.column)
+            for instance, sighting in self.visible.items()
+            if sighting.pixels >= min_pixels
+            and instance not in ruled_out
+            and self.candidates.get(instance) is not None
+            and self.candidates[instance].best_pixels >= self.min_pixels
+        ]
+        return sorted(seen, key=lambda item: item[1])
+
     @property
     def last_detections(self) -> NDArray[np.int32]:
         """The last frame's instance ids as the detector reported them (missed ones 0), at

@@ -37,6 +37,12 @@ ROUTE_TEMPLATES: tuple[str, ...] = (
     "Which way should I go?",
     "Which direction should I go to find the {category}?",
 )
+# The phrasings of each kind of question the agent asks.
+TEMPLATES: dict[str, tuple[str, ...]] = {
+    "attribute": ATTRIBUTE_TEMPLATES["color"],
+    "route": ROUTE_TEMPLATES,
+    "disambiguation": DISAMBIGUATION_TEMPLATES,
+}
 
 # Words other than the value itself that name a value ("wooden chair" = material wood).
 _VALUE_WORDS: dict[tuple[str, str], tuple[str, ...]] = {

@@ -58,6 +58,16 @@ def _pick(text: str) -> Pick | None:
     return Pick(_PLACES[match.group(1)]) if match else None
 
 
+def take(pick: Pick, in_view: Sequence[tuple[int, float]], rejected: set[int]) -> int | None:
+    """The candidate in view that ``pick`` names, the others in view added to ``rejected``
+    (all of them when the pick is that none is the target)."""
+    chosen = picked(pick, in_view)
+    rejected.update(instance for instance, _ in in_view if instance != chosen)
+    if chosen is not None:
+        rejected.discard(chosen)
+    return chosen
+
+
 def picked(pick: Pick, columns: Sequence[tuple[int, float]]) -> int | None:
     """The instance among ``columns`` ((id, mean column 0..1), left to right) at the pick's
     place: the leftmost for "left", the rightmost for "right", the most central otherwise."""
