@@ -11,7 +11,14 @@ import numpy as np
 import pytest
 
 from vlln.agents.frontier import FrontierAgent
-from vlln.agents.frontier.asking import ACTION_NAMES, FEATURES, Decision, FixedTriggers, Point
+from vlln.agents.frontier.asking import (
+    ACTION_NAMES,
+    FEATURES,
+    Belief,
+    Decision,
+    FixedTriggers,
+    Point,
+)
 from vlln.agents.frontier.learned import PolicyCard, load_policy, save_policy
 from vlln.agents.registry import agent_options, make_agent
 from vlln.errors import ConfigError
@@ -89,7 +96,9 @@ def test_a_policy_that_walks_on_never_asks_and_sees_its_beliefs(split_cache: Pat
 
 
 def test_a_kind_not_allowed_at_a_point_walks_on() -> None:
-    decision = Decision(Point.EXPLORE, ("route",), belief=None)
+    belief = Belief(1.0, 0.1, False, True, 0, 0, None, 0, False, 20, 30.0, False, 1, False)
+    decision = Decision(Point.EXPLORE, ("route",), belief)
+    assert decision.features()[FEATURES.index("fitting_distance")] == 1.0  # none seen
     assert [decision.action(k) for k in range(4)] == [None, None, "route", None]
 
 

@@ -11,8 +11,9 @@ exactly labelled) or a noisy one (``noisy``: misses, look-alike categories, misr
 What is known about the target comes from the instruction's adjectives (IGN) and, with a
 question budget (IIGN, or IGN when given one), from the oracle: a colour question at the start
 unless the instruction named the colour, "is this the one?" before stopping at a candidate,
-and "which way?" when exploration drags on or gets stuck. Every random choice comes from
-generators seeded by the agent's seed and the episode id.
+and "which way?" when exploration drags on or gets stuck. Those are the default of a pluggable
+dialog policy (:mod:`.asking`); a learned one decides instead with ``dialog_policy``. Every
+random choice comes from generators seeded by the agent's seed and the episode id.
 
 In a house with several storeys it keeps a map per storey (:mod:`.storeys`), sees the stairs
 through its detector, takes them once its storey is explored or when the oracle says the
