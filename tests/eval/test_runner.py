@@ -159,7 +159,8 @@ def test_garbage_outputs_are_failed_actions(
 def test_unknown_agent_fails_before_any_work(tmp_path: Path, split_cache: Path) -> None:
     with pytest.raises(
         ConfigError,
-        match=r"unknown agent .*choose one of: aiuta, expert, fbe, frontier, openai-vlm, random",
+        match=r"unknown agent .*choose one of: aiuta, expert, fbe, frontier, frontier-compare, "
+        r"openai-vlm",
     ):
         evaluate(tmp_path / "run", split_cache, SceneCache(), agent="no-such-agent")
     assert not (tmp_path / "run").exists()

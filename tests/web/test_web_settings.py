@@ -48,5 +48,9 @@ def test_agent_options_are_read_into_the_agents_options_class(
         "error: openai-vlm option timeout_s = 'x': Input should be a valid number, "
         "unable to parse string as a number\n"
     )
+    assert main([*source, "--agent-option", "fbe.model=m"]) == 2
+    assert capsys.readouterr().err == "error: agent 'fbe' takes no options, got model\n"
     assert main([*source, "--agent-option", "frontier.model=m"]) == 2
-    assert capsys.readouterr().err == "error: agent 'frontier' takes no options, got model\n"
+    assert capsys.readouterr().err == (
+        "error: unknown frontier option 'model'; known: dialog_policy\n"
+    )

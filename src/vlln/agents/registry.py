@@ -112,7 +112,7 @@ def make_agent(
         sight = resolve_detector(name, detector) or DEFAULT_DETECTOR
         return sighted(seed, agent_options(name, options), sight)
     if name not in AGENTS and not is_agent_spec(name):
-        names = ", ".join(sorted([*AGENTS, *CONFIGURED_AGENTS, *CONFIGURED_DETECTING_AGENTS]))
+        names = ", ".join(sorted({*AGENTS, *CONFIGURED_AGENTS, *CONFIGURED_DETECTING_AGENTS}))
         raise ConfigError(
             f"unknown agent {name!r}; choose one of: {names}, or name a class of your own as "
             "package.module:Class (docs/own-agent.md)"
