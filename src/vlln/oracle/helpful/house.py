@@ -12,16 +12,13 @@ import re
 from collections import defaultdict
 from functools import lru_cache
 
-import numpy as np
-
-from vlln.oracle.answers import VISIBLE_MIN_SHARE, distance_words, room_phrase
+from vlln.oracle.answers import distance_words, room_phrase
 from vlln.oracle.classifier.entities import object_names
 from vlln.oracle.helpful.progress import storey_name
 from vlln.oracle.helpful.recognise import HelpRequest
-from vlln.oracle.helpful.view import counted, plural
+from vlln.oracle.helpful.view import candidates_in_view, counted, plural
 from vlln.oracle.knowledge import EpisodeKnowledge, object_phrase, room_name
 from vlln.sim.agent import AgentState
-from vlln.sim.renderer import Frame
 from vlln.tasks.oracle_protocol import Question
 from vlln.world.catalogue.aliases import canonical_category
 from vlln.world.generator.furnishing import WINDOW_COVERINGS
@@ -46,7 +43,7 @@ def answer_count(knowledge: EpisodeKnowledge, request: HelpRequest, question: Qu
     category = next((name for name in named if name != target.category), target.category)
     instances = house.instances_of(category)
     if request.in_view:
-        return _count_in_view(knowledge, category, question.frame)
+        return _count_in_view(knowledge, category, question)
     if not instances:
         return f"There is no {category} in this house."
     sentence = _count_in_house(knowledge, category, instances, question.state)
@@ -89,16 +86,10 @@ def _by_floor(knowledge: EpisodeKnowledge, instances: list[ObjectInstance]) -> s
     return f"By floor: {', '.join(parts)}."
 
 
-def _count_in_view(knowledge: EpisodeKnowledge, category: str, frame: Frame) -> str:
+def _count_in_view(knowledge: EpisodeKnowledge, category: str, question: Question) -> str:
     """How many of ``category`` the asker sees, and which is the target among them."""
-    ids = frame.instance_ids
-    values, counts = np.unique(ids[ids > 0], return_counts=True)
-    seen = [
-        value
-        for value, count in zip(values.tolist(), counts.tolist(), strict=True)
-        if count >= VISIBLE_MIN_SHARE * ids.size
-        and getattr(knowledge.index.instances.get(value), "category", None) == category
-    ]
+    in_view = candidates_in_view(knowledge, question.state, question.frame, category)
+    seen = [candidate.instance.id for candidate in in_view]
     if not seen:
         return f"No {category} is in your view."
     verb = "is" if len(seen) == 1 else "are"

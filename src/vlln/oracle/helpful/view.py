@@ -41,12 +41,12 @@ class Candidate:
 
 
 def candidates_in_view(
-    knowledge: EpisodeKnowledge, state: AgentState, frame: Frame
+    knowledge: EpisodeKnowledge, state: AgentState, frame: Frame, category: str | None = None
 ) -> list[Candidate]:
-    """The visible instances of the target's category, left to right."""
+    """The visible instances of ``category`` (the target's when None), left to right."""
     ids = frame.instance_ids
     values, counts = np.unique(ids[ids > 0], return_counts=True)
-    category = knowledge.target.category
+    category = category or knowledge.target.category
     x, _, z = state.position
     found = []
     for value, count in zip(values.tolist(), counts.tolist(), strict=True):
