@@ -10,6 +10,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from stable_baselines3 import PPO
 
 from vlln.agents.frontier.learned import load_policy
 from vlln.cli import main
@@ -19,7 +20,6 @@ from vlln.cli import main
 def test_train_a_policy_then_evaluate_with_it(
     tmp_path: Path, split_cache: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    ppo = pytest.importorskip("stable_baselines3").PPO
     policy = tmp_path / "policy"
     train = ["train", "dialog-policy", "--out", str(policy), "--timesteps", "16", "--n-steps"]
     train += ["8", "--houses", "1", "--cache-dir", str(tmp_path / "cache"), "--lam", "0.1"]
@@ -30,7 +30,7 @@ def test_train_a_policy_then_evaluate_with_it(
     assert card["lam"] == 0.1 and card["split"] == "train" and card["timesteps"] >= 16
     # Play runs the actor in numpy: the same choices as stable-baselines3's own.
     beliefs = np.random.default_rng(0).random((64, len(card["features"]))).astype(np.float32)
-    chosen, _ = ppo.load(policy / "model.zip", device="cpu").predict(beliefs, deterministic=True)
+    chosen, _ = PPO.load(policy / "model.zip", device="cpu").predict(beliefs, deterministic=True)
     learned = load_policy(str(policy))
     assert list(chosen) == [int(np.argmax(learned.scores(b))) for b in beliefs]
 
