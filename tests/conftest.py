@@ -11,7 +11,14 @@ from pathlib import Path
 
 import pytest
 
-from vlln.datagen.build import BuildConfig, build_dataset
+# One thread per process for OpenMP (torch), BLAS and Mesa's rasteriser (llvmpipe): each
+# starts one per core by default, and under two pytest-xdist workers (or any other load) those
+# threads spin against each other; a torch or rendering test then runs 3 to 4 times slower.
+# Set before anything imports them, and inherited by the subprocesses tests start.
+for _variable in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "LP_NUM_THREADS"):
+    os.environ.setdefault(_variable, "1")
+
+from vlln.datagen.build import BuildConfig, build_dataset  # noqa: E402
 
 ONE_HOUSE = BuildConfig(houses=1, per_house=1, preset="small")
 """``vlln data build --houses 1 --per-house 1``: the train split's first house, one trajectory."""

@@ -1,4 +1,5 @@
-"""A small real dataset, built once per test session and shared by the pipeline tests."""
+"""A small real dataset, built once per test run (by the first worker that asks) and shared,
+read only, by the pipeline tests."""
 
 from __future__ import annotations
 
@@ -6,6 +7,7 @@ from pathlib import Path
 
 import pytest
 
+from tests.conftest import built_once
 from vlln.datagen.build import BuildConfig, build_dataset
 
 SMALL = BuildConfig(houses=2, per_house=1, preset="small")
@@ -13,7 +15,9 @@ SMALL = BuildConfig(houses=2, per_house=1, preset="small")
 
 @pytest.fixture(scope="session")
 def small_dataset(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    return build_dataset(tmp_path_factory.mktemp("dataset"), SMALL, progress=False)
+    return built_once(
+        tmp_path_factory, "small_dataset", lambda out: build_dataset(out, SMALL, progress=False)
+    )
 
 
 def dataset_files(root: Path) -> dict[str, bytes]:
