@@ -118,7 +118,7 @@ def _under(knowledge: EpisodeKnowledge) -> Found:
         if r.word == "under"
     ]
     resting = "; ".join(f"it is {r.word} {object_phrase(index.instances[r.object])}" for r in own)
-    found = "; ".join(text for text in (resting, _sentences(knowledge, parts)[:-1]) if text)
+    found = "; ".join(text for text in (resting, _listed(knowledge, parts)) if text)
     if not found:
         return "", f"Nothing is under it: {_stands(knowledge)}."
     return f"{found[0].upper()}{found[1:]}.", ""
@@ -206,8 +206,14 @@ _RELATED = {
 
 
 def _sentences(knowledge: EpisodeKnowledge, parts: list[Part]) -> str:
-    """The objects, each once, nearest first, grouped by what they are to the target: "The
-    white laptop and the yellow magazine are on it; the lamp is above it."."""
+    """The parts as one sentence (:func:`_listed`); empty when there are none."""
+    text = _listed(knowledge, parts)
+    return f"{text[0].upper()}{text[1:]}." if text else ""
+
+
+def _listed(knowledge: EpisodeKnowledge, parts: list[Part]) -> str:
+    """The objects, each once, nearest first, grouped by what they are to the target: "the
+    white laptop and the yellow magazine are on it; the lamp is above it"."""
     named: dict[int, tuple[float, str]] = {}
     for gap, other, what in parts:
         if other not in named:
@@ -216,10 +222,7 @@ def _sentences(knowledge: EpisodeKnowledge, parts: list[Part]) -> str:
     groups: dict[str, list[str]] = {}
     for other, (_, what) in chosen:
         groups.setdefault(what, []).append(object_phrase(knowledge.index.instances[other]))
-    if not groups:
-        return ""
-    text = "; ".join(f"{joined(names)} {_be(names)} {what}" for what, names in groups.items())
-    return f"{text[0].upper()}{text[1:]}."
+    return "; ".join(f"{joined(names)} {_be(names)} {what}" for what, names in groups.items())
 
 
 def _be(names: list[str]) -> str:

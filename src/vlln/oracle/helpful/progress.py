@@ -33,8 +33,7 @@ def answer_passed(knowledge: EpisodeKnowledge, state: AgentState, path: Path) ->
     if now < knowledge.follower.goal_radius:
         return "No, you are there: it is right here."
     category = knowledge.target.category
-    away = distance_words(now)
-    where = f"it is {away} away, {direction(knowledge, state)}"
+    where = f"it is {distance_words(now)} away, {direction(knowledge, state)}"
     nearest = min((walking(knowledge, p) for p in path[:-1]), default=math.inf)
     if nearest <= PASSED_NEAR and now >= nearest + PASSED_MARGIN:
         return f"Yes, you passed the {category}: you walked right by it. Now {where}."
@@ -42,17 +41,16 @@ def answer_passed(knowledge: EpisodeKnowledge, state: AgentState, path: Path) ->
     if room is None:
         return f"No, you have not passed it: {where}."
     now_in, left = target_room_visit(knowledge, state, path)
+    there = f"the {room_name(room)}"  # where it lies is said by the direction
     if now_in:
         return f"No, you have not passed it: {where}, in this {room_name(room)}."
-    there = room_phrase(knowledge, room, state)
     if left is not None:
         return (
             f"No, you have not passed it, though you were in its room, {there}, {ago(left)}: "
             f"{where}."
         )
     return (
-        f"No, you have not passed it, and you have not been in its room yet: it is in {there}, "
-        f"{away} away, {direction(knowledge, state)}."
+        f"No, you have not passed it, and you have not been in its room yet: {where}, in {there}."
     )
 
 
