@@ -6,7 +6,14 @@ from __future__ import annotations
 import pytest
 
 from tests.oracle.test_rule_oracle import QUESTIONS
-from vlln.oracle.helpful.recognise import Dimension, FloorClaim, HelpKind, recognised
+from vlln.oracle.helpful.recognise import (
+    CountScope,
+    Dimension,
+    FloorClaim,
+    HelpKind,
+    PathTopic,
+    recognised,
+)
 
 PHRASINGS: dict[HelpKind, tuple[str, ...]] = {
     HelpKind.COMPARISON: (
@@ -23,6 +30,15 @@ PHRASINGS: dict[HelpKind, tuple[str, ...]] = {
         "front one or back one?",
         "I see two beds, which one?",
         "the one by the window or the one by the door?",
+        "there are 2 toilets in front of me - left or right?",
+        "I've got two candidates in view. Left or right?",
+        "Would it be the toilet on the right-hand side?",
+        "Can you help me choose between these two toilets?",
+        "I'm seeing two curtains of different sizes. Which size is the one you mean?",
+        "the sofa by my left hand or my right hand?",
+        "pls tell me which tv: left or right",
+        "Both lamps look alike, right or left?",
+        "The lamp on the left or the lamp on the right?",
     ),
     HelpKind.CONFIRMATION: (
         "Are you sure?",
@@ -34,6 +50,30 @@ PHRASINGS: dict[HelpKind, tuple[str, ...]] = {
         "Are you sure this is the one?",
         "Can you double-check? I don't want to pick the wrong lamp.",
         "Is that your final answer on which sofa?",
+        "Positive?",
+        "sure sure?",
+        "no doubt about it?",
+        "do you really mean this one",
+        "you sure it's not the other cushion?",
+        "Is there any chance it's a different mirror?",
+        "is it safe to say I've found the shelf?",
+        "Should I commit to this couch?",
+        "Beyond any doubt?",
+        "Absolutely certain?",
+    ),
+    HelpKind.DONE: (
+        "so I'm done?",
+        "Should I end the search here?",
+        "is it ok to finish now?",
+        "Should I keep searching or is this it?",
+        "so no need to look any further?",
+        "I'm going to stop here, is that ok?",
+        "should i call it done?",
+        "Do I need to keep going or have I got it?",
+        "Is this where I should end the episode?",
+        "Can we wrap up the search?",
+        "Am I finished?",
+        "Is that the end of the search?",
     ),
     HelpKind.PASSED: (
         "Did I pass it?",
@@ -41,6 +81,12 @@ PHRASINGS: dict[HelpKind, tuple[str, ...]] = {
         "Have I walked past it?",
         "Did I overshoot the target?",
         "I think I missed it",
+        "did I already see the toilet without noticing?",
+        "Was the couch visible at some point earlier?",
+        "Did I walk right by it?",
+        "Was I in the right place earlier and then left?",
+        "Have I already looked at the cabinet you mean?",
+        "Could I have walked past it already?",
     ),
     HelpKind.CLOSER: (
         "Am I getting closer?",
@@ -48,6 +94,14 @@ PHRASINGS: dict[HelpKind, tuple[str, ...]] = {
         "Am I getting warmer or colder?",
         "Am I closer than before?",
         "did I get any closer?",
+        "Was I closer a minute ago?",
+        "Am I on track?",
+        "Did I take a wrong turn somewhere?",
+        "have i been going the rigth way",
+        "Am I heading in the right direction?",
+        "Have I been moving away from the plant?",
+        "Am I making any progress?",
+        "hot or cold?",
     ),
     HelpKind.FLOOR: (
         "should I go upstairs?",
@@ -60,6 +114,16 @@ PHRASINGS: dict[HelpKind, tuple[str, ...]] = {
         "How many floors does the house have?",
         "Is the house one storey or two?",
         "Is it on the floor I started on?",
+        "should i go down",
+        "Do I have to change floors?",
+        "is it in the basement",
+        "Do I need to go up or down?",
+        "up or down?",
+        "should i take these stairs",
+        "Do I go up these stairs or down them?",
+        "do i need the stairs for this one",
+        "Is the sink above or below me?",
+        "Is it on the main floor?",
     ),
     HelpKind.REROUTE: (
         "I think I'm lost, can you help?",
@@ -67,8 +131,35 @@ PHRASINGS: dict[HelpKind, tuple[str, ...]] = {
         "Sorry, I am lost.",
         "Can you help me?",
         "I'm a bit confused, help me get there",
+        "I am lost, I keep going in circles.",
+    ),
+    HelpKind.VISITED: (
+        "have I been here before?",
         "Have I been in this room already?",
+        "Have I looked in this room already?",
+        "i feel like i've been here already, have i?",
+        "have i checked this area yet",
+        "Is this the first time I've been in this room?",
+        "did i already go through this hallway",
+        "I don't recognise this room. Have I been here?",
+        "Am I in the same room I started in?",
+        "Am I back where I started?",
+        "Am I going in circles?",
+        "Am I retracing my steps?",
         "I think I walked in a loop.",
+        "Did I skip a room I should have checked?",
+        "Was the towel in one of the rooms I just went through?",
+        "Have I covered the part of the house where the curtain is?",
+        "Have I been in the room it is in?",
+        "how many rooms have I been through so far?",
+        "Which rooms have I visited?",
+        "Have I explored enough of this floor?",
+        "Have I been in the kitchen yet?",
+        "Am I in the wrong wing of the house?",
+        "Am I in the right part of the house?",
+        "Was I in here earlier?",
+        "Did I already search the kitchen?",
+        "Which rooms haven't I checked yet?",
     ),
     HelpKind.COUNT: (
         "How many chairs are there?",
@@ -80,6 +171,15 @@ PHRASINGS: dict[HelpKind, tuple[str, ...]] = {
         "Is this the only bed in the room?",
         "how many toilets does this place have",
         "How many tables are on this floor?",
+        "What's the total count of desks?",
+        "Can you give me a count of all the stools?",
+        "How many beds does this room have?",
+        "Count of mirrors here?",
+        "is the shelf the only one of its kind here?",
+        "How many sofas did I see on the way here?",
+        "how many couches can be seen from this spot",
+        "Are there two plants in here or just the one I can see?",
+        "Is there more than one towel that I can see right now?",
     ),
     HelpKind.NEIGHBOURHOOD: (
         "What is around it?",
@@ -87,12 +187,27 @@ PHRASINGS: dict[HelpKind, tuple[str, ...]] = {
         "Describe its surroundings.",
         "Which things are around the plant?",
         "What's opposite the toilet?",
+        "is there anything on top of it",
+        "What is the sink near?",
+        "What's in front of it?",
+        "what's behind the bed?",
+        "What's underneath it?",
+        "What's on the wall near the couch?",
+        "What is the counter sitting on?",
+        "What is sitting on the table?",
+        "What's hanging on the wall above it?",
     ),
     HelpKind.WINDOW: (
         "is it near a window?",
         "Is it by the window?",
         "is it neer a widnow?",
         "Is there a window close to it?",
+        "is there a window behind it",
+    ),
+    HelpKind.OFF_TOPIC: (
+        "How do I bake bread?",
+        "how can I fix my bike",
+        "How do you make pancakes?",
     ),
 }
 
@@ -125,6 +240,29 @@ PAPERS = (
     "How many questions can I ask?",
     "Sorry, I missed that.",
     "I am a bit lost. How far away is it?",
+    "Should I stop here?",
+    "Can I stop now?",
+    "Left or right?",
+    "Is it to my left or right?",
+    "Should I take the door on my right?",
+    "Now I go to the right or to the left?",
+    "Am I facing the right way?",
+    "Right turn now?",
+    "What is it on?",
+    "What is the chair next to?",
+    "Is the counter near the stairs?",
+    "Do I go left after the stairs?",
+    "Is the toilet lid up or down?",
+    "Am I in the basement?",
+    "How do I get to the kitchen?",
+    "How do i gte to the kichen",
+    "How can I recognise the desk?",
+    "Is it in the corridor between the two bedrooms?",
+    "Should I go to the kitchen?",
+    "Does the chair rock back and forth?",
+    "Which rooms do I pass on the way?",
+    "What time is it?",
+    "Which quadrant is it in: front-left, front-right, back-left or back-right?",
 )
 
 
@@ -162,3 +300,82 @@ def test_a_remark_before_the_question_does_not_decide() -> None:
     floor = recognised("I am a bit lost. Should I go upstairs?")
     assert floor is not None and floor.kind == HelpKind.FLOOR
     assert recognised("I just walked past a sofa. What colour is the chair?") is None
+
+
+def test_what_a_path_question_asks_is_read() -> None:
+    topics = {
+        "have I been here before?": (PathTopic.HERE, False),
+        "Is this the first time I've been in this room?": (PathTopic.HERE, True),
+        "Have I been in the kitchen yet?": (PathTopic.NAMED, False),
+        "Am I in the same room I started in?": (PathTopic.START, False),
+        "Am I going in circles?": (PathTopic.RETRACING, False),
+        "Did I skip a room I should have checked?": (PathTopic.TARGET_ROOM, False),
+        "how many rooms have I been through so far?": (PathTopic.ROOMS, False),
+        "Am I in the wrong wing of the house?": (PathTopic.AREA, True),
+        "Am I in the right part of the house?": (PathTopic.AREA, False),
+    }
+    for text, (topic, reverse) in topics.items():
+        request = recognised(text)
+        assert request is not None and (request.topic, request.reverse) == (topic, reverse), text
+    named = recognised("Have I been in the hallway yet?")
+    assert named is not None and named.rooms == ("corridor",)
+    for text, reverse in {
+        "Am I on track?": False,
+        "Am I getting closer?": False,
+        "Did I take a wrong turn somewhere?": True,
+        "Was I closer a minute ago?": True,
+        "Have I been moving away from the plant?": True,
+    }.items():
+        request = recognised(text)
+        assert request is not None and (request.reverse, request.yes_no) == (reverse, True), text
+    either = recognised("Am I getting warmer or colder?")
+    assert either is not None and not either.yes_no
+
+
+def test_what_a_count_counts_and_a_neighbourhood_question_relates_are_read() -> None:
+    scopes = {
+        "How many chairs are there?": {CountScope.HOUSE},
+        "how many couches can be seen from this spot": {CountScope.HOUSE, CountScope.VIEW},
+        "How many beds does this room have?": {CountScope.HOUSE, CountScope.ROOM},
+        "How many sofas did I see on the way here?": {CountScope.HOUSE, CountScope.WALKED},
+        "Are there two plants in here or just the one I can see?": {
+            CountScope.HOUSE,
+            CountScope.ROOM,
+            CountScope.VIEW,
+        },
+    }
+    for text, expected in scopes.items():
+        request = recognised(text)
+        assert request is not None and request.scopes == expected, text
+    relations = {
+        "is there anything on top of it": "above",
+        "What's underneath it?": "under",
+        "What is the counter sitting on?": "support",
+        "What's in front of it?": "front",
+        "what's behind the bed?": "behind",
+        "What's on the wall near the couch?": "wall",
+        "What is the sink near?": None,
+    }
+    for text, relation in relations.items():
+        request = recognised(text)
+        assert request is not None and request.relation == relation, text
+    for text, claim in {
+        "should i go down": FloorClaim.DOWN,
+        "is it in the basement": FloorClaim.DOWN,
+        "Do I have to change floors?": FloorClaim.OTHER,
+        "up or down?": None,
+        "Can I reach it without taking the stairs?": FloorClaim.SAME,
+        "Does this house have more than one floor?": None,
+        "Would going upstairs be a waste of time?": None,
+        "Would I have to go downstairs for the couch?": FloorClaim.DOWN,
+    }.items():
+        request = recognised(text)
+        assert request is not None and request.floor_claim == claim, text
+    size = recognised("Two curtains here. Which size is the one you mean?")
+    assert size is not None and size.dimension == Dimension.SIZE
+    side = recognised("Would it be the toilet on the right-hand side?")
+    assert side is not None and (side.dimension, side.asked, side.yes_no) == (
+        Dimension.SIDE,
+        ("right",),
+        True,
+    )

@@ -15,7 +15,7 @@ from vlln.oracle.llm.offline import OfflineLanguageModel
 from vlln.oracle.llm.openai_client import OpenAIChatClient, OpenAISettings
 from vlln.oracle.llm.prompts import QUESTION_MARKER, REFERENCE_MARKER, field_value
 from vlln.oracle.llm_oracle import LLMOracle
-from vlln.oracle.rule_oracle import RuleOracle
+from vlln.oracle.rule_oracle import TYPE_REFUSAL, RuleOracle
 from vlln.oracle.settings import OracleBackend, OracleSettings
 from vlln.sim.agent import AgentState
 from vlln.sim.simulator import Simulator
@@ -299,3 +299,16 @@ def test_help_beyond_the_schema_is_one_call_rewording_the_grounded_answer(
     word = prompt_of(server.requests[0])
     assert field_value(word, REFERENCE_MARKER) == " ".join(expected.answer.split())
     assert field_value(word, "Help Asked: ") == "window" and "Target Detected: " in word
+
+
+def test_a_question_about_nothing_in_the_house_is_refused_without_a_call(
+    sim: Simulator, target: ObjectInstance
+) -> None:
+    settings = OpenAISettings(model="m", timeout_s=2.0, max_retries=0)
+    with chat_server([completion("Mix flour and water.", 80, 5)]) as server:
+        settings = dataclasses.replace(settings, base_url=server.base_url)
+        oracle = OracleSettings(OracleBackend.HELPFUL, settings).make(3)
+        oracle.start(context(sim, target))
+        reply = oracle.answer(question(sim, "How do I bake bread?"))
+    assert not server.requests
+    assert (reply.answer, reply.help_kind) == (TYPE_REFUSAL, "off_topic")

@@ -168,8 +168,9 @@ class LLMOracle:
 
     def _help(self, knowledge: EpisodeKnowledge, question: Question, offline: Reply) -> Reply:
         """Help beyond the paper's schema: the helpful oracle's answer, reworded in one call
-        (its refusal of a type the run does not answer, as it is)."""
-        if offline.type_refused:
+        (its refusal of a type the run does not answer or of a question about nothing in the
+        house, as it is: the paper's words, and nothing for a model to answer instead)."""
+        if offline.type_refused or offline.help_kind == HelpKind.OFF_TOPIC.value:
             return replace(offline, backend=self.model.backend)
         facts = {
             "goal_information": goal_information(knowledge, question.state),

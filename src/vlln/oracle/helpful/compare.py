@@ -1,5 +1,6 @@
-"""Answers about the candidates in view: which one it is, how sure the oracle is, and the
-clarification added to "is this the one?" when several candidates are in view.
+"""Answers about the candidates in view: which one it is, how sure the oracle is, whether the
+search is done, and the clarification added to "is this the one?" when several candidates
+are in view.
 
 The oracle knows which instance the target is; what it cannot know is which candidate the
 asker means by "this". So it is certain when the view holds one candidate (or none that is
@@ -8,8 +9,12 @@ the target), and says it cannot tell when it holds several, naming the target am
 
 from __future__ import annotations
 
-from vlln.oracle.answers import room_phrase
+import math
+
+from vlln.oracle.answers import distance_words, room_phrase
 from vlln.oracle.disambiguation import DISAMBIGUATION_RANGE
+from vlln.oracle.helpful import patterns as p
+from vlln.oracle.helpful.path import advice, direction
 from vlln.oracle.helpful.recognise import Dimension, HelpRequest
 from vlln.oracle.helpful.view import (
     Candidate,
@@ -24,6 +29,7 @@ from vlln.oracle.helpful.view import (
     which_one,
 )
 from vlln.oracle.knowledge import EpisodeKnowledge
+from vlln.oracle.route import CANNOT_ANSWER
 from vlln.sim.agent import AgentState
 from vlln.sim.renderer import Frame
 
@@ -87,27 +93,58 @@ def _told_apart(
     return "", fallback
 
 
-def answer_confirmation(knowledge: EpisodeKnowledge, state: AgentState, frame: Frame) -> str:
-    """ "Are you sure?": certain when the view holds one candidate or none is the target."""
+def answer_confirmation(
+    knowledge: EpisodeKnowledge, request: HelpRequest, state: AgentState, frame: Frame
+) -> str:
+    """ "Are you sure?", "should I commit to this couch?": certain when the view holds one
+    candidate or none is the target. Only a question of certainty alone ("are you sure?",
+    "positive?") is answered "yes, I am sure", since a yes to "is there any chance it is a
+    different mirror?" would say the opposite."""
     candidates = candidates_in_view(knowledge, state, frame)
     target = target_among(knowledge, candidates)
     category = knowledge.target.category
+    sure = "Yes, I am sure" if p.CERTAINTY_ALONE.search(request.text) else "I am sure"
     if not candidates:
         where = _where(knowledge, state)
         return f"I can't tell from here: no {category} is in your view. {where}".rstrip()
     if target is None:
         seen = f"the {category}" if len(candidates) == 1 else f"none of the {plural(category)}"
         verb = "is not" if len(candidates) == 1 else "is"
-        return f"Yes, I am sure: {seen} in your view {verb} the one I mean."
+        where = _where(knowledge, state)
+        return f"{sure}: {seen} in your view {verb} the one I mean. {where}".rstrip()
     if len(candidates) == 1:
         far = ""
         if target.distance > DISAMBIGUATION_RANGE:
             far = f", about {round(target.distance)} meters away"
-        return f"Yes, I am sure: it is the one {place_in_view(target)}{far}."
+        return f"{sure}: it is the one {place_in_view(target)}{far}."
     return (
         f"I can't tell which one you mean from here: {counted(len(candidates), category)} are "
         f"in view. The one I mean is {which_one(candidates, target)}."
     )
+
+
+def answer_done(knowledge: EpisodeKnowledge, state: AgentState, frame: Frame) -> str:
+    """ "So I am done?", "should I end the search here?": done where the follower would stop
+    (within the success radius of a view point of the target); else how far it is, whether it
+    is in view and the next step. Said without yes or no, which "do I need to keep going?"
+    would turn around."""
+    x, y, z = state.position
+    distance = knowledge.geodesic(x, z, y)
+    if distance == math.inf:
+        return CANNOT_ANSWER
+    category = knowledge.target.category
+    candidates = candidates_in_view(knowledge, state, frame)
+    target = target_among(knowledge, candidates)
+    seen = ""
+    if target is not None:
+        alone = f"the one {place_in_view(target)}"
+        seen = f" It is in your view: {which_one(candidates, target) if candidates[1:] else alone}."
+    if distance < knowledge.follower.goal_radius:
+        return f"You are there: you can stop here.{seen}"
+    where = f"{distance_words(distance)} away, {direction(knowledge, state)}"
+    return (
+        f"You are not there yet: the {category} I mean is {where}.{seen} {advice(knowledge, state)}"
+    ).rstrip()
 
 
 def clarification(knowledge: EpisodeKnowledge, state: AgentState, frame: Frame) -> str | None:

@@ -21,8 +21,14 @@ from dataclasses import replace
 import numpy as np
 
 from vlln.errors import ConfigError
-from vlln.oracle.helpful.compare import answer_comparison, answer_confirmation, clarification
-from vlln.oracle.helpful.house import answer_count, answer_neighbourhood, answer_window
+from vlln.oracle.helpful.around import answer_neighbourhood, answer_window
+from vlln.oracle.helpful.compare import (
+    answer_comparison,
+    answer_confirmation,
+    answer_done,
+    clarification,
+)
+from vlln.oracle.helpful.house import answer_count
 from vlln.oracle.helpful.progress import (
     answer_closer,
     answer_floor,
@@ -30,6 +36,7 @@ from vlln.oracle.helpful.progress import (
     answer_reroute,
 )
 from vlln.oracle.helpful.recognise import HelpKind, HelpRequest, recognised
+from vlln.oracle.helpful.visited import answer_visited
 from vlln.oracle.knowledge import EpisodeKnowledge
 from vlln.oracle.rule_oracle import TYPE_REFUSAL, RuleOracle
 from vlln.oracle.rule_oracle import reads_view as rules_read_view
@@ -46,20 +53,29 @@ _ANSWERS: dict[HelpKind, tuple[QuestionType, Answerer]] = {
     ),
     HelpKind.CONFIRMATION: (
         QuestionType.DISAMBIGUATION,
-        lambda k, r, q: answer_confirmation(k, q.state, q.frame),
+        lambda k, r, q: answer_confirmation(k, r, q.state, q.frame),
     ),
+    HelpKind.DONE: (QuestionType.ROUTE, lambda k, r, q: answer_done(k, q.state, q.frame)),
     HelpKind.PASSED: (QuestionType.OTHER, lambda k, r, q: answer_passed(k, q.state, _path(q))),
-    HelpKind.CLOSER: (QuestionType.OTHER, lambda k, r, q: answer_closer(k, q.state, _path(q))),
+    HelpKind.CLOSER: (
+        QuestionType.OTHER,
+        lambda k, r, q: answer_closer(k, q.state, _path(q), yes_no=r.yes_no, reverse=r.reverse),
+    ),
+    HelpKind.VISITED: (
+        QuestionType.OTHER,
+        lambda k, r, q: answer_visited(k, r, q.state, _path(q)),
+    ),
     HelpKind.FLOOR: (QuestionType.ROUTE, lambda k, r, q: answer_floor(k, r, q.state)),
     HelpKind.REROUTE: (QuestionType.ROUTE, lambda k, r, q: answer_reroute(k, q.state)),
     HelpKind.COUNT: (QuestionType.OTHER, answer_count),
     HelpKind.NEIGHBOURHOOD: (
         QuestionType.ATTRIBUTE,
-        lambda k, r, q: answer_neighbourhood(k, q.state),
+        lambda k, r, q: answer_neighbourhood(k, q.state, r.relation),
     ),
     HelpKind.WINDOW: (QuestionType.ATTRIBUTE, lambda k, r, q: answer_window(k, q.state)),
+    HelpKind.OFF_TOPIC: (QuestionType.OTHER, lambda k, r, q: TYPE_REFUSAL),
 }
-_READS_VIEW = frozenset({HelpKind.COMPARISON, HelpKind.CONFIRMATION})
+_READS_VIEW = frozenset({HelpKind.COMPARISON, HelpKind.CONFIRMATION, HelpKind.DONE})
 
 
 def reads_view(text: str) -> bool:
@@ -92,6 +108,10 @@ class HelpfulOracle:
         request = recognised(question.text)
         if request is None:
             return self._papers(question)
+        if request.kind == HelpKind.OFF_TOPIC:
+            papers = self._papers(question)
+            if papers.answer == TYPE_REFUSAL:  # the rule oracle refused it already
+                return papers
         knowledge = self._started()
         question_type, answerer = _ANSWERS[request.kind]
         kind = request.kind.value

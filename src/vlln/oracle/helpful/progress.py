@@ -10,64 +10,83 @@ from __future__ import annotations
 
 import math
 
-from vlln.errors import NavigationError
-from vlln.oracle.answers import direction_words, distance_words, room_phrase
+from vlln.oracle.answers import distance_words, room_phrase
+from vlln.oracle.helpful.path import Path, advice, ago, direction, target_room_visit, walking
 from vlln.oracle.helpful.recognise import FloorClaim, HelpRequest
 from vlln.oracle.knowledge import EpisodeKnowledge, room_name
-from vlln.oracle.route import CANNOT_ANSWER, answer_path, signed_degrees
-from vlln.sim.agent import Action, AgentState
+from vlln.oracle.route import CANNOT_ANSWER, answer_path
+from vlln.sim.agent import AgentState
 
 PASSED_NEAR = 1.0  # m of walking distance: the asker came this close to the target ...
 PASSED_MARGIN = 1.0  # m: ... and is now this much farther than it was there
 TREND_WALK = 2.0  # m walked back along the path to the position "a few steps ago"
 TREND_CHANGE = 0.5  # m of walking distance that count as closer or farther
-_STEP_ADVICE = {
-    Action.MOVE_FORWARD: "keep going forward",
-    Action.TURN_LEFT: "turn left",
-    Action.TURN_RIGHT: "turn right",
-}
 
 
-def answer_passed(
-    knowledge: EpisodeKnowledge, state: AgentState, path: tuple[tuple[float, ...], ...]
-) -> str:
-    """ "Did I pass it?": yes when the path came within :data:`PASSED_NEAR` of it and the
-    asker has since walked :data:`PASSED_MARGIN` farther away."""
-    now = _walking(knowledge, state.position)
+def answer_passed(knowledge: EpisodeKnowledge, state: AgentState, path: Path) -> str:
+    """ "Did I pass it?", "did I see it without noticing?": yes when the path came within
+    :data:`PASSED_NEAR` of it and the asker has since walked :data:`PASSED_MARGIN` farther
+    away; otherwise no, and whether the walk has been in the target's room."""
+    now = walking(knowledge, state.position)
     if now == math.inf:
         return CANNOT_ANSWER
     if now < knowledge.follower.goal_radius:
         return "No, you are there: it is right here."
     category = knowledge.target.category
-    where = f"it is {distance_words(now)} away, {_direction(knowledge, state)}"
-    nearest = min((_walking(knowledge, p) for p in path[:-1]), default=math.inf)
+    where = f"it is {distance_words(now)} away, {direction(knowledge, state)}"
+    nearest = min((walking(knowledge, p) for p in path[:-1]), default=math.inf)
     if nearest <= PASSED_NEAR and now >= nearest + PASSED_MARGIN:
         return f"Yes, you passed the {category}: you walked right by it. Now {where}."
-    return f"No, you have not passed it: {where}."
+    room = knowledge.target_room
+    if room is None:
+        return f"No, you have not passed it: {where}."
+    now_in, left = target_room_visit(knowledge, state, path)
+    there = f"the {room_name(room)}"  # where it lies is said by the direction
+    if now_in:
+        return f"No, you have not passed it: {where}, in this {room_name(room)}."
+    if left is not None:
+        return (
+            f"No, you have not passed it, though you were in its room, {there}, {ago(left)}: "
+            f"{where}."
+        )
+    return (
+        f"No, you have not passed it, and you have not been in its room yet: {where}, in {there}."
+    )
 
 
 def answer_closer(
-    knowledge: EpisodeKnowledge, state: AgentState, path: tuple[tuple[float, ...], ...]
+    knowledge: EpisodeKnowledge,
+    state: AgentState,
+    path: Path,
+    *,
+    yes_no: bool = True,
+    reverse: bool = False,
 ) -> str:
-    """ "Am I getting closer?": the walking distance now against that of the position
-    :data:`TREND_WALK` metres back along the path."""
-    now = _walking(knowledge, state.position)
+    """ "Am I getting closer?", "did I take a wrong turn?": the walking distance now against
+    that of the position :data:`TREND_WALK` metres back along the path, with the next step
+    unless the asker is getting closer. With ``yes_no``, yes or no answer what the question
+    proposed: getting closer, or (``reverse``) farther."""
+    now = walking(knowledge, state.position)
     if now == math.inf:
         return CANNOT_ANSWER
     away = distance_words(now)
     earlier = _walked_back(path, TREND_WALK)
+    step = advice(knowledge, state)
     if earlier is None:
-        return f"You have not moved yet; it is {away} away."
-    change = _walking(knowledge, earlier) - now
-    advice = _advice(knowledge, state)
-    if change >= TREND_CHANGE:
-        return f"Yes, you are getting closer: {distance_words(change)} closer; it is {away} away."
-    if change <= -TREND_CHANGE:
-        return (
-            f"No, you are getting farther: {distance_words(-change)} farther; it is {away} "
-            f"away. {advice}"
-        )
-    return f"Not really: it is still {away} away. {advice}"
+        return f"You have not moved yet; it is {away} away. {step}".rstrip()
+    change = walking(knowledge, earlier) - now
+    if abs(change) < TREND_CHANGE:  # "not really" would say no to "did I go the wrong way?"
+        same = "Not really" if yes_no and not reverse else "About as far as before"
+        return f"{same}: it is still {away} away. {step}".rstrip()
+    closer = change > 0
+    lead = ""
+    if yes_no:
+        lead = "Yes, you" if closer != reverse else "No, you"
+    trend = "closer" if closer else "farther"
+    sentence = f"{lead or 'You'} are getting {trend}: {distance_words(abs(change))} {trend}"
+    if closer:
+        return f"{sentence}; it is {away} away."
+    return f"{sentence}; it is {away} away. {step}".rstrip()
 
 
 def answer_floor(knowledge: EpisodeKnowledge, request: HelpRequest, state: AgentState) -> str:
@@ -131,11 +150,6 @@ def _yes_no(request: HelpRequest, claim_true: bool | None, fact: str) -> str:
     return f"{'Yes' if claim_true else 'No'}. {fact}"
 
 
-def _walking(knowledge: EpisodeKnowledge, point: tuple[float, ...]) -> float:
-    x, y, z = point
-    return knowledge.geodesic(x, z, y)
-
-
 def _walked_back(path: tuple[tuple[float, ...], ...], metres: float) -> tuple[float, ...] | None:
     """The position ``metres`` of walking before the last one of ``path`` (its first when it
     is shorter); None when the path never left its last position."""
@@ -145,17 +159,3 @@ def _walked_back(path: tuple[tuple[float, ...], ...], metres: float) -> tuple[fl
         if walked >= metres:
             return earlier
     return path[0] if walked > 0.0 else None
-
-
-def _direction(knowledge: EpisodeKnowledge, state: AgentState) -> str:
-    return direction_words(signed_degrees(knowledge, state))
-
-
-def _advice(knowledge: EpisodeKnowledge, state: AgentState) -> str:
-    """The next step toward the target: "To get closer, turn left."."""
-    try:
-        action = knowledge.follower.next_action(state)
-    except NavigationError:
-        return ""
-    step = _STEP_ADVICE.get(action)
-    return f"To get closer, {step}." if step else "You are there."

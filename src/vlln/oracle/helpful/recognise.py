@@ -4,9 +4,10 @@ A small set of readable word patterns, tried in a fixed order, over the question
 lower case with contractions spelled out and typing slips in cue words corrected (a word of
 five letters or more becomes the cue word of six or more within one slip in five, as
 :mod:`vlln.oracle.classifier.entities` corrects house words; slips of short cue words and
-real words near a cue word are listed). A question that matches no
-pattern is the paper's, answered by the rule oracle. The patterns leave the paper's questions
-alone ("Is this the one?", "Am I close?", "What is next to it?", "Is it on the floor?").
+real words near a cue word are listed). The patterns are in :mod:`.patterns`. A question
+that matches none is the paper's, answered by the rule oracle; they leave the paper's
+questions alone ("Is this the one?", "Am I close?", "What is next to it?", "Is it on the
+floor?").
 """
 
 from __future__ import annotations
@@ -24,9 +25,12 @@ from vlln.oracle.classifier.entities import (
     FUZZY_SIMILARITY,
     ROOM_SYNONYMS,
     YES_NO_OPENERS,
+    canonical,
+    mentioned,
     object_names,
     vocabulary_words,
 )
+from vlln.oracle.helpful import patterns as p
 from vlln.world.materials import COLORS
 
 
@@ -44,6 +48,9 @@ class HelpKind(StrEnum):
     COUNT = "count"  # "how many chairs are there?"
     NEIGHBOURHOOD = "neighbourhood"  # "what is around it?"
     WINDOW = "window"  # "is it near a window?"
+    VISITED = "visited"  # "have I been here before?", "did I skip its room?"
+    DONE = "done"  # "so I am done?", "should I end the search here?"
+    OFF_TOPIC = "off_topic"  # "how do I bake bread?": the paper's refusal
 
 
 class Dimension(StrEnum):
@@ -65,6 +72,27 @@ class FloorClaim(StrEnum):
     SAME = "same"  # "is it on this floor?"
 
 
+class PathTopic(StrEnum):
+    """What a question about the walked path asks."""
+
+    HERE = "here"  # "have I been here before?"
+    NAMED = "named"  # "have I been in the kitchen?"
+    START = "start"  # "am I in the room I started in?"
+    RETRACING = "retracing"  # "am I going in circles?"
+    TARGET_ROOM = "target room"  # "did I skip the room it is in?"
+    ROOMS = "rooms"  # "how many rooms have I been through?"
+    AREA = "area"  # "am I in the wrong part of the house?"
+
+
+class CountScope(StrEnum):
+    """Where a count question counts, besides the whole house."""
+
+    HOUSE = "house"
+    VIEW = "view"  # "how many can I see?"
+    ROOM = "room"  # "how many are in here?"
+    WALKED = "walked"  # "how many did I pass on the way?"
+
+
 @dataclass(frozen=True)
 class HelpRequest:
     """A recognised question: its kind and what it names."""
@@ -75,7 +103,16 @@ class HelpRequest:
     dimension: Dimension | None = None
     asked: tuple[str, ...] = ()  # the values named: "left", "near", "big", colours
     floor_claim: FloorClaim | None = None
-    in_view: bool = False  # a count of what the asker sees ("how many can I see?")
+    scopes: frozenset[CountScope] = frozenset()  # where a count counts
+    topic: PathTopic | None = None
+    rooms: tuple[str, ...] = ()  # room types named ("have I been in the kitchen?")
+    reverse: bool = False  # yes means the unwanted: "was I closer before?", "first time here?"
+    relation: str | None = None  # "above", "under", "behind" ... ("what is on top of it?")
+
+    @property
+    def in_view(self) -> bool:
+        """A count of what the asker sees ("how many can I see?")."""
+        return CountScope.VIEW in self.scopes
 
 
 _CONTRACTIONS = {
@@ -94,6 +131,19 @@ _CONTRACTIONS = {
     "ur": "your",
     "pls": "please",
     "plz": "please",
+    "havent": "have not",
+    "hasnt": "has not",
+    "hadnt": "had not",
+    "didnt": "did not",
+    "doesnt": "does not",
+    "wasnt": "was not",
+    "werent": "were not",
+    "arent": "are not",
+    "shouldnt": "should not",
+    "wont": "will not",
+    "youve": "you have",
+    "weve": "we have",
+    "gonna": "going to",
 }
 _SLIPS = {  # slips of short cue words, too short to correct by similarity
     "sur": "sure",
@@ -124,7 +174,7 @@ _CUES = (
     "disoriented certain positive confident really definitely confirm middle centre "
     "center bigger smaller larger taller shorter biggest smallest largest nearest "
     "closest farthest furthest number surroundings surrounding around neighbourhood "
-    "neighborhood vicinity another"
+    "neighborhood vicinity another retracing circles visited basement searching finished"
 )
 _CUE_WORDS = tuple(_CUES.split())
 # Real words one slip from a cue word: never corrected.
@@ -165,32 +215,106 @@ def _corrected(word: str) -> str:
 
 _KNOWN = frozenset(_CUE_WORDS) | frozenset(vocabulary_words()) | frozenset(_NOT_SLIPS.split())
 
-# --- the patterns, tried in this order ------------------------------------------------------
+# Openers of a yes/no question: the paper's, and the conditional "would it be ...?".
+_YES_NO = YES_NO_OPENERS | {"would", "will", "might"}
+_ROOM_WORDS = sorted(ROOM_SYNONYMS)
+_SIMPLE = (
+    (HelpKind.PASSED, p.PASSED),
+    (HelpKind.CLOSER, p.CLOSER),
+    (HelpKind.REROUTE, p.REROUTE),
+    (HelpKind.DONE, p.DONE),
+    (HelpKind.CONFIRMATION, p.CONFIRMATION),
+)
 
-_STOREY = r"(floors?|storeys?|story|stories|levels?)(?! lamp)"
-_FLOOR = re.compile(
-    r"\b(upstairs|downstairs|up stairs|down stairs|(go|walk|climb|head) (up|down) the stairs|"
-    r"(take|use|climb) the stairs|(how many|number of) " + _STOREY + r"|floor level|"
-    r"(wrong|right|correct|same|this|my|other|another|different|which|what|upper|lower|top|"
-    r"ground|bottom|first|second|third|next) "
-    + _STOREY
-    + r"|(up|down) (a|one) "
-    + _STOREY
-    + r"|floor (above|below)|(one|two|three|single|multi) ?(storey|story|level|floor)s?|"
-    r"(floor|level|storey) (i am|i was|i started|we are|with the|as the|of the)|"
-    r"(share|shares|sharing) (a|the) (floor|level|storey)|(entrance|entry|ground|street) level|"
-    r"level with the)\b"
-)
-# "how many chairs", "is there another one": a count of objects, not of steps or rooms.
-_COUNT = re.compile(
-    r"\b(how many|number of|(is|are) there (any )?(other|several|many|multiple|two|three|"
-    r"another|only one|more(?! than))|more than one|only one)( (other|more|such|of))? ?"
-    r"(?P<thing>\w*)"
-)
-# "how many drawers does the dresser have?" counts parts of one object, not objects.
-_OWN_PARTS = re.compile(
-    r"\b(does|do|has|have) (the|this|that|a|an|it|its) (?!house|home|building|place|flat)\w+"
-)
+
+@lru_cache(maxsize=4096)
+def recognised(text: str) -> HelpRequest | None:
+    """The help ``text`` asks for beyond the paper's questions; None for a paper question."""
+    words = normalised(asked_sentence(text))
+    if not words:
+        return None
+    opener = words.split()[0]
+    yes_no = opener in _YES_NO and " or " not in f" {words} "
+    if _counts_objects(words):
+        return HelpRequest(HelpKind.COUNT, words, yes_no, scopes=_scopes(words))
+    visited = _visited(words, yes_no)
+    if visited is not None:
+        return visited
+    storey_room = p.STOREY_ROOM.search(words) and not p.ASKER_IN.search(words)
+    if p.FLOOR.search(words) or p.STAIRS.search(words) or storey_room:
+        return HelpRequest(HelpKind.FLOOR, words, yes_no, floor_claim=_floor_claim(words))
+    comparison = _comparison(words, yes_no, normalised(text))
+    if comparison is not None and (" or " in words or comparison.dimension != Dimension.ANY):
+        return comparison  # "by the window or by the door?", "should I take the left one?"
+    if p.WINDOW.search(words) and p.NEAR_WORDS.search(words):
+        return HelpRequest(HelpKind.WINDOW, words, yes_no)
+    for kind, pattern in _SIMPLE:
+        if not pattern.search(words):
+            continue
+        if kind == HelpKind.CLOSER:
+            either = " or " in f" {words} "  # "warmer or colder?": no yes or no
+            worse = p.WORSE.search(words) is not None and not either
+            return HelpRequest(kind, words, not either, reverse=worse)
+        return HelpRequest(kind, words, yes_no)
+    if comparison is not None:
+        return comparison
+    if p.NEIGHBOURHOOD.search(words):
+        relation = next((name for name, pattern in p.RELATIONS if pattern.search(words)), None)
+        return HelpRequest(HelpKind.NEIGHBOURHOOD, words, relation=relation)
+    if _off_topic(words):
+        return HelpRequest(HelpKind.OFF_TOPIC, words)
+    return None
+
+
+def _visited(words: str, yes_no: bool) -> HelpRequest | None:
+    """A question about the walked path: the rooms and places it went through."""
+    if p.REROUTE.search(words):  # "I am lost, going in circles": the way out first
+        return None
+    rooms = canonical(mentioned(words, _ROOM_WORDS), ROOM_SYNONYMS)
+    for topic, pattern in (
+        (PathTopic.AREA, p.AREA),
+        (PathTopic.START, p.START),
+        (PathTopic.RETRACING, p.RETRACING),
+        (PathTopic.TARGET_ROOM, p.TARGET_ROOM),
+        (PathTopic.ROOMS, p.ROOMS),
+        (PathTopic.HERE, p.HERE),
+    ):
+        if not pattern.search(words):
+            continue
+        if topic == PathTopic.HERE and rooms and not re.search(r"\b(here|this)\b", words):
+            topic = PathTopic.NAMED  # "have I been in the kitchen?"
+        reverse = False  # "am I in the wrong part?", "is this the first time here?"
+        if topic == PathTopic.AREA:
+            reverse = "wrong" in words.split()
+        elif topic == PathTopic.HERE:
+            reverse = p.FIRST_TIME.search(words) is not None
+        return HelpRequest(
+            HelpKind.VISITED, words, yes_no, topic=topic, rooms=rooms, reverse=reverse
+        )
+    return None
+
+
+def _counts_objects(words: str) -> bool:
+    """Whether the question asks how many objects there are: what it counts is "them", "one"
+    or a catalogue name."""
+    if p.OWN_PARTS.search(words) or p.STOREY_COUNT.search(words):
+        return False
+    if p.MORE_COUNT.search(words):
+        return True
+    for match in p.ONLY_ONE.finditer(words):
+        if match["thing"] in ("one", "ones") or match["thing"].rstrip("s") in _object_words():
+            return True
+    for match in p.COUNT.finditer(words):
+        thing = match["thing"]
+        if thing in _NOT_OBJECTS:
+            continue
+        if match[1] in ("how many", "number of") or thing in _COUNTED:
+            return True
+        if thing in _COUNTED_VERBS or thing.rstrip("s") in _object_words():
+            return True
+    return False
+
+
 _COUNTED = frozenset({"them", "these", "those", "it", "one", "ones", "the", "this", "that", ""})
 _COUNTED_VERBS = frozenset({"are", "is", "can", "could", "do", "does", "of", "in", "there"})
 # Counts of things that are not objects: "how many steps?", "how many floors?".
@@ -198,62 +322,59 @@ _NOT_OBJECTS = frozenset(
     {"steps", "step", "questions", "question", "meters", "metres", "turns", "degrees", "times"}
     | {"minutes", "seconds", "rooms", "floors", "storeys", "stories", "levels", "more"}
 )
-_MORE_COUNT = re.compile(
-    r"\b(total number|count (the|all|them|up)|is (this|that|it) the only|(the )?only (one|\w+) "
-    r"in (the|this|that) (house|room|place|home)|a second (one|\w+)|more than (one|two|three|"
-    r"four|five|six|\d+)|(a lot of|lots of|several|many) \w+ (in the house|or (just )?a few)|"
-    r"(is|are) there (more|other|any other|a lot|lots)|any other \w+ (in|like|besides))\b"
-)
-_IN_VIEW = re.compile(
-    r"\b(in (my |your )?view|(can|do) (i|we) see|i (can )?see|from (here|where i am)|in sight|"
-    r"visible|in front of me)\b"
-)
-_WINDOW = re.compile(r"\bwindows?\b")
-_NEAR_WORDS = re.compile(
-    r"\b(near|by|next to|beside|under|underneath|beneath|below|close|adjacent|facing|against|"
-    r"in front of)\b"
-)
-_PASSED = re.compile(
-    r"\b(have|did) (i|we) (already )?(seen|see|walk into|walked into|been in) (it|the room with)\b|"
-    r"\b((did|have|had|has) (i|we) (already |just )?(pass|passed|miss|missed|overshoot|"
-    r"overshot|(go|gone|went|walk|walked) (past|by))|(i|we) (think (i|we) )?(already |just )?"
-    r"(passed|missed|overshot|(went|walked) (past|by))) (it|the|them)\b"
-)
-_CLOSER = re.compile(
-    r"\b((am i|are we|i am|we are|is the agent)( \w+)? (getting|going|moving|heading|walking|"
-    r"coming) (any )?(closer|nearer|farther|further|warmer|colder|hotter)|am i( \w+)? (closer|"
-    r"nearer|farther|further|warmer|colder|hotter)|(did|have) i (get|got|gotten) (any )?(closer|"
-    r"nearer|farther|further)|(closer|nearer) (now|than (before|earlier|when|at))|"
-    r"(closer|nearer) or (farther|further)|(getting )?warmer or colder|"
-    r"(is it|getting) (warmer|colder|hotter))\b"
-)
-_REROUTE = re.compile(
-    r"\b((i|we) (am|are|think i am|got|have got|feel|seem to be)( a bit| so| totally| "
-    r"completely| really| kind of| kinda)? (lost|stuck|confused|disoriented)|am i lost|"
-    r"lost (track|my way|my bearings)|no idea where (i am|to go)|do not know where (i am|to go)|"
-    r"(going|walking) (around )?in circles|help (me |us )?(get|getting|find|finding|reach|"
-    r"navigate)|got lost)\b|\b(can|could|would) you help( me| us)?( please)?$|^(please )?help"
-    r"( me)?( please)?$|^(so |totally |completely )?lost\b|\bback on track\b|"
-    r"\b(walked|walking|going|gone) in (a )?(loop|circle)s?\b|\b(have|did) (i|we) (already )?"
-    r"(been|visited|walked) (in |into |through )?(this|here|that)\b|\bbeen (here|in this room) "
-    r"before\b|\b(haven t|have not|not yet) (visited|been|explored)\b|was that a mistake\b|"
-    r"\bwhere am i relative to\b"
-)
-_CONFIRMATION = re.compile(
-    r"^((are|do) )?(you|you are) (really |very |absolutely )?(sure|certain|positive|confident)"
-    r"( about (it|that|this)| of (it|that|this)| (that|this|it)( one)? (is|is not|isnt)( it| the"
-    r" one| right| correct| the right one)?)?$|^how (sure|"
-    r"certain) are you$|^(really|sure|certain)$|\bis (that|this|it) (really|definitely|"
-    r"certainly) (it|the one)\b|\b(are you|you are) (really |very |absolutely |completely )?(sure|"
-    r"certain|positive|confident)\b|\bhow (sure|certain|confident)\b|\bdouble ?check\b|"
-    r"\b(can|could) you confirm\b|\bfinal answer\b|\b(be|are you) (mistaken|wrong)\b|"
-    r"\bconfusing (it|them)\b|\bjust guessing\b|\b(can|could) you tell from (here|this)\b|"
-    r"\b(is|it is) (that|this|it) definitely\b|\b(is it possible|could it be) (it is |its )?(the "
-    r"other|another|a different)\b"
-)
-_THE_ONES = (
-    r"(\b(the|this|that|which) (\w+ )?ones?\b|\bof (them|these|those|the two)\b|\bones? or\b)"
-)
+
+
+def _scopes(words: str) -> frozenset[CountScope]:
+    """Where a count question counts: what the asker walked past, sees, or the room it is in;
+    the house always."""
+    scopes = {CountScope.HOUSE}
+    if p.WALKED_COUNT.search(words):
+        scopes.add(CountScope.WALKED)
+    elif p.IN_VIEW.search(words):  # "did I see" is the walk, not the view
+        scopes.add(CountScope.VIEW)
+    if p.IN_ROOM.search(words):
+        scopes.add(CountScope.ROOM)
+    return frozenset(scopes)
+
+
+@lru_cache(maxsize=1)
+def _object_words() -> frozenset[str]:
+    """Single words of the catalogue's names ("lamp" of "floor lamp"), rooms' words left out."""
+    words = {word for name in object_names() for word in name.split()}
+    return frozenset(words - {word for room in ROOM_SYNONYMS for word in room.split()})
+
+
+def _comparison(words: str, yes_no: bool, message: str) -> HelpRequest | None:
+    """A choice between candidates: a side, nearness, size or colour said of "one", or
+    "which one?", "the X or the Y?" and "left or right?" about things of one kind (the
+    whole ``message`` says whether several are in view)."""
+    side_choice = p.SIDE_CHOICE.search(words) is not None and p.SEVERAL.search(message)
+    if re.search(p.THE_ONES, words) is None and p.CHOICE.search(words) is None and not side_choice:
+        return None
+    if p.MOVES.search(words) and re.search(p.THE_ONES, words) is None:
+        return None  # "should I turn left or right?" is the paper's step question
+    tokens = words.split()
+    sides = [_SIDES[w] for w in tokens if w in _SIDES]
+    if p.RIGHT_SIDE.search(words) or (sides and "right" in tokens):
+        sides.append("right")
+    for dimension, values in (
+        (Dimension.SIDE, sides),
+        (Dimension.DISTANCE, [*_values(tokens, _NEARNESS), *_said_of_one(words, _PLAIN_NEARNESS)]),
+        (Dimension.SIZE, [*_values(tokens, _SIZES), *_said_of_one(words, _PLAIN_SIZES)]),
+        (Dimension.COLOR, _said_of_one(words, {c: c for c in COLORS})),
+    ):
+        if values:
+            asked = tuple(dict.fromkeys(values))
+            return HelpRequest(HelpKind.COMPARISON, words, yes_no, dimension, asked)
+    which = p.WHICH_DIMENSION.search(words)
+    if which is not None:  # "which size is the one you mean?"
+        dimension = _WHICH_DIMENSIONS[which["what"]]
+        return HelpRequest(HelpKind.COMPARISON, words, False, dimension)
+    if p.WHICH.search(words) or p.CHOICE.search(words):
+        return HelpRequest(HelpKind.COMPARISON, words, False, Dimension.ANY)
+    return None
+
+
 # Words that tell candidates apart: canonical value by word. A plain word ("big", "near",
 # "right", a colour) counts only said of a candidate ("the big one", "on the right"), since
 # "is it big?" is the paper's attribute question and "the right one" means the correct one.
@@ -266,107 +387,12 @@ _SIZES |= {"smallest": "small", "shortest": "small"}
 _PLAIN_NEARNESS = {"near": "near", "close": "near", "far": "far"}
 _PLAIN_SIZES = {"big": "big", "large": "big", "tall": "big", "huge": "big", "small": "small"}
 _PLAIN_SIZES |= {"little": "small", "short": "small", "tiny": "small"}
-_WHICH = re.compile(
-    r"\bwhich (one( of (them|these|those|the two))?|of (them|these|those|the two))( \w+)? "
-    r"(is (it|the target|the goal|the one|yours|mine|the right one|the correct one)|(do|did) "
-    r"you mean)\b|^which (one|of them)( is it)?$"
-)
-# "which one?", "between the white chair and the black chair", "the one by the door or ...".
-_CHOICE = re.compile(
-    r"\bwhich (one|ones|of (them|these|those|the))\b|^which$|\bwhich is (the one|it|yours)\b|"
-    r"\bbetween the \w+( \w+)? and the\b|\bbetween the .* and the ones?\b|"
-    r"\bthe (one|\w+ one) .*\bor (the|by|in|on|with)\b|\b(\w+) (one )?or (the )?(\w+ ){1,2}one\b|"
-    r"\b(front|back|first|second|top|bottom) one or\b|\bor (the )?ones?\b|"
-    r"\bor (to |on )?the (left|right)\b|\bthe (\w+ )?(?P<noun>\w+) or the (\w+ )?(?P=noun)\b"
-)
-_NEIGHBOURHOOD = re.compile(
-    r"\b(what (else )?(is|are)( there)? around (it|the (target|goal|\w+))|(which|what) (things|"
-    r"objects|furniture|items) (is|are) (around|near|next to|by|beside|close to)|what else "
-    r"(is|are) (near|next to|by|beside|close to) it|(its|the) (surroundings|neighbou?rhood|"
-    r"immediate vicinity)|(surrounds|surrounding) (it|the)|anything (around|near|by) (it|the))\b|"
-    r"\bwhat (is|are)( there)? (directly |right )?(on top of|across from|opposite|on (either|each"
-    r"|both) sides? of|behind|above|below|underneath) (it|the)\b"
-)
-_SIMPLE = (
-    (HelpKind.PASSED, _PASSED),
-    (HelpKind.CLOSER, _CLOSER),
-    (HelpKind.REROUTE, _REROUTE),
-    (HelpKind.CONFIRMATION, _CONFIRMATION),
-)
-
-
-@lru_cache(maxsize=4096)
-def recognised(text: str) -> HelpRequest | None:
-    """The help ``text`` asks for beyond the paper's questions; None for a paper question."""
-    words = normalised(asked_sentence(text))
-    if not words:
-        return None
-    yes_no = words.split()[0] in YES_NO_OPENERS and " or " not in f" {words} "
-    if _counts_objects(words):
-        return HelpRequest(HelpKind.COUNT, words, yes_no, in_view=bool(_IN_VIEW.search(words)))
-    if _FLOOR.search(words):
-        return HelpRequest(HelpKind.FLOOR, words, yes_no, floor_claim=_floor_claim(words))
-    comparison = _comparison(words, yes_no)
-    if comparison is not None and " or " in words:  # "by the window or by the door?"
-        return comparison
-    if _WINDOW.search(words) and _NEAR_WORDS.search(words):
-        return HelpRequest(HelpKind.WINDOW, words, yes_no)
-    for kind, pattern in _SIMPLE:
-        if pattern.search(words):
-            return HelpRequest(kind, words, yes_no)
-    if comparison is not None:
-        return comparison
-    if _NEIGHBOURHOOD.search(words):
-        return HelpRequest(HelpKind.NEIGHBOURHOOD, words)
-    return None
-
-
-def _counts_objects(words: str) -> bool:
-    """Whether the question asks how many objects there are: what it counts is "them", "one"
-    or a catalogue name."""
-    if _OWN_PARTS.search(words):
-        return False
-    if _MORE_COUNT.search(words):
-        return True
-    for match in _COUNT.finditer(words):
-        thing = match["thing"]
-        if thing in _NOT_OBJECTS:
-            continue
-        if match[1] in ("how many", "number of") or thing in _COUNTED:
-            return True
-        if thing in _COUNTED_VERBS or thing.rstrip("s") in _object_words():
-            return True
-    return False
-
-
-@lru_cache(maxsize=1)
-def _object_words() -> frozenset[str]:
-    """Single words of the catalogue's names ("lamp" of "floor lamp"), rooms' words left out."""
-    words = {word for name in object_names() for word in name.split()}
-    return frozenset(words - {word for room in ROOM_SYNONYMS for word in room.split()})
-
-
-def _comparison(words: str, yes_no: bool) -> HelpRequest | None:
-    """A choice between candidates: a side, nearness, size or colour said of "one", or
-    "which one?" and "the X or the Y?" about things of one kind."""
-    if re.search(_THE_ONES, words) is None and _CHOICE.search(words) is None:
-        return None
-    tokens = words.split()
-    sides = [_SIDES[w] for w in tokens if w in _SIDES]
-    if re.search(r"\b(on|to|at) (the|your) right\b", words) or (sides and "right" in tokens):
-        sides.append("right")
-    for dimension, values in (
-        (Dimension.SIDE, sides),
-        (Dimension.DISTANCE, [*_values(tokens, _NEARNESS), *_said_of_one(words, _PLAIN_NEARNESS)]),
-        (Dimension.SIZE, [*_values(tokens, _SIZES), *_said_of_one(words, _PLAIN_SIZES)]),
-        (Dimension.COLOR, _said_of_one(words, {c: c for c in COLORS})),
-    ):
-        if values:
-            asked = tuple(dict.fromkeys(values))
-            return HelpRequest(HelpKind.COMPARISON, words, yes_no, dimension, asked)
-    if _WHICH.search(words) or _CHOICE.search(words):
-        return HelpRequest(HelpKind.COMPARISON, words, False, Dimension.ANY)
-    return None
+_WHICH_DIMENSIONS = {
+    "size": Dimension.SIZE,
+    "color": Dimension.COLOR,
+    "colour": Dimension.COLOR,
+    "side": Dimension.SIDE,
+}
 
 
 def _values(tokens: list[str], table: dict[str, str]) -> list[str]:
@@ -385,12 +411,30 @@ def _said_of_one(words: str, table: dict[str, str]) -> list[str]:
 
 
 def _floor_claim(words: str) -> FloorClaim | None:
-    if re.search(r"\b(upstairs|up stairs|up the stairs|climb)\b", words):
+    up = re.search(r"\b(upstairs|up stairs|up the stairs|climb|up|attic|above)\b", words)
+    down = re.search(
+        r"\b(downstairs|down stairs|down the stairs|down|basement|cellar|below)\b", words
+    )
+    if re.search(r"\b(waste|pointless|useless|no point|not worth)\b", words):
+        return None  # "would going upstairs be a waste of time?": yes would mean no
+    if re.search(r"\bwithout\b", words):
+        return FloorClaim.SAME  # "can I reach it without taking the stairs?"
+    if (up and down) or re.search(r"\b(more than one|several|multiple) (floor|level)", words):
+        return None  # "up or down?", "does the house have more than one floor?"
+    if up:
         return FloorClaim.UP
-    if re.search(r"\b(downstairs|down stairs|down the stairs)\b", words):
+    if down:
         return FloorClaim.DOWN
-    if re.search(r"\b(wrong|other|another|different)\b", words):
+    if re.search(r"\b(wrong|other|another|different|change|switch|stairs|staircase)\b", words):
         return FloorClaim.OTHER
-    if re.search(r"\b(right|correct|same|this|my)\b", words):
+    if re.search(r"\b(right|correct|same|this|my) (floor|level|storey|story)\b", words):
         return FloorClaim.SAME
     return None
+
+
+def _off_topic(words: str) -> bool:
+    """Whether the question asks how to do something that is no move, look or question of the
+    search ("how do I bake bread?"), with no word of the search or cue word in it."""
+    if p.HOW_TO.search(words) is None or re.search(r"\b(to|into|toward|towards) the\b", words):
+        return False  # "how do I gte to the kichen?" is a way asked, slips and all
+    return not any(token in p.ON_TOPIC_WORDS or token in _CUE_WORDS for token in words.split())

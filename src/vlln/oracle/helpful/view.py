@@ -152,7 +152,10 @@ def number_word(count: int) -> str:
 
 
 def plural(category: str) -> str:
-    """The plural of a category name: "chairs", "boxes", "bodies"; "blinds" stays."""
+    """The plural of a category name: "chairs", "boxes", "bodies", "shelves"; "blinds"
+    stays."""
+    if category.endswith(("lf", "knife")):
+        return f"{category[:-1] if category.endswith('f') else category[:-2]}ves"
     if category.endswith(("ss", "sh", "ch", "x")):
         return f"{category}es"
     if category.endswith("s"):
