@@ -31,8 +31,9 @@ lint: $(STAMP)
 
 # The whole suite, slow tests included: what CI runs (.ci/run). Two worker processes
 # (pytest-xdist): the tests are bound by one core each, so two cores finish in about 60 % of
-# the time. `$(BIN)/python -m pytest` alone runs them in one process.
-PYTEST := $(BIN)/python -m pytest -q -n 2
+# the time; an idle worker takes queued tests from the busy one (worksteal), and the 20
+# slowest tests are listed at the end. `$(BIN)/python -m pytest` alone runs them in one process.
+PYTEST := $(BIN)/python -m pytest -q -n 2 --dist worksteal --durations=20
 
 test: lint
 	$(PYTEST)
