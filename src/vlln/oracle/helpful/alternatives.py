@@ -41,7 +41,8 @@ def named_alternatives(words: str, nouns: frozenset[str]) -> bool:
         return False
     named = nouns - NOT_NOUNS
     same = _SAME_NOUN.search(words)
-    if (same is not None and same["noun"] not in _ROUTE_NOUNS) or _ONE_OR.search(words):
+    noun = "" if same is None else same["noun"]  # "front-loading or top-loading" is a kind
+    if (noun and noun not in _ROUTE_NOUNS and not noun.endswith("ing")) or _ONE_OR.search(words):
         return True
     side = _SIDE_NOUN.search(words)
     if (side is not None and side["noun"] in named) or _PLACE_OR.search(words):
