@@ -212,6 +212,11 @@ def test_confirmation_is_sure_only_when_the_view_leaves_no_doubt(
     blank = _ask(oracle, views[0][0], _blank(sim), "are u sure").answer
     room = sim.house.room(chair.room_id).type
     assert blank.startswith("I can't tell from here: no chair is in your view.") and room in blank
+    kinds = _ask(oracle, views[0][0], _blank(sim), "dining chair or the office chair?")
+    assert kinds.help_kind == "comparison"
+    assert f"The one I mean is a {chair.fine_category or 'chair'}, in " in kinds.answer.replace(
+        " an ", " a "
+    )
     # At a view point of a chair alone in its room, facing it, it is the only chair in view.
     rooms = Counter(inst.room_id for inst in sim.house.instances_of("chair"))
     lone = next(inst for inst in sim.house.instances_of("chair") if rooms[inst.room_id] == 1)

@@ -379,3 +379,73 @@ def test_what_a_count_counts_and_a_neighbourhood_question_relates_are_read() -> 
         ("right",),
         True,
     )
+
+
+WIDER: tuple[tuple[str, HelpKind, PathTopic | None], ...] = (
+    ("Was heading into the garage a mistake?", HelpKind.VISITED, PathTopic.ROUTE),
+    ("I took the corridor. Was that a bad call?", HelpKind.VISITED, PathTopic.ROUTE),
+    ("am I taking the long way round?", HelpKind.VISITED, PathTopic.ROUTE),
+    ("did I turn back too early", HelpKind.VISITED, PathTopic.ROUTE),
+    ("how far am I now compared to when I started?", HelpKind.VISITED, PathTopic.ROUTE),
+    ("are we heading towards the sofa or away from it?", HelpKind.VISITED, PathTopic.ROUTE),
+    ("which room did we skip?", HelpKind.VISITED, PathTopic.TARGET_ROOM),
+    ("Did I miss the lamp in the bedroom back there?", HelpKind.VISITED, PathTopic.TARGET_ROOM),
+    ("is the mirror in a room I already checked?", HelpKind.VISITED, PathTopic.TARGET_ROOM),
+    ("we keep coming back to the same kitchen", HelpKind.VISITED, PathTopic.RETRACING),
+    ("am I looking in totally the wrong area?", HelpKind.VISITED, PathTopic.AREA),
+    ("have I entered this bathroom before?", HelpKind.VISITED, PathTopic.HERE),
+    ("did we get within two metres of it?", HelpKind.PASSED, None),
+    ("should we backtrack?", HelpKind.PASSED, None),
+    ("top drawer unit or bottom drawer unit?", HelpKind.COMPARISON, None),
+    ("left sink or right sink?", HelpKind.COMPARISON, None),
+    ("left or right lamp", HelpKind.COMPARISON, None),
+    ("is it the tall lamp or the lamp by the sofa?", HelpKind.COMPARISON, None),
+    ("is the mirror you mean above the sink or below it?", HelpKind.COMPARISON, None),
+    ("Is the plate on a table, a shelf or a counter?", HelpKind.NEIGHBOURHOOD, None),
+    ("is the lamp standing by the sofa or the bed?", HelpKind.NEIGHBOURHOOD, None),
+    ("what things are lying on the bed?", HelpKind.NEIGHBOURHOOD, None),
+    ("what's on the dresser", HelpKind.NEIGHBOURHOOD, None),
+    ("are there lamps on either side of the sofa?", HelpKind.NEIGHBOURHOOD, None),
+    ("is it close to the doorway?", HelpKind.NEIGHBOURHOOD, None),
+    ("Is it up here or should I go back down?", HelpKind.FLOOR, None),
+    ("should we head up to look for the bed?", HelpKind.FLOOR, None),
+    ("is it up in the attic?", HelpKind.FLOOR, None),
+    ("is it on a diff level", HelpKind.FLOOR, None),
+    ("Have we succeeded?", HelpKind.DONE, None),
+    ("is the task over?", HelpKind.DONE, None),
+    ("am I right that the vase by the tv is the one?", HelpKind.CONFIRMATION, None),
+    ("is this it or did I pick the wrong one?", HelpKind.CONFIRMATION, None),
+    ("how many chairs in my field of vision?", HelpKind.COUNT, None),
+    ("is it one of several cushions?", HelpKind.COUNT, None),
+    ("total lamps?", HelpKind.COUNT, None),
+    ("will it rain tomorrow?", HelpKind.OFF_TOPIC, None),
+    ("which crypto should I invest in", HelpKind.OFF_TOPIC, None),
+    ("tell me a fun fact about dolphins", HelpKind.OFF_TOPIC, None),
+)
+
+
+@pytest.mark.parametrize(("text", "kind", "topic"), WIDER)
+def test_wider_phrasings_are_recognised(text: str, kind: HelpKind, topic: PathTopic | None) -> None:
+    request = recognised(text)
+    assert request is not None and (request.kind, request.topic) == (kind, topic), text
+
+
+@pytest.mark.parametrize(
+    "text",
+    (
+        "Is the sofa blue or grey?",
+        "Is it wooden or metal?",
+        "Is it a chair or a sofa?",
+        "left or right side?",
+        "Left branch or right branch?",
+        "Is it left or right of the bed?",
+        "Should I go back the way I came?",
+        "Is it only a couple of meters away?",
+        "Is there a limit on the questions?",
+        "Describe the path to the loft hatch.",
+        "Sorry, my mistake.",
+        "Is the weather lamp in the kitchen?",
+    ),
+)
+def test_wider_patterns_leave_the_papers_alternatives_alone(text: str) -> None:
+    assert recognised(text) is None, text

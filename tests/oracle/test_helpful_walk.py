@@ -187,3 +187,51 @@ def test_questions_about_nothing_in_the_house_get_the_papers_refusal(
     assert (timed.answer, timed.help_kind) == (TYPE_REFUSAL, "schema")
     way = _ask(oracle, state, frame, "How do I get to the bed?")
     assert way.help_kind == "schema" and way.answer != TYPE_REFUSAL
+
+
+def test_a_verdict_on_the_walk_judges_its_last_stretch_and_its_start(
+    sim: Simulator, bed: ObjectInstance, walk: list[Point]
+) -> None:
+    oracle = _started(HelpfulOracle(RuleOracle(0)), sim, bed)
+    frame = _blank(sim)
+
+    def ask(text: str, path: list[Point]) -> str:
+        reply = _ask(oracle, AgentState(path[-1], 0.0), frame, text, tuple(path))
+        assert reply.help_kind == "visited", text
+        return reply.answer
+
+    on_the_way = walk[: 2 * len(walk) // 3]
+    for text in ("I turned left back there. Was that the wrong call?", "did I turn back too soon?"):
+        answer = ask(text, on_the_way)
+        assert answer.startswith("No. Your last few meters took you closer"), answer
+        assert "Since the start you are about " in answer and " closer: it was " in answer
+    assert "about the shortest way" in ask("did I detour a lot?", on_the_way)
+    gone_by = _back(walk, 3.0)
+    wrong = ask("Was turning around a mistake?", gone_by)
+    assert wrong.startswith("Yes. Your last few meters took you farther"), wrong
+    assert "To get closer, " in wrong
+    assert ask("how much closer am I than at the start?", walk).startswith(
+        "Your last few meters took you closer"
+    )
+    room = room_name(_rooms_along(sim, walk)[-1])
+    assert ask(f"was going into the {room} a mistake?", walk).startswith(
+        f"No. The bed is in the {room}."
+    )
+
+
+def test_wider_phrasings_reach_their_answers_on_a_real_house(
+    sim: Simulator, bed: ObjectInstance, walk: list[Point]
+) -> None:
+    oracle = _started(HelpfulOracle(RuleOracle(0)), sim, bed)
+    state, frame = AgentState(walk[-1], 0.0), _blank(sim)
+    for text in ("What's the square root of 144?", "how many calories in a banana"):
+        assert _ask(oracle, state, frame, text).answer == TYPE_REFUSAL, text  # never a count
+    rooted = _ask(oracle, state, frame, "What's the square root of 144?")
+    assert rooted.help_kind == "off_topic"  # the rule oracle answers it as an attribute
+    support = _ask(oracle, state, frame, "Is the bed on a rug, a mat, or the floor?")
+    assert support.help_kind == "neighbourhood"
+    assert support.answer.startswith(("It is on ", "It stands on the floor"))
+    counted = _ask(oracle, state, frame, "total beds in the house?")
+    assert counted.help_kind == "count" and "bed" in counted.answer
+    passed = _ask(oracle, state, frame, "have I already been within a couple of metres of it?")
+    assert passed.help_kind == "passed"

@@ -24,7 +24,7 @@ _WALKED_PAST = (
 )
 _WALKED = (
     r"(been|be|come|came|gone|go|went|walked|walk|passed|pass|visited|visit|checked|check|"
-    r"searched|search|explored|explore|looked|look|covered|cover|seen|see)"
+    r"searched|search|explored|explore|looked|look|covered|cover|seen|see|entered|enter)"
 )
 
 FLOOR = re.compile(
@@ -316,3 +316,112 @@ HOW_TO = re.compile(
     rf"\bhow (do|can|could|should|would|shall) (i|we|you|one) (?!{_MOVES_AND_LOOKS}\b)\w+|"
     rf"^how to (?!{_MOVES_AND_LOOKS}\b)\w+"
 )
+# --- wider phrasings: a verdict on the walk, named alternatives, what is on or near it ------
+# "was going into the laundry a mistake?", "did I detour a lot?", "how much closer than at
+# the start?": a verdict on the walked path, answered from its start and its last metres.
+ROUTE = re.compile(
+    r"\b(was|were|is) (that|it|this|\w+ing)( \w+){0,4} (a |the )?(mistake|wrong (call|choice|"
+    r"move|decision|idea)|bad (call|choice|move|idea|decision)|waste of time)\b|\bwas (that|it|"
+    r"this) (necessary|needed|worth it)\b|\b(did|have) (i|we) (mess|messed|screw|screwed) up\b|"
+    r"\b(i|we) (think (i|we) )?(messed|screwed) up\b|\b(i|we)( \w+){0,4} detour\w*\b|"
+    r"\b(am|are|was|were|have|did) (i|we)( \w+){0,2} (going|gone|taken|taking|took|went|come|"
+    r"came) the long way\b|"
+    r"\b(shortest|best|quickest|fastest) (way|route|path) (so far|from (the start|where))\b|"
+    r"\b(route|path) (i|we) (have |had )?(taken|took|walked|came|followed)\b|"
+    r"\bturn(ed)? (around|back) too (early|soon|late)\b|\bcompared (to|with) (before|earlier|"
+    r"the start|when)\b|\bthan (at|when (i|we)) (the )?(start|started|began|first)\b|"
+    r"\bsince (the start|(i|we) (started|began|set off))\b|\b(am i|are we) (moving|going|heading|"
+    r"walking|getting) (toward|towards|closer to) (it|the \w+( \w+)?)( \w+)? or (away|farther|"
+    r"further)\b"
+)
+# "did I turn around too early?", "did I detour?": yes says the walk went wrong.
+ROUTE_WORSE = re.compile(
+    r"\b(mistake|wrong|bad|waste|mess|messed|screw|screwed|detour\w*|long way|too (early|soon|"
+    r"late))\b"
+)
+BACKTRACK = re.compile(r"\b(should|shall|do|must) (i|we)( \w+)? (backtrack|double back)\b")
+WITHIN_REACH = re.compile(
+    r"\b(have|did|had) (i|we) (already |ever |just )?(been|come|get|got|gotten|walked) (within|"
+    r"close to|near) (a few|a couple of|\w+) (meters|metres|steps|feet) of\b"
+)
+ENDING_UP = re.compile(
+    r"\b(keep|kept|keeps) (ending up|coming back|getting back|returning|going back|landing)"
+    r" (in|to|into) (the )?same\b|\bbeen this way (already|before)\b"
+)
+MISSED_ROOM = re.compile(
+    r"\b(skip|skipped|miss|missed|overlook|overlooked) (a|any|the|some|its|the \w+ "
+    rf"s) (\w+ )?{_PLACE}s?\b|\bwhich {_PLACE} (did|have) (i|we) (miss|missed|skip|skipped)\b|"
+    r"\b(did|have) (i|we) (overlook|overlooked|miss|missed) (it|the \w+( \w+)?) in the\b|"
+    r"\b(somewhere|in a \w+|in a room|in a place|in one of the rooms) (i|we) (have |had )?"
+    r"(already )?(looked|missed|been|checked|searched|passed|skipped|seen)\b|\b(was|were) (one"
+    r"|any) of (those|them|these)( rooms| \w+s)? (the (right|correct) (one|room)|it)\b"
+)
+WRONG_AREA = re.compile(
+    r"\bin (completely |totally |entirely |quite |really )?the (wrong|right|correct) (area|wing|"
+    r"part|section|zone)\b"
+)
+# "is it up here or do I need to head back down?", "stairs or no stairs?".
+FLOOR_MORE = re.compile(
+    r"\b(up|down) (here|there) or\b|\bor (do |should |must )?(i|we)?( need to| have to)? ?(go|"
+    r"head|climb|walk) back (up|down)\b|\b(go|head|climb|walk) (back )?(up|down)( the \w+)? "
+    r"to (find|look|search|check|get to)\b|\b(stairs|staircase) or (not|no)\b|\b(up|down) "
+    r"(in|to|into) the (loft|attic|basement|cellar)\b|\b(in|into) the loft\b"
+)
+# "am I correct that ...", "did I get it wrong?", "is my search complete?".
+CONFIRM_CLAIM = re.compile(
+    r"\b(am i|are we) (correct|right) (that|in thinking|to think) (?!(i|we) (am|are)\b)|"
+    r"\b(did|have) (i|we) (get|got|gotten) (it|this|that) wrong\b|\bor (did|have) (i|we) "
+    r"(get|got|gotten|pick|picked) (it |the )?wrong\b"
+)
+DONE_MORE = re.compile(
+    r"\b(search|task|hunt|job|mission) (is |now )?(complete|completed|over|finished|done)\b|"
+    r"\b(have|did) (i|we) (succeed|succeeded|accomplished|completed|made it)\b|\bstop or "
+    r"(is|are) there\b|\b(better|closer|other) match\b"
+)
+# "how many plants are in my field of view?", "one of many shelves?", "total sofas?".
+FIELD_OF_VIEW = re.compile(r"\bfield of (view|vision)\b")
+COUNT_MORE = re.compile(
+    r"\bone of (many|several|a few|lots|a lot|multiple|the many|a couple)\b|\bonly a (couple|"
+    r"few)\b(?! (of )?(meters|metres|steps|feet|more|minutes))|^(so |and |the )?total \w+|"
+    r"\btotal \w+ in (the|this) (house|home|place|building)\b"
+)
+# What is on it, near it or which thing it rests on, asked other ways.
+AROUND_MORE = re.compile(
+    r"\bwhat (\w+ )?(is|are) (sitting|standing|resting|lying|placed|stacked|kept) (on|on top of|"
+    r"under|above|behind) (it|the)\b|^what (is|are) on (it|the (?!floor|wall|ceiling|left|"
+    r"right)\w+( \w+)?)$|\b(is|are) there (a|an|any|some) \w+( \w+)? (on|on top of|under|above|"
+    r"over) the \w+( \w+)?$(?<!question)(?<!questions)|\bon (either|each|both) sides? of "
+    r"(it|the)\b|\b(anything|something) "
+    r"(\w+ )?(next to|near|by|around|beside|close to) (it|the)\b|\blandmarks? (near|next to|by|"
+    r"around|close to|at|for) (it|the)\b|\b(use|used|serve) as (a )?landmarks?\b|\b(which|what|"
+    r"nearest|any) (\w+ )?landmarks?\b|\b(close|near|next) to "
+    r"(that|the|this|a) (door|doorway|entrance|opening)\b"
+)
+# "is the cushion on a chair, a bed or a sofa?": what it rests on, when both name things
+# (:func:`.recognise._around`); "near the shower or the sink?": what it stands by.
+SUPPORT_CHOICE = re.compile(
+    r"\b(on|sitting on|lying on|resting on|standing on|hanging on) (?P<one>(a|an|the) \w+( \w+)?"
+    r"(,? (a |an |the )?\w+( \w+)?)?),? or (?P<other>(on )?(a |an |the )?\w+( \w+)?)"
+)
+NEAR_CHOICE = re.compile(
+    r"^(?!(am|are|must|should|do|can) (i|we)\b).*\b(near|next to|by|beside|close to|closer to) "
+    r"(?P<one>(the|a) \w+( \w+)?) or (?P<other>(near |by |next to )?(the |a )?\w+( \w+)?)"
+)
+# A question about something else than the house: maths, weather, money, food, animals,
+# trivia, jokes. Only where it names nothing of the house (:func:`.recognise._off_topic`).
+ELSEWHERE = re.compile(
+    r"\b(square root|plus|minus|divided by|multiplied|math|maths|equation|weather|rain|raining|"
+    r"snow|snowing|sunny|forecast|stocks?|shares|invest|investing|crypto|bitcoin|money|salary|"
+    r"calories|recipe|protein|vitamins?|diet|octopus\w*|dolphins?|dinosaurs?|animals?|joke|"
+    r"jokes|riddle|poem|fun fact|interesting (fact|thing)|something interesting|capital of|"
+    r"president|election|football|soccer|movie|movies|song|songs|meaning of life|your name|"
+    r"how old are you|favou?rite)\b"
+)
+# Words that tie a question to the house, against :data:`ELSEWHERE`: rooms and the search.
+_HOUSE = (
+    "target goal object item house home room floor wall door window stairs left right "
+    "straight ahead forward behind near far closer turn walk move head find found search "
+    "searching view visible step meter metre distance direction route path colour color "
+    "lost stop done"
+)
+HOUSE_WORDS = frozenset(_HOUSE.split()) | {w for room in ROOM_SYNONYMS for w in room.split()}

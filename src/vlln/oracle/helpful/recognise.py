@@ -31,6 +31,7 @@ from vlln.oracle.classifier.entities import (
     vocabulary_words,
 )
 from vlln.oracle.helpful import patterns as p
+from vlln.oracle.helpful.alternatives import NOT_NOUNS, named_alternatives, names_thing
 from vlln.world.materials import COLORS
 
 
@@ -82,6 +83,7 @@ class PathTopic(StrEnum):
     TARGET_ROOM = "target room"  # "did I skip the room it is in?"
     ROOMS = "rooms"  # "how many rooms have I been through?"
     AREA = "area"  # "am I in the wrong part of the house?"
+    ROUTE = "route"  # "was going into the laundry a mistake?", "did I detour a lot?"
 
 
 class CountScope(StrEnum):
@@ -144,6 +146,7 @@ _CONTRACTIONS = {
     "youve": "you have",
     "weve": "we have",
     "gonna": "going to",
+    "diff": "different",
 }
 _SLIPS = {  # slips of short cue words, too short to correct by similarity
     "sur": "sure",
@@ -235,17 +238,27 @@ def recognised(text: str) -> HelpRequest | None:
         return None
     opener = words.split()[0]
     yes_no = opener in _YES_NO and " or " not in f" {words} "
+    if _elsewhere(words):
+        return HelpRequest(HelpKind.OFF_TOPIC, words)
     if _counts_objects(words):
         return HelpRequest(HelpKind.COUNT, words, yes_no, scopes=_scopes(words))
+    if p.WITHIN_REACH.search(words) or p.BACKTRACK.search(words):
+        return HelpRequest(HelpKind.PASSED, words, yes_no)  # "should I backtrack?"
     visited = _visited(words, yes_no)
     if visited is not None:
         return visited
-    storey_room = p.STOREY_ROOM.search(words) and not p.ASKER_IN.search(words)
-    if p.FLOOR.search(words) or p.STAIRS.search(words) or storey_room:
-        return HelpRequest(HelpKind.FLOOR, words, yes_no, floor_claim=_floor_claim(words))
+    for kind, pattern in ((HelpKind.CONFIRMATION, p.CONFIRM_CLAIM), (HelpKind.DONE, p.DONE_MORE)):
+        if pattern.search(words):  # "am I correct that the curtain by this window is it?"
+            return HelpRequest(kind, words, yes_no)
     comparison = _comparison(words, yes_no, normalised(text))
+    storey_room = p.STOREY_ROOM.search(words) and not p.ASKER_IN.search(words)
+    if any(f.search(words) for f in (p.FLOOR, p.STAIRS, p.FLOOR_MORE)) or storey_room:
+        return HelpRequest(HelpKind.FLOOR, words, yes_no, floor_claim=_floor_claim(words))
     if comparison is not None and (" or " in words or comparison.dimension != Dimension.ANY):
         return comparison  # "by the window or by the door?", "should I take the left one?"
+    around = _around(words)
+    if around is not None and around.relation is not None:
+        return around  # "what is above the counter, cabinets or a window?"
     if p.WINDOW.search(words) and p.NEAR_WORDS.search(words):
         return HelpRequest(HelpKind.WINDOW, words, yes_no)
     for kind, pattern in _SIMPLE:
@@ -258,12 +271,24 @@ def recognised(text: str) -> HelpRequest | None:
         return HelpRequest(kind, words, yes_no)
     if comparison is not None:
         return comparison
-    if p.NEIGHBOURHOOD.search(words):
-        relation = next((name for name, pattern in p.RELATIONS if pattern.search(words)), None)
-        return HelpRequest(HelpKind.NEIGHBOURHOOD, words, relation=relation)
+    if around is not None:
+        return around
     if _off_topic(words):
         return HelpRequest(HelpKind.OFF_TOPIC, words)
     return None
+
+
+def _around(words: str) -> HelpRequest | None:
+    """A question about what is around the target, and the relation it asks about."""
+    named = (_object_words() - NOT_NOUNS) | {"floor"}  # "on a rug or the floor?"
+    for pattern, relation in ((p.SUPPORT_CHOICE, "support"), (p.NEAR_CHOICE, None)):
+        match = pattern.search(words)  # "on a chair, a bed or a sofa?", "near the X or the Y?"
+        if match and names_thing(match["one"], named) and names_thing(match["other"], named):
+            return HelpRequest(HelpKind.NEIGHBOURHOOD, words, relation=relation)
+    if not (p.NEIGHBOURHOOD.search(words) or p.AROUND_MORE.search(words)):
+        return None
+    relation = next((name for name, pattern in p.RELATIONS if pattern.search(words)), None)
+    return HelpRequest(HelpKind.NEIGHBOURHOOD, words, relation=relation)
 
 
 def _visited(words: str, yes_no: bool) -> HelpRequest | None:
@@ -271,21 +296,24 @@ def _visited(words: str, yes_no: bool) -> HelpRequest | None:
     if p.REROUTE.search(words):  # "I am lost, going in circles": the way out first
         return None
     rooms = canonical(mentioned(words, _ROOM_WORDS), ROOM_SYNONYMS)
-    for topic, pattern in (
-        (PathTopic.AREA, p.AREA),
-        (PathTopic.START, p.START),
-        (PathTopic.RETRACING, p.RETRACING),
-        (PathTopic.TARGET_ROOM, p.TARGET_ROOM),
-        (PathTopic.ROOMS, p.ROOMS),
-        (PathTopic.HERE, p.HERE),
+    for topic, patterns in (
+        (PathTopic.AREA, (p.AREA, p.WRONG_AREA)),
+        (PathTopic.START, (p.START,)),
+        (PathTopic.RETRACING, (p.RETRACING, p.ENDING_UP)),
+        (PathTopic.TARGET_ROOM, (p.TARGET_ROOM, p.MISSED_ROOM)),
+        (PathTopic.ROOMS, (p.ROOMS,)),
+        (PathTopic.ROUTE, (p.ROUTE,)),
+        (PathTopic.HERE, (p.HERE,)),
     ):
-        if not pattern.search(words):
+        if not any(pattern.search(words) for pattern in patterns):
             continue
         if topic == PathTopic.HERE and rooms and not re.search(r"\b(here|this)\b", words):
             topic = PathTopic.NAMED  # "have I been in the kitchen?"
         reverse = False  # "am I in the wrong part?", "is this the first time here?"
         if topic == PathTopic.AREA:
             reverse = "wrong" in words.split()
+        elif topic == PathTopic.ROUTE:
+            reverse = p.ROUTE_WORSE.search(words) is not None
         elif topic == PathTopic.HERE:
             reverse = p.FIRST_TIME.search(words) is not None
         return HelpRequest(
@@ -299,7 +327,7 @@ def _counts_objects(words: str) -> bool:
     or a catalogue name."""
     if p.OWN_PARTS.search(words) or p.STOREY_COUNT.search(words):
         return False
-    if p.MORE_COUNT.search(words):
+    if p.MORE_COUNT.search(words) or p.COUNT_MORE.search(words):
         return True
     for match in p.ONLY_ONE.finditer(words):
         if match["thing"] in ("one", "ones") or match["thing"].rstrip("s") in _object_words():
@@ -330,7 +358,9 @@ def _scopes(words: str) -> frozenset[CountScope]:
     scopes = {CountScope.HOUSE}
     if p.WALKED_COUNT.search(words):
         scopes.add(CountScope.WALKED)
-    elif p.IN_VIEW.search(words):  # "did I see" is the walk, not the view
+    elif p.IN_VIEW.search(words) or p.FIELD_OF_VIEW.search(
+        words
+    ):  # "did I see" is the walk, not the view
         scopes.add(CountScope.VIEW)
     if p.IN_ROOM.search(words):
         scopes.add(CountScope.ROOM)
@@ -349,7 +379,9 @@ def _comparison(words: str, yes_no: bool, message: str) -> HelpRequest | None:
     "which one?", "the X or the Y?" and "left or right?" about things of one kind (the
     whole ``message`` says whether several are in view)."""
     side_choice = p.SIDE_CHOICE.search(words) is not None and p.SEVERAL.search(message)
-    if re.search(p.THE_ONES, words) is None and p.CHOICE.search(words) is None and not side_choice:
+    named = named_alternatives(words, _object_words())
+    chosen = re.search(p.THE_ONES, words) or p.CHOICE.search(words) or side_choice or named
+    if not chosen:
         return None
     if p.MOVES.search(words) and re.search(p.THE_ONES, words) is None:
         return None  # "should I turn left or right?" is the paper's step question
@@ -370,7 +402,7 @@ def _comparison(words: str, yes_no: bool, message: str) -> HelpRequest | None:
     if which is not None:  # "which size is the one you mean?"
         dimension = _WHICH_DIMENSIONS[which["what"]]
         return HelpRequest(HelpKind.COMPARISON, words, False, dimension)
-    if p.WHICH.search(words) or p.CHOICE.search(words):
+    if p.WHICH.search(words) or p.CHOICE.search(words) or named:
         return HelpRequest(HelpKind.COMPARISON, words, False, Dimension.ANY)
     return None
 
@@ -430,6 +462,16 @@ def _floor_claim(words: str) -> FloorClaim | None:
     if re.search(r"\b(right|correct|same|this|my) (floor|level|storey|story)\b", words):
         return FloorClaim.SAME
     return None
+
+
+def _elsewhere(words: str) -> bool:
+    """Whether the question is about something outside the house ("what is the square root of
+    144?", "is it going to snow?"): a topic of :data:`.patterns.ELSEWHERE`, and no word of the
+    house, its objects or a move in it."""
+    if p.ELSEWHERE.search(words) is None:
+        return False
+    tied = (_object_words() - NOT_NOUNS) | p.HOUSE_WORDS
+    return not any(token in tied or token.rstrip("s") in tied for token in words.split())
 
 
 def _off_topic(words: str) -> bool:

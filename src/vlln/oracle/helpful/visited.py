@@ -24,6 +24,7 @@ from vlln.oracle.helpful.path import (
 )
 from vlln.oracle.helpful.progress import answer_closer
 from vlln.oracle.helpful.recognise import HelpRequest, PathTopic
+from vlln.oracle.helpful.verdict import answer_route
 from vlln.oracle.helpful.view import number_word, plural
 from vlln.oracle.knowledge import EpisodeKnowledge, room_name
 from vlln.oracle.route import CANNOT_ANSWER
@@ -47,6 +48,8 @@ def answer_visited(
         return target_room_sentence(knowledge, state, path, lead=True)
     if topic == PathTopic.AREA:
         return _area(knowledge, request, state)
+    if topic == PathTopic.ROUTE:
+        return answer_route(knowledge, request, state, path)
     if topic == PathTopic.RETRACING:
         return _retracing(knowledge, state, path, walk, here)
     if topic == PathTopic.START:
