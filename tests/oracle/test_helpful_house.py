@@ -6,12 +6,11 @@ from __future__ import annotations
 
 from collections import Counter
 
-import numpy as np
 import pytest
 from matplotlib.path import Path as PolygonPath
 
 from tests.oracle.test_answers import _blank
-from tests.oracle.test_helpful_oracle import _ask, _started, _visible, _walk_to
+from tests.oracle.test_helpful_oracle import _ask, _started, _upstairs, _visible, _walk_to
 from tests.oracle.test_helpful_oracle import chair as chair  # the fixtures
 from tests.oracle.test_helpful_oracle import views as views
 from vlln.oracle.helpful.oracle import HelpfulOracle
@@ -20,9 +19,7 @@ from vlln.oracle.rule_oracle import RuleOracle
 from vlln.sim.agent import AgentState
 from vlln.sim.renderer import Frame
 from vlln.sim.simulator import Simulator
-from vlln.sim.viewpoints import storey_view_points
-from vlln.tasks.oracle_protocol import EpisodeContext
-from vlln.tasks.scenes import SceneCache, procedural_scene_id
+from vlln.tasks.scenes import SceneCache
 from vlln.world.model import ObjectInstance
 
 _WORDS = dict(enumerate(["No", "One", "Two", "Three", "Four", "Five", "Six", "Seven", "Eight"]))
@@ -133,23 +130,7 @@ def test_the_relation_asked_is_answered_from_the_relation_graph(
 
 
 def test_floor_phrasings_in_a_house_of_two_storeys(scenes: SceneCache) -> None:
-    two = scenes.get(procedural_scene_id(2, floors=2))
-    storeys = two.storeys
-    assert storeys is not None
-    upstairs = next(
-        inst
-        for inst in two.house.instances
-        if two.house.room(inst.room_id).level == 1 and storey_view_points(storeys, inst.box)
-    )
-    oracle = HelpfulOracle(RuleOracle(0))
-    oracle.start(EpisodeContext(two, upstairs, tuple(storey_view_points(storeys, upstairs.box))))
-    rng = np.random.default_rng(2)
-    main = storeys.largest_component()
-    below = None
-    while below is None:
-        point = storeys.sample_navigable_point(rng, main)
-        if point[1] == storeys.floor_ys[0]:
-            below = AgentState(point, 0.0)
+    two, oracle, (below, _) = _upstairs(scenes)
     frame = _blank(two)
     answers = {
         "should i go down": "No. It is on the upper floor: go upstairs.",

@@ -303,15 +303,9 @@ def test_lost_gets_where_it_stands_and_the_way_from_there(
     assert (reply.help_kind, reply.question_type) == ("reroute", QuestionType.ROUTE)
 
 
-def test_floor_answers_in_a_house_of_one_storey_and_of_two(
-    sim: Simulator, scenes: SceneCache, chair: ObjectInstance
-) -> None:
-    oracle = _started(HelpfulOracle(RuleOracle(0)), sim, chair)
-    state, frame = AgentState(_walk_to(sim, chair, 6)[0], 0.0), _blank(sim)
-    assert _ask(oracle, state, frame, "should I go upstairs?").answer.startswith("No. ")
-    assert _ask(oracle, state, frame, "Which floor is it on?").answer == (
-        "This house has one floor, and it is on it."
-    )
+def _upstairs(scenes: SceneCache) -> tuple[Simulator, HelpfulOracle, tuple[AgentState, AgentState]]:
+    """A house of two storeys, the helpful oracle started on a target upstairs, and a place
+    to stand on each storey (below, above)."""
     two = scenes.get(procedural_scene_id(2, floors=2))
     storeys = two.storeys
     assert storeys is not None
@@ -330,8 +324,20 @@ def test_floor_answers_in_a_house_of_one_storey_and_of_two(
         for level, floor_y in enumerate(storeys.floor_ys[:2]):
             if point[1] == floor_y:
                 at.setdefault(level, AgentState(point, 0.0))
+    return two, oracle, (at[0], at[1])
+
+
+def test_floor_answers_in_a_house_of_one_storey_and_of_two(
+    sim: Simulator, scenes: SceneCache, chair: ObjectInstance
+) -> None:
+    oracle = _started(HelpfulOracle(RuleOracle(0)), sim, chair)
+    state, frame = AgentState(_walk_to(sim, chair, 6)[0], 0.0), _blank(sim)
+    assert _ask(oracle, state, frame, "should I go upstairs?").answer.startswith("No. ")
+    assert _ask(oracle, state, frame, "Which floor is it on?").answer == (
+        "This house has one floor, and it is on it."
+    )
+    two, oracle, (below, above) = _upstairs(scenes)
     frame = _blank(two)
-    below, above = at[0], at[1]
     assert _ask(oracle, below, frame, "should I go upstairs?").answer == (
         "Yes. It is on the upper floor: go upstairs."
     )

@@ -5,6 +5,8 @@ house."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import pytest
 from matplotlib.path import Path as PolygonPath
 
@@ -36,6 +38,23 @@ def _rooms_along(sim: Simulator, walked: list[Point]) -> list[Room]:
     return rooms
 
 
+def _asker(
+    sim: Simulator, bed: ObjectInstance, kind: str, question_type: str | None = None
+) -> Callable[[str, list[Point]], str]:
+    """Ask the helpful oracle, started on ``bed``, at the end of a walked path: the answer,
+    checked to be help of ``kind`` (and ``question_type``)."""
+    oracle = _started(HelpfulOracle(RuleOracle(0)), sim, bed)
+    frame = _blank(sim)
+
+    def ask(text: str, path: list[Point]) -> str:
+        reply = _ask(oracle, AgentState(path[-1], 0.0), frame, text, tuple(path))
+        assert reply.help_kind == kind, text
+        assert question_type in (None, reply.question_type), text
+        return reply.answer
+
+    return ask
+
+
 @pytest.fixture(scope="module")
 def bed(sim: Simulator) -> ObjectInstance:
     """The first bed by id: a target in a room of its own type among several."""
@@ -60,16 +79,10 @@ def walk(sim: Simulator, bed: ObjectInstance) -> list[Point]:
 def test_rooms_visited_come_from_the_walked_path(
     sim: Simulator, bed: ObjectInstance, walk: list[Point]
 ) -> None:
-    oracle = _started(HelpfulOracle(RuleOracle(0)), sim, bed)
-    frame = _blank(sim)
     rooms = _rooms_along(sim, walk)
     first, last = rooms[0], rooms[-1]
     assert last.id == bed.room_id
-
-    def ask(text: str, path: list[Point]) -> str:
-        reply = _ask(oracle, AgentState(path[-1], 0.0), frame, text, tuple(path))
-        assert (reply.help_kind, reply.question_type) == ("visited", "other"), text
-        return reply.answer
+    ask = _asker(sim, bed, "visited", "other")
 
     start = walk[:2]
     assert ask("have I been here before?", start).startswith(
@@ -107,13 +120,7 @@ def test_rooms_visited_come_from_the_walked_path(
 def test_on_track_and_wrong_turn_follow_the_trend_along_the_path(
     sim: Simulator, bed: ObjectInstance, walk: list[Point]
 ) -> None:
-    oracle = _started(HelpfulOracle(RuleOracle(0)), sim, bed)
-    frame = _blank(sim)
-
-    def ask(text: str, path: list[Point]) -> str:
-        reply = _ask(oracle, AgentState(path[-1], 0.0), frame, text, tuple(path))
-        assert reply.help_kind == "closer", text
-        return reply.answer
+    ask = _asker(sim, bed, "closer")
 
     on_the_way = walk[: 2 * len(walk) // 3]
     assert ask("Am I on track?", on_the_way).startswith("Yes, you are getting closer")
@@ -192,13 +199,7 @@ def test_questions_about_nothing_in_the_house_get_the_papers_refusal(
 def test_a_verdict_on_the_walk_judges_its_last_stretch_and_its_start(
     sim: Simulator, bed: ObjectInstance, walk: list[Point]
 ) -> None:
-    oracle = _started(HelpfulOracle(RuleOracle(0)), sim, bed)
-    frame = _blank(sim)
-
-    def ask(text: str, path: list[Point]) -> str:
-        reply = _ask(oracle, AgentState(path[-1], 0.0), frame, text, tuple(path))
-        assert reply.help_kind == "visited", text
-        return reply.answer
+    ask = _asker(sim, bed, "visited")
 
     on_the_way = walk[: 2 * len(walk) // 3]
     for text in ("I turned left back there. Was that the wrong call?", "did I turn back too soon?"):
