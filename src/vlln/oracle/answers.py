@@ -85,7 +85,7 @@ def answer_attribute(
     if topic in (AttributeTopic.NEARBY, AttributeTopic.SUPPORT):
         return _relation_answer(knowledge, analysis, topic)
     if topic == AttributeTopic.CATEGORY:
-        return f"It is {_article(target.fine_category or target.category)}."
+        return f"It is {with_article(target.fine_category or target.category)}."
     return _description(knowledge, state)
 
 
@@ -132,8 +132,8 @@ def _shape_sentence(target: ObjectInstance) -> str:
     if shape.lower() in _SHAPE_WORDS or shape.endswith("-shaped"):
         return f"It is {shape}."
     if shape in fine.split():
-        return f"It is {_article(fine)}."
-    return f"It is {_article(shape)} {target.category}."
+        return f"It is {with_article(fine)}."
+    return f"It is {with_article(shape)} {target.category}."
 
 
 def _size_sentence(target: ObjectInstance) -> str:
@@ -142,7 +142,7 @@ def _size_sentence(target: ObjectInstance) -> str:
     size = target.attributes.size
     if not size:
         return f"It is {dims}."
-    return f"It is {size} for {_article(target.category)}, {dims}."
+    return f"It is {size} for {with_article(target.category)}, {dims}."
 
 
 # --- rooms and places ------------------------------------------------------------------------
@@ -263,7 +263,7 @@ def _description(knowledge: EpisodeKnowledge, state: AgentState) -> str:
     material = material_adjective(attrs.material)
     noun = target.fine_category or target.category
     words = [w for w in (attrs.size, attrs.color, material) if w and w not in noun.split()]
-    phrase = _article(" ".join([*words, noun]))
+    phrase = with_article(" ".join([*words, noun]))
     room = knowledge.target_room
     where = f" in {room_phrase(knowledge, room, state, short=True)}" if room is not None else ""
     return choose(
@@ -272,8 +272,14 @@ def _description(knowledge: EpisodeKnowledge, state: AgentState) -> str:
     )
 
 
-def _article(phrase: str) -> str:
+def with_article(phrase: str) -> str:
+    """ "an armchair", "a bed"."""
     return ("an " if phrase[:1].lower() in "aeiou" else "a ") + phrase
+
+
+def joined(items: list[str]) -> str:
+    """ "a", "a and b", "a, b and c"."""
+    return items[0] if len(items) == 1 else f"{', '.join(items[:-1])} and {items[-1]}"
 
 
 # --- other -----------------------------------------------------------------------------------

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import math
 
-from vlln.oracle.answers import distance_words, room_phrase
+from vlln.oracle.answers import distance_words, joined, room_phrase
 from vlln.oracle.knowledge import EpisodeKnowledge, object_phrase
 from vlln.sim.agent import AgentState
 from vlln.world.generator.furnishing import WINDOW_COVERINGS
@@ -81,11 +81,6 @@ def surroundings(knowledge: EpisodeKnowledge, state: AgentState) -> str:
         return f"{sentence}."
     rest = "; ".join(others)
     return f"{sentence}. {rest[0].upper()}{rest[1:]}."
-
-
-def joined(items: list[str]) -> str:
-    """ "a", "a and b", "a, b and c"."""
-    return items[0] if len(items) == 1 else f"{', '.join(items[:-1])} and {items[-1]}"
 
 
 Found = tuple[str, str]  # the answer when the house knows some; the words when it knows none

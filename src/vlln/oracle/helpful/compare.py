@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 
-from vlln.oracle.answers import distance_words, room_phrase
+from vlln.oracle.answers import distance_words, room_phrase, with_article
 from vlln.oracle.disambiguation import DISAMBIGUATION_RANGE
 from vlln.oracle.helpful import patterns as p
 from vlln.oracle.helpful.path import advice, direction
@@ -44,7 +44,7 @@ def answer_comparison(
     if target is None:
         where = _where(knowledge, state)
         if not candidates:  # "coffee table or side table?": its kind tells them apart
-            kind = _article(knowledge.target.fine_category or category)
+            kind = with_article(knowledge.target.fine_category or category)
             where = where.replace("The one I mean is in", f"The one I mean is {kind}, in")
             return f"I can't tell from here: no {category} is in your view. {where}".rstrip()
         none = "Neither" if len(candidates) == 2 else "None of them"
@@ -162,10 +162,6 @@ def clarification(knowledge: EpisodeKnowledge, state: AgentState, frame: Frame) 
         none = "neither" if len(candidates) == 2 else "none"
         return f"{seen} are in view, and {none} is the one I mean."
     return f"{seen} are in view; the one I mean is {which_one(candidates, target)}."
-
-
-def _article(noun: str) -> str:
-    return f"{'an' if noun[:1] in 'aeiou' else 'a'} {noun}"
 
 
 def _where(knowledge: EpisodeKnowledge, state: AgentState) -> str:

@@ -12,7 +12,7 @@ import re
 from collections import defaultdict
 from functools import lru_cache
 
-from vlln.oracle.answers import room_phrase
+from vlln.oracle.answers import room_phrase, with_article
 from vlln.oracle.classifier.entities import object_names
 from vlln.oracle.helpful.around import instance_room
 from vlln.oracle.helpful.path import room_here, stays
@@ -192,7 +192,7 @@ def _rooms(knowledge: EpisodeKnowledge, name: str, group: list[ObjectInstance]) 
     if room is not None and knowledge.index.same_type_rooms(room) == 1:
         return f"in the {name}"
     if len(rooms) == 1:
-        return f"in {'an' if name[0] in 'aeiou' else 'a'} {name}"
+        return f"in {with_article(name)}"
     return f"in {len(rooms)} {plural(name)}"
 
 

@@ -45,6 +45,17 @@ def walked_metres(path: Path) -> list[float]:
     return walked
 
 
+def walked_back(path: Path, metres: float) -> tuple[float, ...] | None:
+    """The position ``metres`` of walking before the last one of ``path`` (its first when it
+    is shorter); None when the path never left its last position."""
+    walked = 0.0
+    for later, earlier in zip(path[::-1], path[-2::-1], strict=False):
+        walked += math.dist(later, earlier)
+        if walked >= metres:
+            return earlier
+    return path[0] if walked > 0.0 else None
+
+
 def stays(knowledge: EpisodeKnowledge, path: Path) -> list[Stay]:
     """The rooms the walk went through, in order, one :class:`Stay` per stretch."""
     index = knowledge.index

@@ -11,7 +11,15 @@ from __future__ import annotations
 import math
 
 from vlln.oracle.answers import distance_words, room_phrase
-from vlln.oracle.helpful.path import Path, advice, ago, direction, target_room_visit, walking
+from vlln.oracle.helpful.path import (
+    Path,
+    advice,
+    ago,
+    direction,
+    target_room_visit,
+    walked_back,
+    walking,
+)
 from vlln.oracle.helpful.recognise import FloorClaim, HelpRequest
 from vlln.oracle.knowledge import EpisodeKnowledge, room_name
 from vlln.oracle.route import CANNOT_ANSWER, answer_path
@@ -70,7 +78,7 @@ def answer_closer(
     if now == math.inf:
         return CANNOT_ANSWER
     away = distance_words(now)
-    earlier = _walked_back(path, TREND_WALK)
+    earlier = walked_back(path, TREND_WALK)
     step = advice(knowledge, state)
     if earlier is None:
         return f"You have not moved yet; it is {away} away. {step}".rstrip()
@@ -148,14 +156,3 @@ def _yes_no(request: HelpRequest, claim_true: bool | None, fact: str) -> str:
     if not request.yes_no or claim_true is None:
         return fact
     return f"{'Yes' if claim_true else 'No'}. {fact}"
-
-
-def _walked_back(path: tuple[tuple[float, ...], ...], metres: float) -> tuple[float, ...] | None:
-    """The position ``metres`` of walking before the last one of ``path`` (its first when it
-    is shorter); None when the path never left its last position."""
-    walked = 0.0
-    for later, earlier in zip(path[::-1], path[-2::-1], strict=False):
-        walked += math.dist(later, earlier)
-        if walked >= metres:
-            return earlier
-    return path[0] if walked > 0.0 else None

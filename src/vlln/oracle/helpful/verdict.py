@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 
 from vlln.oracle.answers import distance_words
-from vlln.oracle.helpful.path import Path, advice, walked_metres, walking
+from vlln.oracle.helpful.path import Path, advice, walked_back, walked_metres, walking
 from vlln.oracle.helpful.recognise import HelpRequest
 from vlln.oracle.knowledge import EpisodeKnowledge, room_name
 from vlln.oracle.route import CANNOT_ANSWER
@@ -32,10 +32,10 @@ def answer_route(
     start = walking(knowledge, path[0])
     if now == math.inf or start == math.inf:
         return CANNOT_ANSWER
-    walked = walked_metres(path)
+    walked = walked_metres(path)[-1]
     gained = start - now
-    detour = walked[-1] - max(gained, 0.0)
-    recent = _recent(knowledge, path, walked)
+    detour = walked - max(gained, 0.0)
+    recent = _recent(knowledge, path)
     named = _named_room(knowledge, request)
     if named is not None:
         bad = not named
@@ -44,8 +44,8 @@ def answer_route(
     else:
         bad = recent < -CHANGE or (recent <= CHANGE and gained < CHANGE)
     sentences = [_recent_sentence(recent), _overall(start, now, gained)]
-    if walked[-1] > 0.0:
-        sentences.append(_detour_sentence(walked[-1], detour))
+    if walked > 0.0:
+        sentences.append(_detour_sentence(walked, detour))
     if named is not None:
         sentences.insert(0, _named_sentence(knowledge, named))
     text = " ".join(s for s in sentences if s)
@@ -57,12 +57,9 @@ def answer_route(
     return text
 
 
-def _recent(knowledge: EpisodeKnowledge, path: Path, walked: list[float]) -> float:
+def _recent(knowledge: EpisodeKnowledge, path: Path) -> float:
     """Metres of walking distance gained over the last :data:`RECENT_WALK` metres walked."""
-    back = next(
-        (path[i] for i in range(len(path) - 1, -1, -1) if walked[-1] - walked[i] >= RECENT_WALK),
-        path[0],
-    )
+    back = walked_back(path, RECENT_WALK) or path[-1]
     return walking(knowledge, back) - walking(knowledge, path[-1])
 
 

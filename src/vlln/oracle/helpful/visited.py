@@ -10,7 +10,13 @@ from __future__ import annotations
 
 import math
 
-from vlln.oracle.answers import CLOSE_RADIUS, distance_words, room_phrase
+from vlln.oracle.answers import (
+    CLOSE_RADIUS,
+    distance_words,
+    joined,
+    room_phrase,
+    with_article,
+)
 from vlln.oracle.helpful.path import (
     Path,
     Stay,
@@ -160,8 +166,8 @@ def _names(knowledge: EpisodeKnowledge, rooms: list[Room], seen: set[str] | None
         elif other or knowledge.index.same_type_rooms(group[0]) == 1:
             parts.append(f"the {other}{name}")
         else:
-            parts.append(f"{'an' if name[0] in 'aeiou' else 'a'} {name}")
-    return parts[0] if len(parts) == 1 else f"{', '.join(parts[:-1])} and {parts[-1]}"
+            parts.append(with_article(name))
+    return joined(parts)
 
 
 def _retracing(
