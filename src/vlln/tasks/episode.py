@@ -255,14 +255,15 @@ def write_episodes(path: str | Path, episodes: Iterable[Episode]) -> None:
     path = Path(path)
     # Episode by episode, so a split whose ObjectNav goals list thousands of view points never
     # holds more than one episode as JSON objects; each is read back as a reader would.
-    parts = []
+    # Read back through the reader's own decoding, so a goal that episodes share is checked once.
+    parts, sharing, shared_goals = [], _GoalSharing(), dict[int, Goal]()
     for index, episode in enumerate(episodes):
         try:
             part = json.dumps(episode.to_json(), allow_nan=False)
         except (TypeError, ValueError) as err:
             raise DataFormatError(f"cannot write episodes to {path}: {err}") from None
         where = f"episodes for {path}: episode {index} (episode_id {episode.episode_id!r})"
-        Episode.from_json(json.loads(part), where)
+        Episode.from_json(json.loads(part, object_hook=sharing), where, shared_goals)
         parts.append(part)
     text = '{"episodes": [' + ", ".join(parts) + "]}"
     blob = gzip.compress(text.encode("utf-8"), compresslevel=9, mtime=0)
