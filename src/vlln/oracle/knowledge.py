@@ -178,6 +178,15 @@ class HouseIndex:
         room_id = int(edges.first_room_containing(np.array([[x, z]]))[0])
         return self.house.room(room_id if room_id >= 0 else edges.nearest_room(x, z))
 
+    def room_of(self, instance: ObjectInstance) -> Room | None:
+        """The room an instance is in: its own, else the room its box stands in (on the
+        storey of the box's foot)."""
+        try:
+            return self.house.room(instance.room_id)
+        except KeyError:
+            x, _, z = instance.box.center
+            return self.room_at(x, z, instance.box.min[1])
+
     def same_type_rooms(self, room: Room) -> int:
         return sum(1 for other in self.house.rooms if other.type == room.type)
 
@@ -231,11 +240,7 @@ class EpisodeKnowledge:
 
     @property
     def target_room(self) -> Room | None:
-        try:
-            return self.index.house.room(self.target.room_id)
-        except KeyError:
-            centre = self.target.box.center
-            return self.index.room_at(centre[0], centre[2])
+        return self.index.room_of(self.target)
 
     def plan_distance(self, x: float, z: float) -> float:
         """Floor-plan distance from a point to the target's box (0 inside its footprint)."""

@@ -17,7 +17,7 @@ from vlln.oracle.answers import distance_words, joined, room_phrase
 from vlln.oracle.knowledge import EpisodeKnowledge, object_phrase
 from vlln.sim.agent import AgentState
 from vlln.world.generator.furnishing import WINDOW_COVERINGS
-from vlln.world.model import ObjectInstance, Room
+from vlln.world.model import ObjectInstance
 
 NEIGHBOUR_RADIUS = 1.5  # m between boxes: what stands "around" the target
 NEIGHBOURS_NAMED = 4
@@ -252,15 +252,6 @@ def answer_window(knowledge: EpisodeKnowledge, state: AgentState) -> str:
     what = "a window" if window.category == "window" else f"the window with {object_phrase(window)}"
     if gap <= WINDOW_NEAR:
         return f"Yes, it is near a window: {distance_words(gap)} from {what}."
-    room = instance_room(knowledge, window)
+    room = knowledge.index.room_of(window)
     there = f", in {room_phrase(knowledge, room, state)}" if room is not None else ""
     return f"No, the nearest window is {distance_words(gap)} from it: {what}{there}."
-
-
-def instance_room(knowledge: EpisodeKnowledge, instance: ObjectInstance) -> Room | None:
-    """The room an instance is in: its own, else the room its box stands in."""
-    try:
-        return knowledge.index.house.room(instance.room_id)
-    except KeyError:
-        x, _, z = instance.box.center
-        return knowledge.index.room_at(x, z, instance.box.min[1])

@@ -14,7 +14,6 @@ from functools import lru_cache
 
 from vlln.oracle.answers import room_phrase, with_article
 from vlln.oracle.classifier.entities import object_names
-from vlln.oracle.helpful.around import instance_room
 from vlln.oracle.helpful.path import room_here, stays
 from vlln.oracle.helpful.progress import storey_name
 from vlln.oracle.helpful.recognise import CountScope, HelpRequest
@@ -128,7 +127,7 @@ def _places(knowledge: EpisodeKnowledge, instances: list[ObjectInstance]) -> str
     """ "1 in the kitchen, 2 in 2 bedrooms"."""
     by_type: dict[str, list[ObjectInstance]] = defaultdict(list)
     for instance in instances:
-        room = instance_room(knowledge, instance)
+        room = knowledge.index.room_of(instance)
         by_type[room_name(room) if room is not None else "open area"].append(instance)
     return ", ".join(
         f"{len(group)} {_rooms(knowledge, name, group)}" for name, group in sorted(by_type.items())
@@ -141,7 +140,7 @@ def _count_in_house(
     target = knowledge.target
     by_type: dict[str, list[ObjectInstance]] = defaultdict(list)
     for instance in instances:
-        room = instance_room(knowledge, instance)
+        room = knowledge.index.room_of(instance)
         by_type[room_name(room) if room is not None else "open area"].append(instance)
     if len(instances) == 1:
         (name, group), *_ = by_type.items()
@@ -163,7 +162,7 @@ def _by_floor(knowledge: EpisodeKnowledge, instances: list[ObjectInstance]) -> s
         return "This house has one floor."
     on: dict[int, int] = defaultdict(int)
     for instance in instances:
-        room = instance_room(knowledge, instance)
+        room = knowledge.index.room_of(instance)
         on[room.level if room is not None else levels[0]] += 1
     parts = [f"{on[level]} on {storey_name(level, levels)}" for level in levels]
     return f"By floor: {', '.join(parts)}."
@@ -188,7 +187,7 @@ def _rooms(knowledge: EpisodeKnowledge, name: str, group: list[ObjectInstance]) 
     """Where instances in rooms named ``name`` are: "in the kitchen" (the house's only
     kitchen), "in a bedroom", "in 2 bedrooms"."""
     rooms = {instance.room_id for instance in group}
-    room = instance_room(knowledge, group[0])
+    room = knowledge.index.room_of(group[0])
     if room is not None and knowledge.index.same_type_rooms(room) == 1:
         return f"in the {name}"
     if len(rooms) == 1:
