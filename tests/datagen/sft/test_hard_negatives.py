@@ -98,7 +98,7 @@ def shows_distractor(sim: Simulator, case: DistractorCase, frame: int) -> bool:
 def test_hard_negatives_are_the_frames_that_show_a_distractor_and_never_the_stop(
     sim: Simulator, case: DistractorCase, tmp_path: Path
 ) -> None:
-    config = SftConfig(hard_negatives=True)
+    config = SftConfig(hard_negatives=3)
     export_sft(case.root, tmp_path, config, progress=False)
     samples = read_samples(tmp_path)
     negatives = [s for s in samples if sample_key(s)[2] == "negative"]
@@ -106,7 +106,7 @@ def test_hard_negatives_are_the_frames_that_show_a_distractor_and_never_the_stop
     shown = {f for f in range(TURNS + 1) if shows_distractor(sim, case, f)}
     assert TURNS in shown  # the STOP frame faces the distractor too, yet is no negative
     assert set(frames) == shown - {TURNS} and 0 in frames
-    assert all(frames.count(f) == config.repeats for f in set(frames))
+    assert all(frames.count(f) == config.hard_negatives for f in set(frames))
     stop = format_output(StopOutput())
     assert all(s["conversations"][-1]["value"] != stop for s in negatives)
     at_question = {
@@ -128,14 +128,14 @@ def test_without_the_flag_the_export_is_the_one_with_it_less_its_negatives(
     case: DistractorCase, tmp_path: Path
 ) -> None:
     export_sft(case.root, tmp_path / "off", progress=False)
-    export_sft(case.root, tmp_path / "on", SftConfig(hard_negatives=True), progress=False)
+    export_sft(case.root, tmp_path / "on", SftConfig(hard_negatives=3), progress=False)
     off = (tmp_path / "off" / "sft.jsonl").read_text().splitlines()
     on = (tmp_path / "on" / "sft.jsonl").read_text().splitlines()
     assert off == [line for line in on if "/negative/" not in line] != on
     documents = [json.loads((tmp_path / d / "export.json").read_text()) for d in ("off", "on")]
     assert "hard_negatives" not in documents[0]["settings"]
     assert "negative" not in documents[0]["counts"]["samples_by_kind"]
-    assert documents[1]["settings"]["hard_negatives"] is True
+    assert documents[1]["settings"]["hard_negatives"] == 3
 
 
 def test_objectnav_has_no_distractors_and_a_dataset_of_unknown_task_is_refused(
@@ -145,7 +145,7 @@ def test_objectnav_has_no_distractors_and_a_dataset_of_unknown_task_is_refused(
     for root in (objectnav, unknown):
         shutil.copytree(case.root / TRAJECTORIES_DIR, root / TRAJECTORIES_DIR)
     check_settings(objectnav, BuildConfig(houses=1, preset="small", task="objectnav"))
-    config = SftConfig(hard_negatives=True)
+    config = SftConfig(hard_negatives=3)
     summary = export_sft(objectnav, tmp_path / "out", config, progress=False)
     assert summary.by_kind["negative"] == 0 and summary.samples > 0
     with pytest.raises(ConfigError, match=r"build\.json"):  # no build.json: the task is unknown

@@ -123,7 +123,7 @@ def export_sft(
     config = config or SftConfig()
     sources = _sources(dataset_root)
     unknown = [str(s.root) for s in sources if s.task == "unknown"]
-    if config.hard_negatives and unknown:
+    if config.hard_negatives > 0 and unknown:
         raise ConfigError(
             f"{unknown[0]} has no build.json to say its task (ObjectNav has no distractors); "
             "--hard-negatives takes datasets built by `vlln data build`"
@@ -140,7 +140,7 @@ def export_sft(
     store = ImageStore(out)
     summary = SftSummary(out)
     views = DistractorViews()  # builds nothing until asked
-    if config.hard_negatives:
+    if config.hard_negatives > 0:
         summary.by_kind["negative"] = 0
     mix: list[dict[str, Any]] = []
     bar = tqdm(
@@ -152,7 +152,7 @@ def export_sft(
     with bar, _lines_atomic(out / SFT_FILE) as sink, closing(views):
         for source in sources:
             before = (summary.trajectories, summary.samples)
-            negatives = config.hard_negatives and source.task in DISTRACTOR_TASKS
+            negatives = config.hard_negatives > 0 and source.task in DISTRACTOR_TASKS
             for house in source.houses:
                 for trajectory in read_trajectories(house):
                     if source.tag:

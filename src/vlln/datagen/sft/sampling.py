@@ -8,9 +8,9 @@ With ``actions[t]`` the action done at frame ``t`` (the last is STOP) and ``n`` 
 * the last frame: a STOP sample, ``repeats`` times;
 * every frame where questions were asked: the same choice (a forward frame without a goal
   gives nothing), with those questions as ``<talk>`` turns first, ``repeats`` times;
-* with ``hard_negatives``, every frame but the last with a choice whose view shows a
+* with ``hard_negatives`` copies, every frame but the last with a choice whose view shows a
   same-category distractor (:mod:`vlln.datagen.sft.distractors`): that choice again, with the
-  questions asked there first, ``repeats`` times (the teacher walked on or asked).
+  questions asked there first, ``hard_negatives`` times (the teacher walked on or asked).
 
 A turn sample turns as many times as the same turn repeats from ``t``, at most
 ``max_turn_run``, and never past a frame where questions were asked: an agent that made the
@@ -82,7 +82,9 @@ def plan_samples(
         for frame in range(n - 1):
             move = _move(trajectory, frame, config)
             if move is not None and shows_distractor(frame):
-                plans.append(SamplePlan(frame, "negative", move, config.repeats, frame in asked))
+                plans.append(
+                    SamplePlan(frame, "negative", move, config.hard_negatives, frame in asked)
+                )
     return plans
 
 
