@@ -113,9 +113,11 @@ def _data_export_sft(command: SftCommand) -> int:
 
     config = SftConfig(**command.model_dump(include=set(SftConfig.model_fields)))
     summary = export_sft(command.dataset, command.out, config, progress=not command.quiet)
+    negatives = summary.by_kind.get("negative")
     print(
         f"wrote {summary.samples} conversations from {summary.trajectories} trajectories "
         f"({summary.images} images) to {command.out / SFT_FILE}"
+        + ("" if negatives is None else f"; {negatives} of them hard negatives")
     )
     return 0
 

@@ -45,7 +45,7 @@ from vlln.datagen.collector.visibility import DOWN_TILT_DEG
 from vlln.datagen.goals import Goal
 from vlln.datagen.trajectory import Trajectory
 from vlln.files import ReadCap
-from vlln.sim.agent import Action
+from vlln.sim.agent import Action, AgentState
 from vlln.sim.camera import CameraSpec, Position
 from vlln.tasks.episode import scene_name
 
@@ -116,6 +116,15 @@ def reference_pose(
     pose[:3, :3] = _HABITAT_TO_Z_UP @ rendered[:3, :3] @ _OPENCV_TO_OPENGL
     pose[:3, 3] = _HABITAT_TO_Z_UP @ rendered[:3, 3]
     return pose
+
+
+def level_state(spec: CameraSpec, pose: NDArray[np.floating[Any]]) -> AgentState:
+    """The agent state whose level camera has the reference pose ``pose``: the inverse of
+    :func:`reference_pose` at tilt 0, so a stored frame's view can be rendered again."""
+    rendered = _HABITAT_TO_Z_UP.T @ np.asarray(pose[:3, :3], np.float64) @ _OPENCV_TO_OPENGL
+    x, eye_y, z = (float(v) for v in _HABITAT_TO_Z_UP.T @ np.asarray(pose[:3, 3], np.float64))
+    yaw = math.atan2(rendered[0, 2], rendered[0, 0])  # the turn's sin and cos
+    return AgentState((x, eye_y - spec.height_m, z), yaw, 0.0)
 
 
 def frame_columns(spec: CameraSpec) -> dict[str, tuple[str, list[int]]]:

@@ -148,6 +148,8 @@ def walk(
     start: AgentState,
     actions: Sequence[Action],
     dialog: Sequence[tuple[int, str, str]],
+    category: str = CATEGORY,
+    target: str = "1",
 ) -> Trajectory:
     q = yaw_to_quaternion(start.yaw)
     episode = Episode(
@@ -155,9 +157,9 @@ def walk(
         scene_id=procedural_scene_id(HOUSE_SEED),
         start_position=start.position,
         start_rotation=(q[0], q[1], q[2], q[3]),
-        object_category=CATEGORY,
+        object_category=category,
         goals=(),
-        instruction=Instruction("iign", f"Search for the {CATEGORY}.", ("1",)),
+        instruction=Instruction("iign", f"Search for the {category}.", (target,)),
     )
     trajectory = Trajectory(episode)
     sim.reset(start)

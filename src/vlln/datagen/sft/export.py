@@ -37,8 +37,8 @@ import shutil
 import tempfile
 import zlib
 from collections import Counter
-from collections.abc import Iterator, Sequence
-from contextlib import contextmanager, suppress
+from collections.abc import Callable, Iterator, Sequence
+from contextlib import closing, contextmanager, suppress
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import IO, Any
@@ -50,6 +50,7 @@ from vlln import __version__
 from vlln.datagen.build import Strategy, recorded_strategy
 from vlln.datagen.reader import HouseDataset
 from vlln.datagen.sft.config import SftConfig
+from vlln.datagen.sft.distractors import DISTRACTOR_TASKS, DistractorViews
 from vlln.datagen.sft.images import IMAGES_DIR, ImageStore
 from vlln.datagen.sft.records import SFT_FILE, SUMMARY_FILE, SftRecord
 from vlln.datagen.sft.sampling import SamplePlan, plan_samples
@@ -121,6 +122,12 @@ def export_sft(
     """Export every trajectory of one built dataset, or of several mixed, into ``out_dir``."""
     config = config or SftConfig()
     sources = _sources(dataset_root)
+    unknown = [str(s.root) for s in sources if s.task == "unknown"]
+    if config.hard_negatives > 0 and unknown:
+        raise ConfigError(
+            f"{unknown[0]} has no build.json to say its task (ObjectNav has no distractors); "
+            "--hard-negatives takes datasets built by `vlln data build`"
+        )
     total = sum(len(house.episodes) for s in sources for house in s.houses)
     if total == 0:
         raise DataFormatError(
@@ -132,6 +139,9 @@ def export_sft(
     _prepare_out(out)
     store = ImageStore(out)
     summary = SftSummary(out)
+    views = DistractorViews()  # builds nothing until asked
+    if config.hard_negatives > 0:
+        summary.by_kind["negative"] = 0
     mix: list[dict[str, Any]] = []
     bar = tqdm(
         total=total,
@@ -139,16 +149,18 @@ def export_sft(
         unit="traj",
         disable=not progress,
     )
-    with bar, _lines_atomic(out / SFT_FILE) as sink:
+    with bar, _lines_atomic(out / SFT_FILE) as sink, closing(views):
         for source in sources:
             before = (summary.trajectories, summary.samples)
+            negatives = config.hard_negatives > 0 and source.task in DISTRACTOR_TASKS
             for house in source.houses:
                 for trajectory in read_trajectories(house):
                     if source.tag:
                         trajectory = replace(trajectory, house=source.prefix + trajectory.house)
                     try:
+                        shows = views.shows_distractor(house, trajectory) if negatives else None
                         _export_trajectory(
-                            house, trajectory, config, store, sink, summary, source.prefix
+                            house, trajectory, config, store, sink, summary, source.prefix, shows
                         )
                     except FileNotFoundError as error:
                         raise DataFormatError(
@@ -282,9 +294,10 @@ def _export_trajectory(
     sink: IO[str],
     summary: SftSummary,
     prefix: str = "",
+    shows_distractor: Callable[[int], bool] | None = None,
 ) -> None:
     rng = _answers_left_draws(trajectory, config)
-    for plan in plan_samples(trajectory, config):
+    for plan in plan_samples(trajectory, config, shows_distractor):
         kind: str = plan.kind
         if kind == "step":
             kind = {PixelOutput: "pixel", ForwardOutput: "forward"}.get(type(plan.move), "turn")

@@ -7,7 +7,10 @@ With ``actions[t]`` the action done at frame ``t`` (the last is STOP) and ``n`` 
   (with ``forward_steps``, a one-step ``<move>↑`` sample there);
 * the last frame: a STOP sample, ``repeats`` times;
 * every frame where questions were asked: the same choice (a forward frame without a goal
-  gives nothing), with those questions as ``<talk>`` turns first, ``repeats`` times.
+  gives nothing), with those questions as ``<talk>`` turns first, ``repeats`` times;
+* with ``hard_negatives`` copies, every frame but the last with a choice whose view shows a
+  same-category distractor (:mod:`vlln.datagen.sft.distractors`): that choice again, with the
+  questions asked there first, ``hard_negatives`` times (the teacher walked on or asked).
 
 A turn sample turns as many times as the same turn repeats from ``t``, at most
 ``max_turn_run``, and never past a frame where questions were asked: an agent that made the
@@ -17,6 +20,7 @@ no samples, as in the reference.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Literal
 
@@ -28,7 +32,7 @@ from vlln.sim.agent import Action
 
 MIN_FRAMES = 4
 Move = PixelOutput | TurnOutput | StopOutput | ForwardOutput
-Kind = Literal["step", "stop", "dialog"]
+Kind = Literal["step", "stop", "dialog", "negative"]
 _DIRECTIONS: dict[int, Literal["left", "right"]] = {
     Action.TURN_LEFT: "left",
     Action.TURN_RIGHT: "right",
@@ -38,20 +42,23 @@ _DIRECTIONS: dict[int, Literal["left", "right"]] = {
 @dataclass(frozen=True)
 class SamplePlan:
     """A decision to train on: the frame, why it was picked, the move the model makes there
-    (a pixel of the 640x480 look-down image for a pixel goal), and how many copies."""
+    (a pixel of the 640x480 look-down image for a pixel goal), how many copies, and whether
+    the questions asked at the frame come first."""
 
     frame: int
     kind: Kind
     move: Move
     copies: int
-
-    @property
-    def with_dialog(self) -> bool:
-        return self.kind == "dialog"
+    with_dialog: bool = False
 
 
-def plan_samples(trajectory: SourceTrajectory, config: SftConfig) -> list[SamplePlan]:
-    """The trajectory's samples in the order written: steps by frame, STOP, dialog frames."""
+def plan_samples(
+    trajectory: SourceTrajectory,
+    config: SftConfig,
+    shows_distractor: Callable[[int], bool] | None = None,
+) -> list[SamplePlan]:
+    """The trajectory's samples in the order written: steps by frame, STOP, dialog frames,
+    then (given ``shows_distractor``, asked only of frames with a choice) hard negatives."""
     actions = trajectory.actions
     n = len(actions)
     if n < MIN_FRAMES:
@@ -64,12 +71,20 @@ def plan_samples(trajectory: SourceTrajectory, config: SftConfig) -> list[Sample
         if move is not None:
             plans.append(SamplePlan(frame, "step", move, 1))
     plans.append(SamplePlan(n - 1, "stop", StopOutput(), config.repeats))
-    for frame in sorted({exchange.frame for exchange in trajectory.exchanges}):
+    asked = sorted({exchange.frame for exchange in trajectory.exchanges})
+    for frame in asked:
         if not 0 <= frame < n:
             raise DataFormatError(f"a question is asked at frame {frame}, outside 0..{n - 1}")
         move = _move(trajectory, frame, config)
         if move is not None:
-            plans.append(SamplePlan(frame, "dialog", move, config.repeats))
+            plans.append(SamplePlan(frame, "dialog", move, config.repeats, with_dialog=True))
+    if shows_distractor is not None:
+        for frame in range(n - 1):
+            move = _move(trajectory, frame, config)
+            if move is not None and shows_distractor(frame):
+                plans.append(
+                    SamplePlan(frame, "negative", move, config.hard_negatives, frame in asked)
+                )
     return plans
 
 

@@ -33,6 +33,7 @@ class SourceTrajectory:
     # per frame: (frames ahead, (col, row) on the 640x480 look-down image); -1 and (-1, -1): none
     goals: list[tuple[int, tuple[int, int]]]
     exchanges: tuple[DialogExchange, ...]  # sorted by frame, in asking order within a frame
+    target: str = ""  # the target's instance id, as episodes.jsonl records it ("" if not)
 
 
 def open_houses(dataset_root: str | Path) -> list[HouseDataset]:
@@ -74,6 +75,7 @@ def _trajectory(house: HouseDataset, row: dict[str, Any]) -> SourceTrajectory:
     down = house.settings["down"]
     relative = [int(r) for r in frames[f"relative_goal_frame_id.{down}"]]
     scale = _goal_scale(house, index)
+    target = row.get("target")  # ours: {instance_id, category}; the reference writes none
     pixels = [_scaled(int(g[0]), int(g[1]), scale) for g in frames[f"goal.{down}"]]
     return SourceTrajectory(
         house=house.root.name,
@@ -84,6 +86,7 @@ def _trajectory(house: HouseDataset, row: dict[str, Any]) -> SourceTrajectory:
         actions=[*stored[1:], 0],  # the reference's reading: action[i] led to frame i
         goals=list(zip(relative, pixels, strict=True)),
         exchanges=tuple(_exchanges(row["dialogs"])),
+        target=str(target.get("instance_id", "")) if isinstance(target, dict) else "",
     )
 
 
