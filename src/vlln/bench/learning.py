@@ -334,8 +334,10 @@ def prompt_match(run: Path, export: Path) -> PromptMatch:
 
 def teacher_decisions(export: Path) -> list[Decision]:
     """Every assistant turn of the export with the turns and images before it: one copy of
-    each repeated sample, and no plain step sample at a frame where the teacher asked first
-    (the reference's sampling writes one there, but the teacher's decision was to ask)."""
+    each repeated sample, no plain step sample at a frame where the teacher asked first (the
+    reference's sampling writes one there, but the teacher's decision was to ask), and no hard
+    negative (``--hard-negatives`` repeats decisions at frames of its own choosing), so that
+    exports with and without them are scored on the reference's decisions alike."""
     from vlln.train.data import read_export
 
     samples = read_export(export)
@@ -343,7 +345,11 @@ def teacher_decisions(export: Path) -> list[Decision]:
     decisions: list[Decision] = []
     for sample in samples:
         *_, kind, copy = sample.sample_id.split("/")
-        if copy != "0" or (kind == "step" and _frame_of(sample.sample_id) in asked):
+        if (
+            copy != "0"
+            or kind == "negative"
+            or (kind == "step" and _frame_of(sample.sample_id) in asked)
+        ):
             continue
         for index, turn in enumerate(sample.turns):
             if turn.role != "gpt":

@@ -20,6 +20,7 @@ import pytest
 from tests.datagen.sft.conftest import HOUSE_SEED, level_views, walk
 from tests.datagen.sft.samples import read_samples, sample_key
 
+from vlln.bench.learning import teacher_decisions
 from vlln.datagen.build import BuildConfig, check_settings
 from vlln.datagen.collector.visibility import central_pixels
 from vlln.datagen.layout import TRAJECTORIES_DIR, level_state, reference_pose
@@ -136,6 +137,13 @@ def test_without_the_flag_the_export_is_the_one_with_it_less_its_negatives(
     assert "hard_negatives" not in documents[0]["settings"]
     assert "negative" not in documents[0]["counts"]["samples_by_kind"]
     assert documents[1]["settings"]["hard_negatives"] == 3
+    # The agreement benchmark scores both on the reference's decisions alone.
+    decisions = {
+        name: [(d.turns, [p.relative_to(tmp_path / name) for p in d.images], d.answer)
+               for d in teacher_decisions(tmp_path / name)]
+        for name in ("on", "off")
+    }  # fmt: skip
+    assert decisions["on"] == decisions["off"]
 
 
 def test_objectnav_has_no_distractors_and_a_dataset_of_unknown_task_is_refused(
