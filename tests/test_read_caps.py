@@ -160,13 +160,3 @@ def test_an_image_of_too_many_pixels_is_refused_before_it_is_decoded(tmp_path: P
         load_rgb(broken)
     Image.new("RGB", (640, 480)).save(tmp_path / "frame.jpg")
     assert load_rgb(tmp_path / "frame.jpg").size == (640, 480)
-
-
-def test_an_episode_file_of_more_objects_than_its_cap_allows_is_refused_before_parsing(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
-) -> None:
-    monkeypatch.setenv(EPISODE_FILE_CAP.variable or "", "1")  # 65,536 objects and lists
-    path = tmp_path / "val_iign.json.gz"
-    path.write_bytes(gzip.compress(b'{"episodes": [' + b",".join([b"{}"] * 70_000) + b"]}"))
-    with pytest.raises(DataFormatError, match=r"holds 70,002 JSON objects and lists, more than"):
-        read_episodes(path)

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import gzip
 import io
+import itertools
 import json
 import os
 import re
@@ -249,11 +250,9 @@ def parse_json(
     :class:`DataFormatError` with a short reason, never a ``ValueError``, ``OverflowError``,
     ``RecursionError`` or a later ``UnicodeEncodeError``; callers add the file's name.
     ``object_hook`` sees every object as it is decoded, innermost first (``json.loads``)."""
+    text = utf8_text(data) if isinstance(data, bytes) else data
     try:
-        text = data.decode("utf-8") if isinstance(data, bytes) else data
         value = json.loads(text, parse_int=_parse_int, object_hook=object_hook)
-    except UnicodeDecodeError as error:
-        raise DataFormatError(f"not UTF-8 text (byte {error.start})") from None
     except RecursionError:
         raise DataFormatError(f"JSON nested deeper than {MAX_JSON_DEPTH} levels") from None
     except json.JSONDecodeError as error:
@@ -262,6 +261,14 @@ def parse_json(
     if _SURROGATE.search(text):  # rare: only then is every string looked at
         _check_encodable(value)
     return value
+
+
+def utf8_text(data: bytes) -> str:
+    """``data`` decoded as UTF-8; anything else is a :class:`DataFormatError`."""
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as error:
+        raise DataFormatError(f"not UTF-8 text (byte {error.start})") from None
 
 
 def _parse_int(text: str) -> int:
@@ -273,37 +280,39 @@ def _parse_int(text: str) -> int:
 
 
 def _check_depth(value: Any) -> None:
-    """Refuse nesting deeper than MAX_JSON_DEPTH, level by level, without recursion (what
-    json.loads returns holds only exact lists and dicts as containers)."""
-    level = [value] if type(value) is list or type(value) is dict else []
-    for _ in range(MAX_JSON_DEPTH):
-        if not level:
-            return
-        deeper: list[Any] = []
-        for item in level:
-            children = item.values() if type(item) is dict else item
-            deeper += [child for child in children if type(child) is list or type(child) is dict]
-        level = deeper
-    if level:
-        raise DataFormatError(f"JSON nested deeper than {MAX_JSON_DEPTH} levels")
+    """Refuse nesting deeper than MAX_JSON_DEPTH, without recursion and holding one iterator a
+    level (what json.loads returns holds only exact lists and dicts as containers)."""
+    levels: list[Iterator[Any]] = [iter((value,))]
+    while levels:
+        for child in levels[-1]:
+            if type(child) is list or type(child) is dict:
+                if len(levels) > MAX_JSON_DEPTH:
+                    raise DataFormatError(f"JSON nested deeper than {MAX_JSON_DEPTH} levels")
+                levels.append(iter(child.values() if type(child) is dict else child))
+                break
+        else:
+            levels.pop()
 
 
 def _check_encodable(value: Any) -> None:
     """Refuse a string (or key) holding a lone surrogate; a valid pair escaped in JSON decodes
-    to one character and passes. Iterative, as :func:`_check_depth` has bounded the depth."""
-    pending = [value]
-    while pending:
-        item = pending.pop()
-        if type(item) is dict:
-            pending += item.keys()
-            pending += item.values()
-        elif type(item) is list:
-            pending += item
-        elif type(item) is str:
-            try:
-                item.encode("utf-8")
-            except UnicodeEncodeError as error:
-                raise DataFormatError(
-                    f"text with a lone UTF-16 surrogate ({item[error.start]!r} at character "
-                    f"{error.start}), which is not Unicode text"
-                ) from None
+    to one character and passes. Walked as :func:`_check_depth` walks, whose bound on the depth
+    bounds the iterators held."""
+    levels: list[Iterator[Any]] = [iter((value,))]
+    while levels:
+        for child in levels[-1]:
+            if type(child) is dict or type(child) is list:
+                levels.append(
+                    itertools.chain(child, child.values()) if type(child) is dict else iter(child)
+                )
+                break
+            if type(child) is str:
+                try:
+                    child.encode("utf-8")
+                except UnicodeEncodeError as error:
+                    raise DataFormatError(
+                        f"text with a lone UTF-16 surrogate ({child[error.start]!r} at "
+                        f"character {error.start}), which is not Unicode text"
+                    ) from None
+        else:
+            levels.pop()

@@ -50,7 +50,8 @@ from pathlib import Path
 from typing import Any
 
 from vlln.errors import DataFormatError
-from vlln.files import ReadCap, parse_json, write_bytes_atomic
+from vlln.files import ReadCap, parse_json, utf8_text, write_bytes_atomic
+from vlln.tasks.episode_memory import MemoryBudget, OverBudget
 from vlln.tasks.json_fields import (
     Absent,
     FieldError,
@@ -58,6 +59,7 @@ from vlln.tasks.json_fields import (
     id_text_of,
     numbers_of,
     point_of,
+    shown,
     text_of,
     texts_of,
 )
@@ -157,9 +159,8 @@ class Episode:
         try:
             return _parse_episode(data, shared_goals)
         except FieldError as err:
-            shown = repr(err.got) if len(repr(err.got)) <= 80 else repr(err.got)[:77] + "..."
             raise DataFormatError(
-                f"{where}: field {err.field!r}: expected {err.expected}, got {shown}"
+                f"{where}: field {err.field!r}: expected {err.expected}, got {shown(err.got)}"
             ) from None
 
 
@@ -173,22 +174,23 @@ def _goal_json(goal: Goal) -> dict[str, Any]:
     return data
 
 
-# The benchmark's own files reach about 50 MB (the mp3d test split's ObjectNav file: 3.4 MB a
-# house, view points mostly), and parsing takes up to 32 bytes of memory per byte of JSON
-# (30 MB of 690,000 view points peak at 690 MB): the cap admits them with room to spare and
-# stops a gzip bomb, but a hostile file just under it can still take about 4 GB.
+# The benchmark's own files reach about 110 MB (the mp3d ObjectNav split of 30 houses: 108.8
+# MB, view points mostly), so the cap admits them with room to spare and stops a gzip bomb.
 EPISODE_FILE_CAP = ReadCap("an episode file", 128, "VLLN_MAX_EPISODE_FILE_MB")
 
-
-# Parsed, each JSON object or list costs 60 to 250 bytes of memory whatever its text: a file of
-# nothing but "{}," would take 25 times its size. The mp3d ObjectNav split of 30 houses holds
-# 5.0 million in 108.8 MB (one per 22 bytes); a file may hold one per 16 bytes of its cap.
-BYTES_PER_CONTAINER = 16
+# Parsed, JSON takes up to 24 times its bytes, so reading may also take at most this many bytes
+# of memory a byte of the cap, charged before and while parsing (:mod:`.episode_memory`): 768
+# MiB. Hostile files under the default cap (floats, integers, short, long or wide strings,
+# objects, lists, keys, view points) peak at 732 MiB at most, interpreter included, where they
+# took up to 2.1 GiB. Real files are charged more than they take: an ObjectNav split of 104 MiB
+# (the size of the mp3d one) 555 MiB, peaking at 245; 2.35 million view points (121 MiB) 656
+# MiB, peaking at 643.
+MEMORY_PER_CAP_BYTE = 6
 
 
 def read_episodes(path: str | Path) -> list[Episode]:
-    """Read a gzip JSON episode file, at most :data:`EPISODE_FILE_CAP` of it, and at most one
-    JSON object or list per :data:`BYTES_PER_CONTAINER` bytes of the cap."""
+    """Read a gzip JSON episode file, at most :data:`EPISODE_FILE_CAP` of it, taking at most
+    :data:`MEMORY_PER_CAP_BYTE` bytes of memory a byte of the cap."""
     path = Path(path)
     try:
         raw = EPISODE_FILE_CAP.read(path, gzipped=True)
@@ -200,54 +202,60 @@ def read_episodes(path: str | Path) -> list[Episode]:
         raise DataFormatError(
             f"{path} is not a gzip file ({err}); episode files are gzip-compressed JSON"
         ) from None
-    _check_containers(path, raw)
+    budget = MemoryBudget(path, EPISODE_FILE_CAP, MEMORY_PER_CAP_BYTE)
+    budget.charge_text(raw)
     try:
-        data = parse_json(raw, object_hook=_GoalSharing())
+        text = utf8_text(raw)
+        del raw  # only the text is held while parsing
+        data = parse_json(text, object_hook=_GoalSharing(budget))
+    except OverBudget:
+        raise
     except DataFormatError as err:
         raise DataFormatError(
             f"{path} does not hold UTF-8 JSON: {err}; give a released episode file"
         ) from None
+    del text
     return _parse_file(data, str(path))
 
 
-def _check_containers(path: Path, raw: bytes) -> None:
-    """Refuse a file of more objects and lists than its cap allows, counted (as an upper
-    bound: braces in strings count too) before any is parsed."""
-    most = EPISODE_FILE_CAP.limit() // BYTES_PER_CONTAINER
-    found = raw.count(b"{") + raw.count(b"[")
-    if found > most:
-        raise DataFormatError(
-            f"{path} holds {found:,} JSON objects and lists, more than the {most:,} its cap "
-            f"allows (one per {BYTES_PER_CONTAINER} bytes of {EPISODE_FILE_CAP.limit() >> 20} "
-            f"MiB); set {EPISODE_FILE_CAP.variable} to more MiB if the file is right"
-        )
-
-
 class _GoalSharing:
-    """A JSON object hook that returns one object for goals that are equal.
+    """A JSON object hook that returns one object for goals that are equal, and tells a
+    :class:`MemoryBudget` of the view point starts it does not make view points and the view
+    points it lets go.
 
     ObjectNav episodes list every instance of their category as a goal, with all its view
     points, so a split repeats each goal in many episodes. Sharing the decoded goal as soon as
     it is complete lets the copy go at once, and parsing shares the :class:`Goal` too
     (:func:`_parse_file`): a 14-house split then reads in a fraction of the memory."""
 
-    def __init__(self) -> None:
+    def __init__(self, budget: MemoryBudget) -> None:
+        self._budget = budget
         self._seen: dict[tuple[Any, ...], list[dict[str, Any]]] = {}
 
     def __call__(self, obj: dict[str, Any]) -> dict[str, Any] | ViewPoint:
         view_point = _written_view_point(obj)
         if view_point is not None:  # decoded at once: a split holds hundreds of thousands
-            return view_point
+            return view_point  # charged with the text
         points = obj.get("view_points")
-        if not isinstance(points, list) or "position" not in obj:
-            return obj
-        key = (repr(obj.get("position")), repr(obj.get("bbox")), len(points))
-        same = self._seen.setdefault(key, [])
-        for earlier in same:
-            if earlier == obj:
-                return earlier
-        same.append(obj)
+        if isinstance(points, list) and "position" in obj:
+            key = (_numbers_key(obj.get("position")), _numbers_key(obj.get("bbox")), len(points))
+            same = self._seen.setdefault(key, [])
+            for earlier in same:
+                if earlier == obj:
+                    self._budget.refund_view_points(list(map(type, points)).count(ViewPoint))
+                    return earlier
+            same.append(obj)
+        if "agent_state" in obj:
+            self._budget.charge_start(obj)
         return obj
+
+
+def _numbers_key(value: Any) -> str | None:
+    """The repr of a short list of numbers, to find goals that may be equal; None for any other
+    value, whose repr could take more memory than the value (a list of hostile length)."""
+    if type(value) is list and len(value) <= 6 and all(type(v) in (float, int) for v in value):
+        return repr(value)
+    return None
 
 
 def write_episodes(path: str | Path, episodes: Iterable[Episode]) -> None:
@@ -306,12 +314,12 @@ def _parse_file(data: Any, source: str) -> list[Episode]:
     if not isinstance(data, dict) or "episodes" not in data:
         raise DataFormatError(f"{source}: expected a JSON object with an 'episodes' list")
     if not isinstance(data["episodes"], list):
-        raise DataFormatError(f"{source}: 'episodes' must be a list, got {data['episodes']!r:.80}")
+        raise DataFormatError(f"{source}: 'episodes' must be a list, got {shown(data['episodes'])}")
     episodes = []
     shared: dict[int, Goal] = {}  # goal objects that _GoalSharing made one, parsed once
     for index, item in enumerate(data["episodes"]):
         episode_id = item.get("episode_id") if isinstance(item, dict) else None
-        where = f"{source}: episode {index} (episode_id {episode_id!r})"
+        where = f"{source}: episode {index} (episode_id {shown(episode_id)})"
         episodes.append(Episode.from_json(item, where, shared_goals=shared))
     _check_unique_ids(episodes, source)
     return episodes
@@ -326,7 +334,7 @@ def _check_unique_ids(episodes: Sequence[Episode], source: str) -> None:
         if earlier != index:
             raise DataFormatError(
                 f"{source}: episodes {earlier} and {index} share episode_id "
-                f"{episode.episode_id!r}; give each episode of the file its own id"
+                f"{shown(episode.episode_id)}; give each episode of the file its own id"
             )
 
 

@@ -5,6 +5,7 @@ with the file and the record (:mod:`vlln.tasks.episode`)."""
 from __future__ import annotations
 
 import math
+from collections.abc import Iterator
 from typing import Any
 
 from vlln.world.model import Point3
@@ -85,3 +86,40 @@ def id_text_of(value: Any, name: str) -> str:
     if not isinstance(value, str):
         raise FieldError(name, "a string or an integer", value)
     return value
+
+
+def shown(value: Any, width: int = 80) -> str:
+    """``repr(value)`` cut to ``width`` characters, a cut one ending in "...", written no further
+    than that: the whole repr of a hostile value could take several times its memory."""
+    pieces: list[str] = []
+    length = 0
+    for piece in _repr_pieces(value, width):
+        pieces.append(piece)
+        length += len(piece)
+        if length > width:
+            break
+    text = "".join(pieces)
+    return text if len(text) <= width else text[: width - 3] + "..."
+
+
+def _repr_pieces(value: Any, width: int) -> Iterator[str]:
+    """The repr of a JSON value piece by piece, a long string only in part."""
+    if type(value) is list:
+        yield "["
+        for index, item in enumerate(value):
+            yield ", " if index else ""
+            yield from _repr_pieces(item, width)
+        yield "]"
+    elif type(value) is dict:
+        yield "{"
+        for index, (key, item) in enumerate(value.items()):
+            yield ", " if index else ""
+            yield from _repr_pieces(key, width)
+            yield ": "
+            yield from _repr_pieces(item, width)
+        yield "}"
+    elif type(value) is str and len(value) > width:
+        # A quote of each kind the text holds, after the part shown: repr picks the same quotes.
+        yield repr(value[:width] + "'" * ("'" in value) + '"' * ('"' in value))
+    else:
+        yield repr(value)
