@@ -228,8 +228,8 @@ class _GoalSharing:
     it is complete lets the copy go at once, and parsing shares the :class:`Goal` too
     (:func:`_parse_file`): a 14-house split then reads in a fraction of the memory."""
 
-    def __init__(self, budget: MemoryBudget) -> None:
-        self._budget = budget
+    def __init__(self, budget: MemoryBudget | None = None) -> None:
+        self._budget = budget  # None: a file this process wrote, read back
         self._seen: dict[tuple[Any, ...], list[dict[str, Any]]] = {}
 
     def __call__(self, obj: dict[str, Any]) -> dict[str, Any] | ViewPoint:
@@ -242,10 +242,11 @@ class _GoalSharing:
             same = self._seen.setdefault(key, [])
             for earlier in same:
                 if earlier == obj:
-                    self._budget.refund_view_points(list(map(type, points)).count(ViewPoint))
+                    if self._budget is not None:
+                        self._budget.refund_view_points(list(map(type, points)).count(ViewPoint))
                     return earlier
             same.append(obj)
-        if "agent_state" in obj:
+        if "agent_state" in obj and self._budget is not None:
             self._budget.charge_start(obj)
         return obj
 
