@@ -66,6 +66,9 @@ class Config(BaseSettings):
 
     file_keys: ClassVar[tuple[str, ...]] = ()
     """Keys a stored file may hold beside the settings (written by the runner, not settings)."""
+    unrecorded_at_default: ClassVar[tuple[str, ...]] = ()
+    """Settings added after files were first stored: left out of :meth:`to_json` at their
+    defaults, so those files are written (and resumed) byte for byte as before."""
 
     @classmethod
     def settings_customise_sources(
@@ -108,8 +111,13 @@ class Config(BaseSettings):
         return type(self)(**(self.model_dump() | changes))
 
     def to_json(self) -> dict[str, Any]:
-        """The settings as JSON values, in field order (what ``run.json`` and friends store)."""
-        return self.model_dump(mode="json")
+        """The settings as JSON values, in field order (what ``run.json`` and friends store),
+        less those of :attr:`unrecorded_at_default` that are at their defaults."""
+        fields = self.model_dump(mode="json")
+        for name in self.unrecorded_at_default:
+            if getattr(self, name) == type(self).model_fields[name].default:
+                del fields[name]
+        return fields
 
     @classmethod
     def from_json(cls, data: Any, where: str) -> Self:

@@ -86,8 +86,6 @@ from vlln.world.options import PresetOptions
 from vlln.world.scene_summary import export_scene_summary
 
 FLOOR_CHOICES = (1, 2, 3)  # storeys a procedural house can have
-# Settings left out of build.json at their defaults (builds made before they existed).
-_UNRECORDED = ("floors", "task", "policy")
 
 
 class BuildOptions(PresetOptions):
@@ -128,6 +126,9 @@ class BuildOptions(PresetOptions):
 class BuildConfig(BuildOptions):
     """What a build makes; recorded in ``build.json`` and in every house's info."""
 
+    # At their first values (one storey, IIGN, frontier), as before they existed.
+    unrecorded_at_default = ("floors", "task", "policy")
+
     episodes: EpisodeGenConfig = Field(default_factory=EpisodeGenConfig)
     """episode settings (none given: those of the preset's splits, as eval builds them)"""
     collector: CollectorConfig = Field(default_factory=CollectorConfig)
@@ -145,15 +146,6 @@ class BuildConfig(BuildOptions):
     def scene_id(self, seed: int) -> str:
         """The scene id of the split's house ``seed`` with this build's preset and storeys."""
         return procedural_scene_id(seed, self.floors, self.preset)
-
-    def to_json(self) -> dict[str, Any]:
-        """The settings; those at their first value (one storey, IIGN, frontier) are left
-        out, as before they existed, so folders built then resume."""
-        fields = super().to_json()
-        for name in _UNRECORDED:
-            if fields[name] == BuildOptions.model_fields[name].default:
-                del fields[name]
-        return fields
 
     def settings(self) -> dict[str, Any]:
         """What ``build.json`` and each house's info record: the settings and what else

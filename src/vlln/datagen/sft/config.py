@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import Annotated, Any, Self
+from typing import Annotated, Self
 
 from pydantic import AliasChoices, Field, model_validator
 
@@ -48,15 +48,9 @@ class SftConfig(Config):
     """a one-step <move>↑ sample at each forward frame with no visible pixel goal (the
     reference writes none there, so an imitator has no decision to copy at the steps too close
     to show on the look-down image, the last before most STOPs among them)"""
+    unrecorded_at_default = ("hard_negatives",)  # exports made before it stay byte for byte
+
     hard_negatives: Annotated[int, Field(ge=0)] = 0
     """copies of a sample at each frame where another instance of the target's category is in
     plain view and the teacher walked on (IIGN, IGN; 0: none): a model that weakly matches the
     target's attributes stops at such a distractor (the paper's AD failure)"""
-
-    def to_json(self) -> dict[str, Any]:
-        """The settings; ``hard_negatives`` only when above 0, so an export without it is byte for
-        byte what it was before the setting existed."""
-        fields = super().to_json()
-        if not self.hard_negatives:
-            del fields["hard_negatives"]
-        return fields
