@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import json
+import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -22,6 +24,7 @@ from vlln.errors import DataFormatError
 from vlln.oracle.classifier.model import (
     FEATURE_SETS,
     FORMAT,
+    analyser,
     artefact_text,
     classifier_from_bytes,
     load_classifier,
@@ -57,6 +60,27 @@ def test_the_loaded_model_scores_as_vectorisers_with_its_numbers_do(tmp_path: Pa
         expected = features @ model.weights + model.bias
         np.testing.assert_allclose(model.scores(text), expected[0], atol=1e-9)
     assert model.meta["seed"] == 0 and model.meta["training_digest"] == "d"
+
+
+def test_the_analysers_split_texts_as_scikit_learns_do() -> None:
+    """Every tenth training question, a few with typo copies, and texts with odd words:
+    one-letter words (a padded word shorter than the n-gram), digits, markup, accents and no
+    words at all."""
+    texts = [q.question for q in training_questions()[::10]] + training_texts(SMALL)[0]
+    texts += ["a b I?", "Is it 2 m away?", "<b>Which</b> way?!", "Ça va, café?", "", " ?? "]
+    for name in FEATURE_SETS:
+        ours, theirs = analyser(name), vectoriser(name).build_analyzer()
+        assert [ours(text) for text in texts] == [theirs(text) for text in texts], name
+
+
+def test_classifying_does_not_import_scikit_learn() -> None:
+    code = (
+        "import sys; from vlln.oracle.classifier.model import packaged_classifier;"
+        "packaged_classifier().predict('What colour is it?');"
+        "print(sorted(m for m in sys.modules if m.split('.')[0] in ('sklearn', 'pandas')))"
+    )
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert done.stdout.strip() == "[]"
 
 
 def test_the_artefact_keeps_the_fitted_idf_and_the_weights_to_a_step() -> None:

@@ -5,11 +5,13 @@ the labels, and the model packed as base85 of xz-compressed arrays (:func:`packe
 n-grams of the two TF-IDF feature sets (character 2-5-grams within word boundaries, then word
 1-3-grams with house words read by role), how many training texts each occurs in (its idf),
 and the linear model's weights, whole multiples of a step per label, with its biases. Plain
-numbers rather than a pickle, so that a newer scikit-learn still reads it. At load,
-scikit-learn builds each feature set's analyser (the n-gram splitting, with the fitted
-settings), and the weighting and the linear model are a few array operations: the same
-numbers as a vectoriser with the stored n-grams and idf, without its per-call overhead of
-about a millisecond.
+numbers rather than a pickle, so that a newer scikit-learn still reads it. Classifying needs
+no scikit-learn: each feature set's n-gram splitting is scikit-learn's analyser for its
+settings written out (:func:`analyser`; importing scikit-learn, which brings pandas and
+scipy.stats, costs about 1.5 s in every process that answers a question), and the weighting and
+the linear model are a few array operations: the same numbers as a vectoriser with the stored
+n-grams and idf, without its per-call overhead of about a millisecond. Training fits
+scikit-learn's vectorisers (:func:`vectoriser`) with the same settings.
 """
 
 from __future__ import annotations
@@ -89,6 +91,39 @@ def vectoriser(name: str, **extra: Any) -> TfidfVectorizer:
 
     settings = FEATURE_SETS[name]
     return TfidfVectorizer(**settings, **TFIDF_SETTINGS, preprocessor=PREPROCESSORS[name], **extra)
+
+
+def analyser(name: str) -> Callable[[str], list[str]]:
+    """The n-grams feature set ``name`` reads from a text, in the order and with the
+    repetitions of scikit-learn's analyser of :func:`vectoriser` (a test holds them equal on
+    every training question)."""
+    settings = FEATURE_SETS[name]
+    low, high = settings["ngram_range"]
+    preprocess = PREPROCESSORS[name]
+    if settings["analyzer"] == "char_wb":
+        return lambda text: _word_bounded_chars(preprocess(text), low, high)
+    tokens = re.compile(settings["token_pattern"]).findall
+    return lambda text: _word_grams(tokens(preprocess(text)), low, high)
+
+
+def _word_bounded_chars(text: str, low: int, high: int) -> list[str]:
+    """Character n-grams inside each word padded with a space either side; a padded word no
+    longer than n is one n-gram, and then the longer n-grams are skipped."""
+    grams: list[str] = []
+    for word in text.split():
+        padded = f" {word} "
+        for n in range(low, high + 1):
+            if len(padded) <= n:
+                grams.append(padded)
+                break
+            grams.extend(padded[i : i + n] for i in range(len(padded) - n + 1))
+    return grams
+
+
+def _word_grams(tokens: list[str], low: int, high: int) -> list[str]:
+    """Every run of ``low`` to ``high`` consecutive tokens, joined by a space."""
+    runs = ((i, n) for n in range(low, high + 1) for i in range(len(tokens) - n + 1))
+    return [" ".join(tokens[i : i + n]) for i, n in runs]
 
 
 def packaged_artefact_path() -> Path:
@@ -220,8 +255,7 @@ def _from_json(raw: dict[str, Any]) -> QuestionClassifier:
     offset = 0
     for name, size in zip(FEATURE_SETS, sizes, strict=True):
         index = {gram: i for i, gram in enumerate(vocabulary[offset : offset + size])}
-        analyse = vectoriser(name).build_analyzer()
-        parts.append(_FeatureSet(analyse, index, idf[offset : offset + size], offset))
+        parts.append(_FeatureSet(analyser(name), index, idf[offset : offset + size], offset))
         offset += size
     meta = {k: raw[k] for k in ("format", "vlln_version", "sklearn_version", "seed")}
     meta["training_digest"] = raw["training_digest"]
