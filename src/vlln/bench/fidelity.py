@@ -35,10 +35,11 @@ from scipy import stats
 from vlln.bench.settings import FidelityBench
 from vlln.eval.config import EvalConfig
 from vlln.eval.results import RunDirectory
-from vlln.eval.runner import default_cache_dir, load_episodes, run_evaluation
+from vlln.eval.runner import load_episodes, run_evaluation
 from vlln.tasks.metrics import record_spl, success
 from vlln.tasks.record import EpisodeRecord
 from vlln.tasks.scenes import SceneCache
+from vlln.tasks.split_files import default_cache_dir
 from vlln.tasks.splits import TEST_PROTOCOL_SPLIT
 from vlln.tasks.taxonomy import CLASS_ABBREVIATIONS, FAILURE_CLASSES, classify
 

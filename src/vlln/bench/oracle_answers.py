@@ -24,14 +24,13 @@ from vlln.agents.protocol import Agent
 from vlln.agents.registry import make_agent
 from vlln.bench.settings import OracleAnswersBench
 from vlln.errors import DataFormatError
-from vlln.eval.runner import default_cache_dir
 from vlln.files import ReadCap, parse_json, write_text_atomic
 from vlln.oracle.settings import OracleBackend, OracleSettings
 from vlln.tasks.env import NavigationEnv
 from vlln.tasks.episode import Episode
 from vlln.tasks.scenes import SceneCache
 from vlln.tasks.spec import Talk, TaskConfig, TaskType
-from vlln.tasks.split_files import load_or_build_split
+from vlln.tasks.split_files import default_cache_dir, load_or_build_split
 from vlln.world.catalogue.aliases import ALIASES
 
 MAX_WALK = 60  # the most steps explored before the question is asked

@@ -28,11 +28,11 @@ def _serve_web(command: ServeWebCommand) -> int:
 
     require_extra("serve", "vlln serve web", SERVE_PACKAGES)
     from vlln.errors import ConfigError
-    from vlln.eval.runner import default_cache_dir, order_by_scene, spread_over_scenes
+    from vlln.eval.runner import order_by_scene, spread_over_scenes
     from vlln.http.addresses import is_loopback
     from vlln.oracle.llm.openai_client import OpenAISettings
     from vlln.tasks.episode import read_episodes
-    from vlln.tasks.split_files import load_or_build_split
+    from vlln.tasks.split_files import default_cache_dir, load_or_build_split
     from vlln.tasks.splits import SPLIT_SIZES
     from vlln.web.config import WebConfig, WebLimits
     from vlln.web.server import episode_source, serve

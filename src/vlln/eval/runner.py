@@ -25,7 +25,6 @@ disk before the next result is taken (see :mod:`vlln.eval.results`), and a resta
 
 from __future__ import annotations
 
-import os
 import sys
 import time
 from collections.abc import Callable, Sequence
@@ -59,7 +58,7 @@ from vlln.tasks.episode import Episode, read_episodes
 from vlln.tasks.metrics import success
 from vlln.tasks.record import EpisodeRecord
 from vlln.tasks.scenes import SceneCache
-from vlln.tasks.split_files import load_or_build_split
+from vlln.tasks.split_files import default_cache_dir, load_or_build_split
 from vlln.tasks.splits import source_split
 
 Commit = Callable[[list[Played]], None]
@@ -193,12 +192,6 @@ def plan_of(items: Sequence[WorkItem], episodes: Sequence[Episode], config: Eval
     chosen = len(episodes) if config.episodes is None else config.episodes
     pairs = ((item.episode.scene_id, item.episode.episode_id) for item in items)
     return RunPlan.of(pairs, config, chosen * len(config.budgets))
-
-
-def default_cache_dir() -> Path:
-    """Where built splits are kept: ``$XDG_CACHE_HOME/vlln/episodes`` (~/.cache by default)."""
-    base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
-    return Path(base) / "vlln" / "episodes"
 
 
 def load_episodes(

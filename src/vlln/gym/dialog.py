@@ -36,7 +36,6 @@ from vlln.agents.frontier import FrontierAgent
 from vlln.agents.frontier.asking import ACTIONS, FEATURES, Decision
 from vlln.errors import ConfigError, EpisodeRefusedError
 from vlln.eval.play import episode_seed, play_episode
-from vlln.eval.runner import default_cache_dir
 from vlln.oracle.rule_oracle import RuleOracle
 from vlln.tasks.env import NavigationEnv
 from vlln.tasks.episode import Episode
@@ -44,7 +43,7 @@ from vlln.tasks.metrics import success
 from vlln.tasks.record import EpisodeRecord
 from vlln.tasks.scenes import SceneCache
 from vlln.tasks.spec import DEFAULT_MAX_STEPS, TaskConfig, TaskType
-from vlln.tasks.split_files import load_or_build_split
+from vlln.tasks.split_files import default_cache_dir, load_or_build_split
 from vlln.tasks.splits import SPLIT_SIZES, TEST_PROTOCOL_SOURCE, source_split
 
 _ABORT = -1  # the answer that ends the episode in play

@@ -45,7 +45,6 @@ import gymnasium
 import numpy as np
 
 from vlln.errors import ConfigError
-from vlln.eval.runner import default_cache_dir
 from vlln.gym.remote import RemoteEnv
 from vlln.gym.spaces import action_space, from_space, observation_space, to_space
 from vlln.oracle.rule_oracle import RuleOracle
@@ -57,7 +56,7 @@ from vlln.tasks.episode import Episode, read_episodes
 from vlln.tasks.oracle_protocol import Oracle
 from vlln.tasks.scenes import SceneCache
 from vlln.tasks.spec import DEFAULT_MAX_STEPS, TaskConfig, TaskType
-from vlln.tasks.split_files import load_or_build_split
+from vlln.tasks.split_files import default_cache_dir, load_or_build_split
 from vlln.tasks.splits import SPLIT_SIZES
 from vlln.world.generator.presets import DEFAULT_PRESET
 from vlln.world.generator.presets import preset as preset_of

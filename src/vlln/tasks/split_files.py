@@ -8,6 +8,7 @@ split and rebuilds it when its recorded settings differ from the ones asked for.
 from __future__ import annotations
 
 import json
+import os
 from dataclasses import asdict
 from functools import lru_cache
 from pathlib import Path
@@ -138,6 +139,12 @@ def load_or_build_split(
         )
     stat = path.stat()
     return list(_read_split(str(path), stat.st_mtime_ns, stat.st_size))
+
+
+def default_cache_dir() -> Path:
+    """Where built splits are kept: ``$XDG_CACHE_HOME/vlln/episodes`` (~/.cache by default)."""
+    base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
+    return Path(base) / "vlln" / "episodes"
 
 
 def split_cache_folder(cache_dir: str | Path, preset: str, houses: int) -> Path:
