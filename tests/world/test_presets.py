@@ -85,3 +85,17 @@ def test_repeats_multiply_only_what_comes_in_numbers() -> None:
     assert sum(doubled.get(c, 0) for c in many) > 1.5 * sum(plain.get(c, 0) for c in many)
     beds = (plain.get("bed", 0), doubled.get("bed", 0))
     assert beds[0] == beds[1]  # one bed a bedroom, whatever the repeats
+
+
+def test_a_house_made_again_is_a_copy_of_the_first_that_callers_may_change() -> None:
+    first = generate_preset_house(77, "small")
+    assert first.geometry is not None
+    first.instances.clear()
+    first.geometry.mesh.positions[:] = 0.0
+    again = generate_preset_house(77, "small")
+    fresh = generate_house(77)
+    assert again is not first and again.name == "house_00077"
+    assert [i.category for i in again.instances] == [i.category for i in fresh.instances]
+    assert again.geometry is not None and fresh.geometry is not None
+    assert (again.geometry.mesh.positions == fresh.geometry.mesh.positions).all()
+    assert generate_preset_house(77, "small", floors=2).name == "house_00077_2f"
