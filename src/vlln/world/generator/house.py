@@ -1,11 +1,20 @@
 """Seeded procedural houses: floor plan, shell, furniture, words and one static mesh.
 
 The seed is split into independent streams for the plan, the shell and the furniture, so a
-different catalogue changes what stands in the rooms but not the rooms themselves. Nothing is
-cached between calls: the same seed and parameters give byte-identical records and meshes.
+different catalogue changes what stands in the rooms but not the rooms themselves. The same
+seed and parameters give byte-identical records and meshes.
+
+A house takes one to two seconds to generate, and processes often make one again: a second
+evaluation, data build or simulator in the same process, every test of a module. So the last
+:data:`RECENT_HOUSES` of the built-in catalogue are kept, pickled (a few MB each), and a copy
+is handed out in tens of milliseconds: callers may change what they get.
 """
 
 from __future__ import annotations
+
+import pickle
+import threading
+from collections import OrderedDict
 
 import numpy as np
 
@@ -42,7 +51,32 @@ def generate_house(
         raise HouseParametersError(f"seed={seed!r} must be a whole number >= 0")
     params = params if params is not None else HouseParameters()
     params.validate()
-    catalogue = catalogue if catalogue is not None else default_catalogue()
+    if catalogue is not None:
+        return _generated(int(seed), params, catalogue)
+    key = (int(seed), params, default_catalogue().fingerprint())
+    with _recent_lock:
+        kept = _recent.get(key)
+        if kept is not None:
+            _recent.move_to_end(key)
+    if kept is not None:
+        copy: House = pickle.loads(kept)
+        return copy
+    house = _generated(int(seed), params, default_catalogue())
+    pickled = pickle.dumps(house, protocol=pickle.HIGHEST_PROTOCOL)
+    with _recent_lock:
+        _recent[key] = pickled
+        while len(_recent) > RECENT_HOUSES:
+            _recent.popitem(last=False)
+    return house
+
+
+RECENT_HOUSES = 6
+_recent: OrderedDict[tuple[object, ...], bytes] = OrderedDict()  # oldest first
+_recent_lock = threading.Lock()  # servers build houses on several threads
+
+
+def _generated(seed: int, params: HouseParameters, catalogue: Catalogue) -> House:
+    """The house, built from nothing."""
     # A fourth stream draws the house's categories, leaving the first three as they were.
     plan_rng, shell_rng, furniture_rng, vocabulary_rng = (
         np.random.default_rng(child) for child in np.random.SeedSequence(int(seed)).spawn(4)

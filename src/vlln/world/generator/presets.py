@@ -12,15 +12,11 @@ whenever it is built.
 
 from __future__ import annotations
 
-import pickle
-import threading
-from collections import OrderedDict
 from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from vlln.errors import ConfigError
-from vlln.world.catalogue import default_catalogue
 from vlln.world.generator.house import generate_house
 from vlln.world.generator.params import HouseParameters
 from vlln.world.model import House
@@ -102,32 +98,8 @@ def house_name(preset_name: str, seed: int, floors: int = 1) -> str:
 
 
 def generate_preset_house(seed: int, preset_name: str, floors: int | None = None) -> House:
-    """House ``seed`` of a preset, named as its scene id names it.
-
-    A house takes one to two seconds to generate and is the same every time, while processes
-    often build one again: a second evaluation, data build or simulator in the same process,
-    every test of a module. So the last :data:`RECENT_HOUSES` are kept, pickled (a few MB
-    each), and a copy is returned in tens of milliseconds: callers may change what they get.
-    """
-    params = preset(preset_name).parameters(seed, floors)
-    key = (seed, preset_name, params, default_catalogue().fingerprint())
-    with _recent_lock:
-        kept = _recent.get(key)
-        if kept is not None:
-            _recent.move_to_end(key)
-    if kept is not None:
-        house: House = pickle.loads(kept)
-        return house
+    """House ``seed`` of a preset, named as its scene id names it."""
+    chosen = preset(preset_name)
+    params = chosen.parameters(seed, floors)
     house = generate_house(seed, params)
-    house = replace(house, name=house_name(preset_name, seed, params.floors))
-    pickled = pickle.dumps(house, protocol=pickle.HIGHEST_PROTOCOL)
-    with _recent_lock:
-        _recent[key] = pickled
-        while len(_recent) > RECENT_HOUSES:
-            _recent.popitem(last=False)
-    return house
-
-
-RECENT_HOUSES = 6
-_recent: OrderedDict[tuple[object, ...], bytes] = OrderedDict()  # oldest first
-_recent_lock = threading.Lock()  # servers build houses on several threads
+    return replace(house, name=house_name(preset_name, seed, params.floors))
