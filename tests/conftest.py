@@ -20,6 +20,15 @@ for _variable in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", 
 
 from vlln.datagen.build import BuildConfig, build_dataset  # noqa: E402
 
+
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    """The files that hold slow tests first, each file's tests together and in order: two
+    workers then share the short tests at the end of the run, instead of one waiting while
+    the other finishes a long test."""
+    slow = {item.nodeid.split("::")[0] for item in items if item.get_closest_marker("slow")}
+    items.sort(key=lambda item: item.nodeid.split("::")[0] not in slow)
+
+
 ONE_HOUSE = BuildConfig(houses=1, per_house=1, preset="small")
 """``vlln data build --houses 1 --per-house 1``: the train split's first house, one trajectory."""
 
