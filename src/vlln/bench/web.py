@@ -17,7 +17,7 @@ import numpy as np
 
 from vlln.bench.figures import Figure, emit
 from vlln.bench.settings import WebBench
-from vlln.errors import ConfigError
+from vlln.errors import ConfigError, VllnError
 from vlln.sim.simulator import Simulator
 from vlln.tasks.generation import generate_house_episodes
 from vlln.tasks.spec import TaskType
@@ -76,6 +76,7 @@ def run_web_benchmark(settings: WebBench) -> list[Figure]:
 
 def _press(url: str, presses: int, browser: str, sync_playwright: object) -> list[float]:
     import httpx
+    from playwright.sync_api import TimeoutError as PageTimeout
 
     created = httpx.post(
         f"{url}/api/sessions",
@@ -89,7 +90,14 @@ def _press(url: str, presses: int, browser: str, sync_playwright: object) -> lis
         page.wait_for_function("!document.querySelector('#left').disabled", timeout=60_000)
         for number in range(presses + WARM_UP):
             page.keyboard.press("ArrowLeft" if (number // 12) % 2 == 0 else "ArrowRight")
-            page.wait_for_function(f"window.vllnLatencies.length > {number}", timeout=60_000)
+            try:
+                page.wait_for_function(f"window.vllnLatencies.length > {number}", timeout=60_000)
+            except PageTimeout:  # a lost press: say what the page showed instead of a trace
+                status = page.text_content("#status")
+                raise VllnError(
+                    f"key press {number + 1} showed no new frame within 60 s; the page says: "
+                    f"{status!r}"
+                ) from None
         latencies: list[float] = page.evaluate("window.vllnLatencies")
         chromium.close()
     return latencies
