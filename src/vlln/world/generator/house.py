@@ -13,8 +13,7 @@ is handed out in tens of milliseconds: callers may change what they get.
 from __future__ import annotations
 
 import pickle
-import threading
-from collections import OrderedDict
+from functools import lru_cache
 
 import numpy as np
 
@@ -53,26 +52,18 @@ def generate_house(
     params.validate()
     if catalogue is not None:
         return _generated(int(seed), params, catalogue)
-    key = (int(seed), params, default_catalogue().fingerprint())
-    with _recent_lock:
-        kept = _recent.get(key)
-        if kept is not None:
-            _recent.move_to_end(key)
-    if kept is not None:
-        copy: House = pickle.loads(kept)
-        return copy
-    house = _generated(int(seed), params, default_catalogue())
-    pickled = pickle.dumps(house, protocol=pickle.HIGHEST_PROTOCOL)
-    with _recent_lock:
-        _recent[key] = pickled
-        while len(_recent) > RECENT_HOUSES:
-            _recent.popitem(last=False)
+    house: House = pickle.loads(_recent(int(seed), params, default_catalogue().fingerprint()))
     return house
 
 
 RECENT_HOUSES = 6
-_recent: OrderedDict[tuple[object, ...], bytes] = OrderedDict()  # oldest first
-_recent_lock = threading.Lock()  # servers build houses on several threads
+
+
+@lru_cache(maxsize=RECENT_HOUSES)
+def _recent(seed: int, params: HouseParameters, fingerprint: str) -> bytes:
+    """A house of the built-in catalogue, pickled; ``fingerprint`` (the catalogue's) keys it."""
+    house = _generated(seed, params, default_catalogue())
+    return pickle.dumps(house, protocol=pickle.HIGHEST_PROTOCOL)
 
 
 def _generated(seed: int, params: HouseParameters, catalogue: Catalogue) -> House:
